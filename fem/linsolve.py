@@ -1,0 +1,49 @@
+"""Sparse symmetric factorisation: MKL PARDISO when available, SuperLU otherwise.
+
+PARDISO (through pypardiso) factors the 100k-DOF quadratic-tetrahedron systems of
+this package about six times faster than SuperLU on two cores; SuperLU keeps the
+package working where MKL is not available (non-x86 machines).
+"""
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.linalg import LinearOperator, splu
+
+try:  # pragma: no cover - depends on the platform
+    import pypardiso
+except Exception:  # noqa: BLE001 - any import failure means "not available"
+    pypardiso = None
+
+
+class Factor:
+    """Factor a symmetric matrix once and solve for any number of right-hand sides."""
+
+    def __init__(self, A: sp.spmatrix, *, backend: str | None = None):
+        self.shape = A.shape
+        self.backend = backend or ("pardiso" if pypardiso is not None else "superlu")
+        if self.backend == "pardiso":
+            # real symmetric indefinite (-2): upper triangle only, safe for shifted systems
+            self._A = sp.triu(A, format="csr").astype(np.float64)
+            self._A.sort_indices()
+            self._s = pypardiso.PyPardisoSolver(mtype=-2)
+            self._s.set_phase(12)
+            self._s._call_pardiso(self._A, np.zeros(self.shape[0]))
+        elif self.backend == "superlu":
+            self._lu = splu(sp.csc_matrix(A), permc_spec="COLAMD")
+        else:
+            raise ValueError(f"backend = {backend!r} is not allowed: expected 'pardiso' or 'superlu'")
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        b = np.asarray(b, dtype=np.float64)
+        if self.backend == "superlu":
+            return self._lu.solve(b)
+        self._s.set_phase(33)   # solve only; skips pypardiso's per-call matrix hashing
+        return self._s._call_pardiso(self._A, np.asfortranarray(b) if b.ndim == 2 else b)
+
+    def operator(self) -> LinearOperator:
+        return LinearOperator(self.shape, matvec=self.solve, matmat=self.solve, dtype=np.float64)
+
+    def free(self) -> None:
+        if self.backend == "pardiso":
+            self._s.free_memory(everything=True)

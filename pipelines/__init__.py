@@ -1,0 +1,1 @@
+"""What users run: build modal bodies, report; the ``axlebox`` command line."""

@@ -1,0 +1,167 @@
+"""Build modal bodies from geometry: gmsh -> scikit-fem -> Guyan / Craig-Bampton -> HDF5."""
+from __future__ import annotations
+
+import dataclasses
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from fem import assembly, bodyfile, eigen, interfaces
+from fem.body import make_body
+from fem.reduction import METHODS
+from geometry import axlebox, frame, mesh, wheelset
+from geometry._params import ParameterError
+
+
+@dataclass(frozen=True)
+class BodySpec:
+    """How to build one body: geometry, default mesh size, couplings, master positions."""
+
+    params: type
+    build: Callable
+    mesh_size: float                       # m, the default ("default mesh")
+    coarse_mesh_size: float                # m, used by ``axlebox demo``
+    couplings: Callable                    # params -> {surface: "rbe2" | "rbe3"}
+    positions: Callable                    # params -> {surface: (3,)}
+
+
+def _ws_couplings(p):
+    c = {f"journal_{s}_{r}": "rbe2" for s in wheelset.SIDES for r in ("row1", "row2")}
+    c.update({f"tread_{s}": "rbe3" for s in wheelset.SIDES})
+    if p.r_gear > 0:
+        c["gear"] = "rbe3"
+    return c
+
+
+def _ws_positions(p):
+    out = {}
+    for s in wheelset.SIDES:
+        sg = p.side_sign(s)
+        q = p.journal_length / 4
+        out[f"journal_{s}_row1"] = (0.0, sg * (p.journal_center - q), 0.0)
+        out[f"journal_{s}_row2"] = (0.0, sg * (p.journal_center + q), 0.0)
+        # nominal wheel-rail contact point: taping line, bottom of the wheel
+        out[f"tread_{s}"] = (0.0, sg * (p.back_to_back / 2 + p.taping_offset), -p.r_wheel)
+    return out
+
+
+def _ab_couplings(p):
+    return {"bore_row1": "rbe2", "bore_row2": "rbe2", "spring_front": "rbe3",
+            "spring_rear": "rbe3", "sensor_pad": "rbe3"}
+
+
+def _ab_positions(p):
+    x = p.wing_reach - p.seat_length / 2
+    return {"bore_row1": (0.0, -p.length / 4, 0.0), "bore_row2": (0.0, p.length / 4, 0.0),
+            "spring_front": (x, 0.0, p.seat_z), "spring_rear": (-x, 0.0, p.seat_z),
+            "sensor_pad": (0.0, 0.0, p.r_outer + p.pad_height)}
+
+
+def _fr_couplings(p):
+    c = {f"primary_{a}_{s}": "rbe3" for a in frame.AXLES for s in frame.SIDES}
+    c.update({f"secondary_{s}": "rbe3" for s in frame.SIDES})
+    c["traction_centre"] = "rbe3"
+    return c
+
+
+BODIES: dict[str, BodySpec] = {
+    "wheelset": BodySpec(wheelset.WheelsetParams, wheelset.build, 0.040, 0.060,
+                         _ws_couplings, _ws_positions),
+    "axlebox": BodySpec(axlebox.AxleboxParams, axlebox.build, 0.025, 0.040,
+                        _ab_couplings, _ab_positions),
+    "frame": BodySpec(frame.FrameParams, frame.build, 0.050, 0.080,
+                      _fr_couplings, lambda p: {}),
+}
+
+
+def make_params(body: str, overrides: dict[str, float] | None = None):
+    """Default parameters of ``body`` with ``overrides`` (field -> value) applied and validated."""
+    if body not in BODIES:
+        raise ParameterError(f"body = {body!r} is not allowed: expected one of {sorted(BODIES)}")
+    cls = BODIES[body].params
+    names = {f.name: f for f in dataclasses.fields(cls)}
+    kw = {}
+    for k, v in (overrides or {}).items():
+        if k not in names:
+            raise ParameterError(f"{cls.__name__}.{k} is not a parameter of the {body}: "
+                                 f"expected one of {sorted(names)}")
+        kw[k] = v if names[k].type in ("str", str) else _number(cls, k, v)
+    return cls(**kw)
+
+
+def _number(cls, k, v):
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{cls.__name__}.{k} = {v!r} is not allowed: expected a number") from None
+
+
+def build_body(body: str, *, method: str = "craig-bampton", n_modes: int | None = 20,
+               fmax_hz: float | None = None, mesh_size: float | None = None,
+               params=None, coupling: str | None = None, damping: tuple = ("modal", 0.01),
+               n_reference: int = 30, out_dir: str | Path | None = None,
+               log: Callable[[str], None] = print) -> tuple[bodyfile.ReducedBody, Path | None]:
+    """Mesh, assemble, reduce and (if ``out_dir``) write ``<out_dir>/<body>.h5``.
+
+    ``coupling`` forces one interface kind ("rbe2" or "rbe3") on every surface.
+    ``n_reference`` full-model free-free modes are computed for comparison (0: none).
+    """
+    if body not in BODIES:
+        raise ParameterError(f"body = {body!r} is not allowed: expected one of {sorted(BODIES)}")
+    if method not in METHODS:
+        raise ParameterError(f"method = {method!r} is not allowed: expected one of {METHODS}")
+    if coupling not in (None, "rbe2", "rbe3"):
+        raise ParameterError(f"coupling = {coupling!r} is not allowed: expected 'rbe2' or 'rbe3'")
+    spec = BODIES[body]
+    p = params if params is not None else spec.params()
+    h = spec.mesh_size if mesh_size is None else mesh_size
+    t0 = time.perf_counter()
+    msh = mesh.mesh_model(body, spec.build, p, h)
+    fe = assembly.assemble(msh)
+    log(f"{body}: mesh {h * 1e3:g} mm, {msh.cells.shape[0]} tet10, {fe.ndof} DOF "
+        f"({time.perf_counter() - t0:.1f} s)")
+    ref = None
+    if n_reference:
+        modes = eigen.free_free_modes(fe, n_reference)
+        ref = modes.frequencies_hz
+        log(f"{body}: full model: six rigid modes below {modes.rigid_frequencies_hz.max():.2e} Hz, "
+            f"rigid-span residual {modes.rigid_residual:.1e}")
+    kinds = spec.couplings(p)
+    if coupling:
+        kinds = {k: coupling for k in kinds}
+    itf = interfaces.make_interfaces(fe, kinds, spec.positions(p))
+    meta = {"body": body, "params": dataclasses.asdict(p), "mesh_size": h,
+            "mesh_file": str(msh.path) if msh.path else "", "n_modes_requested": n_modes,
+            "fmax_hz": fmax_hz}
+    rb, _ = make_body(body, fe, itf, method=method, n_modes=n_modes, fmax_hz=fmax_hz,
+                      damping=damping, reference_hz=ref, meta=meta)
+    wall = time.perf_counter() - t0
+    rb.meta["build_seconds"] = wall
+    log(f"{body}: {method}, {rb.n_modes} elastic modes, mass {rb.mass:.1f} kg ({wall:.1f} s)")
+    if ref is not None:
+        log(compare_table(rb))
+    path = None
+    if out_dir is not None:
+        path = bodyfile.write(rb, Path(out_dir) / f"{body}.h5")
+        log(f"{body}: wrote {path}")
+    return rb, path
+
+
+def compare_table(rb: bodyfile.ReducedBody, n: int = 12) -> str:
+    """Reduced against full-model free-free frequencies (the reduction error)."""
+    ref = rb.reference_frequencies_hz
+    lines = [f"  mode   full FE Hz   {rb.method} Hz   error %"]
+    for k in range(min(n, len(ref), rb.n_modes)):
+        e = 100 * (rb.frequencies_hz[k] - ref[k]) / ref[k]
+        lines.append(f"  {k + 1:4d} {ref[k]:12.2f} {rb.frequencies_hz[k]:14.2f} {e:9.3f}")
+    return "\n".join(lines)
+
+
+def reduction_error(rb: bodyfile.ReducedBody) -> np.ndarray:
+    """Relative error of each reduced frequency that has a full-model counterpart."""
+    ref = rb.reference_frequencies_hz
+    k = min(len(ref), rb.n_modes)
+    return (rb.frequencies_hz[:k] - ref[:k]) / ref[:k]

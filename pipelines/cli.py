@@ -1,0 +1,128 @@
+"""The ``axlebox`` command line.
+
+Exit status: 0 success, 2 bad input (one line on stderr naming it), 1 a failure
+of the computation.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from fem.bodyfile import BodyFileError
+from geometry._params import ParameterError
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):  # one line, status 2, no usage dump
+        self.exit(2, f"axlebox: error: {message}\n")
+
+
+def _params(text: list[str]) -> dict[str, str]:
+    out = {}
+    for item in text or []:
+        if "=" not in item:
+            raise ParameterError(f"--param {item!r} is not allowed: expected NAME=VALUE")
+        k, v = item.split("=", 1)
+        out[k.strip()] = v.strip()
+    return out
+
+
+def _cmd_bodies_build(a) -> None:
+    from fem import bodyfile
+    from .bodies import BODIES, build_body, make_params
+    names = list(BODIES) if a.body == "all" else [a.body]
+    overrides = _params(a.param)
+    if a.body == "all" and overrides:
+        raise ParameterError("--param needs a single --body (parameters differ between bodies)")
+    if a.modes is not None and a.modes < 1:
+        raise ParameterError(f"--modes = {a.modes} is not allowed: expected an integer >= 1")
+    if a.fmax is not None and not a.fmax > 0:
+        raise ParameterError(f"--fmax = {a.fmax} is not allowed: expected a frequency > 0 Hz")
+    if a.mesh_size is not None and not a.mesh_size > 0:
+        raise ParameterError(f"--mesh-size = {a.mesh_size} is not allowed: expected a length > 0 m")
+    if not 0 <= a.zeta < 1:
+        raise ParameterError(f"--zeta = {a.zeta} is not allowed: expected 0 <= zeta < 1")
+    params = {n: make_params(n, overrides) for n in names}
+    for n in names:
+        rb, path = build_body(n, method=a.method, n_modes=None if a.fmax else a.modes or 20,
+                              fmax_hz=a.fmax, mesh_size=a.mesh_size, params=params[n],
+                              coupling=None if a.coupling == "default" else a.coupling,
+                              damping=("modal", a.zeta), n_reference=0 if a.no_reference else 30,
+                              out_dir=a.out)
+        if a.vtu:
+            print(f"{n}: wrote {bodyfile.export_vtu(rb, Path(a.out) / f'{n}.vtu')}")
+
+
+def _cmd_bodies_report(a) -> None:
+    from .render import report
+    report(a.dir, a.out, max_modes=a.max_modes)
+
+
+def _cmd_demo(a) -> None:
+    from .bodies import BODIES, build_body
+    from .render import report
+    out = Path(a.out)
+    for n, spec in BODIES.items():
+        build_body(n, mesh_size=spec.coarse_mesh_size, n_modes=12, n_reference=12,
+                   out_dir=out / "bodies")
+    report(out / "bodies", out / "report", max_modes=12)
+    print(f"demo: open {out / 'report' / 'index.html'}")
+
+
+def parser() -> argparse.ArgumentParser:
+    p = _Parser(prog="axlebox", description="Railway vehicle dynamics with flexible bodies and "
+                                            "axle-box bearing faults.")
+    sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    d = sub.add_parser("demo", help="build the three modal bodies at a coarse mesh and report them")
+    d.add_argument("--out", default="axlebox-demo", help="output folder (default: axlebox-demo)")
+    d.set_defaults(func=_cmd_demo)
+
+    b = sub.add_parser("bodies", help="modal bodies from geometry")
+    bs = b.add_subparsers(dest="bodies_command", required=True, parser_class=_Parser)
+    bb = bs.add_parser("build", help="mesh, assemble and reduce bodies into <out>/<body>.h5")
+    bb.add_argument("--body", required=True, choices=["wheelset", "axlebox", "frame", "all"])
+    bb.add_argument("--method", default="craig-bampton", choices=["guyan", "craig-bampton"])
+    g = bb.add_mutually_exclusive_group()
+    g.add_argument("--modes", type=int, default=None,
+                   help="fixed-interface modes kept by Craig-Bampton (default 20)")
+    g.add_argument("--fmax", type=float, default=None, help="keep fixed-interface modes below HZ")
+    bb.add_argument("--mesh-size", type=float, default=None, help="element size in m (default per body)")
+    bb.add_argument("--coupling", default="default", choices=["default", "rbe2", "rbe3"],
+                    help="interface coupling on every surface (default: per interface)")
+    bb.add_argument("--param", action="append", metavar="NAME=VALUE",
+                    help="geometry parameter (SI), repeatable, e.g. r_wheel=0.41")
+    bb.add_argument("--zeta", type=float, default=0.01, help="modal damping ratio (default 0.01)")
+    bb.add_argument("--no-reference", action="store_true",
+                    help="skip the full-model free-free modes used to report the reduction error")
+    bb.add_argument("--vtu", action="store_true", help="also write <body>.vtu with the mode shapes")
+    bb.add_argument("--out", required=True, help="output folder")
+    bb.set_defaults(func=_cmd_bodies_build)
+
+    br = bs.add_parser("report", help="render mode shapes off-screen and write index.html")
+    br.add_argument("dir", help="folder of reduced-body files (or one .h5 file)")
+    br.add_argument("--out", required=True, help="report folder")
+    br.add_argument("--max-modes", type=int, default=None, help="render at most N modes a body")
+    br.set_defaults(func=_cmd_bodies_report)
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    a = parser().parse_args(argv)
+    try:
+        a.func(a)
+    except (ParameterError, BodyFileError, FileNotFoundError) as err:
+        print(f"axlebox: error: {err}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("axlebox: interrupted", file=sys.stderr)
+        return 1
+    except Exception as err:  # noqa: BLE001 - a failure of the computation, reported in one line
+        print(f"axlebox: failed: {type(err).__name__}: {err}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
