@@ -17,16 +17,21 @@ except Exception:  # noqa: BLE001 - any import failure means "not available"
 
 
 class Factor:
-    """Factor a symmetric matrix once and solve for any number of right-hand sides."""
+    """Factor a symmetric positive definite matrix once; solve for any number of right-hand sides.
+
+    Every system this package factors is SPD (shifted free-free stiffness,
+    fixed-interface stiffness), so PARDISO runs as an exact Cholesky (mtype 2)
+    rather than the indefinite solver, whose pivot perturbation costs accuracy.
+    """
 
     def __init__(self, A: sp.spmatrix, *, backend: str | None = None):
         self.shape = A.shape
         self.backend = backend or ("pardiso" if pypardiso is not None else "superlu")
         if self.backend == "pardiso":
-            # real symmetric indefinite (-2): upper triangle only, safe for shifted systems
+            # real SPD (2): upper triangle only
             self._A = sp.triu(A, format="csr").astype(np.float64)
             self._A.sort_indices()
-            self._s = pypardiso.PyPardisoSolver(mtype=-2)
+            self._s = pypardiso.PyPardisoSolver(mtype=2)
             self._s.set_phase(12)
             self._s._call_pardiso(self._A, np.zeros(self.shape[0]))
         elif self.backend == "superlu":

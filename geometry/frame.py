@@ -36,7 +36,8 @@ class FrameParams:
     def __post_init__(self):
         check_ranges(self)
         require(self.side_beam_length / 2 > self.wheelbase / 2 + self.seat_size / 2, self,
-                "side_beam_length", f"must reach past the primary seats at x = +-{self.wheelbase / 2:g} m")
+                "wheelbase", f"the primary seats at x = +-{self.wheelbase / 2:g} m must lie on the "
+                f"side beams (side_beam_length = {self.side_beam_length:g} m)")
         require(2 * self.wall < min(self.side_beam_width, self.side_beam_height) / 2, self, "wall",
                 "must be below a quarter of the side-beam section")
         require(self.wall < self.cross_beam_radius / 2, self, "wall", "must be below half the tube radius")

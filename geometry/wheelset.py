@@ -32,7 +32,7 @@ class WheelsetParams:
     r_wheel_seat: float = param(0.100, 0.02, 0.3, doc="wheel seat radius")
     wheel_seat_length: float = param(0.180, 0.05, 0.4)
     r_axle_body: float = param(0.090, 0.02, 0.3, doc="axle body radius between the wheels")
-    r_wheel: float = param(0.420, 0.2, 0.7, doc="rolling radius at the taping line (840 mm)")
+    r_wheel: float = param(0.420, 0.05, 0.7, doc="rolling radius at the taping line (840 mm)")
     back_to_back: float = param(1.353, 0.9, 1.6, doc="distance between the wheel back faces")
     rim_width: float = param(0.135, 0.08, 0.2)
     rim_thickness: float = param(0.065, 0.02, 0.15, doc="radial rim depth below the taping line")
@@ -54,6 +54,9 @@ class WheelsetParams:
         if self.gear_side not in SIDES:
             raise ParameterError(f"WheelsetParams.gear_side = {self.gear_side!r} is not allowed: "
                                  "expected 'L' or 'R'")
+        require(self.r_wheel > self.r_axle_body and self.r_wheel > self.r_wheel_seat, self, "r_wheel",
+                f"the wheel radius must exceed the axle radii (axle body {self.r_axle_body:g} m, "
+                f"wheel seat {self.r_wheel_seat:g} m)")
         require(self.r_wheel - self.rim_thickness > self.r_hub, self, "r_wheel",
                 f"the wheel radius less the rim ({self.r_wheel - self.rim_thickness:g} m) must exceed "
                 f"the hub radius r_hub = {self.r_hub:g} m")

@@ -1,0 +1,111 @@
+"""Free-free beam and simple-body mass properties against closed forms."""
+import numpy as np
+import pytest
+
+from fem import assembly, eigen, interfaces, massprops
+from fem.body import make_body
+from geometry import beam, mesh
+
+E, RHO = 2.1e11, 7850.0
+# cos(bL) cosh(bL) = 1 (REFERENCE_DATA.md; Blevins, Formulas for Natural Frequency
+# and Mode Shape, table 8-1, free-free beam)
+BETA_L = np.array([4.73004074, 7.85320462, 10.99560784])
+
+
+@pytest.fixture(scope="module")
+def slender():
+    # L / thickness = 50: shear and rotary inertia lower mode 3 by < 1 % (Timoshenko)
+    p = beam.BeamParams(length=2.0, width=0.04, height=0.06)
+    fe = assembly.assemble(mesh.mesh_model("beam", beam.build, p, 0.02))
+    return p, fe, eigen.free_free_modes(fe, 12)
+
+
+def _direction_fraction(fe, phi, axis):
+    u = fe.field(phi)
+    Ms = fe.scalar_mass()
+    e = np.array([u[:, a] @ (Ms @ u[:, a]) for a in range(3)])
+    return e[axis] / e.sum()
+
+
+def test_free_free_bending_matches_euler_bernoulli(slender):
+    p, fe, modes = slender
+    # bending in y (the 40 mm direction): the modes whose motion is > 90 % along y
+    fy = [f for f, phi in zip(modes.frequencies_hz, modes.shapes.T)
+          if _direction_fraction(fe, phi, 1) > 0.9][:3]
+    I, A = p.height * p.width ** 3 / 12, p.width * p.height
+    exact = BETA_L ** 2 / (2 * np.pi * p.length ** 2) * np.sqrt(E * I / (RHO * A))
+    np.testing.assert_allclose(fy, exact, rtol=0.02)
+    assert fy[0] == pytest.approx(exact[0], rel=0.005)
+
+
+def test_six_rigid_modes_identified(slender):
+    _, _, modes = slender
+    assert len(modes.rigid_frequencies_hz) == 6
+    assert modes.rigid_frequencies_hz.max() < 1e-3 * modes.frequencies_hz[0]
+    assert modes.rigid_residual < 1e-6
+
+
+def test_disconnected_body_is_refused():
+    """Two separate bars have twelve zero modes: the check must fail, not assume six."""
+    def two_bars(p):
+        import gmsh
+        gmsh.model.occ.addBox(0, 0, 0, 0.5, 0.05, 0.05)
+        gmsh.model.occ.addBox(0, 0.2, 0, 0.5, 0.05, 0.05)
+        gmsh.model.occ.synchronize()
+        return {}
+    fe = assembly.assemble(mesh.mesh_model("two_bars", two_bars, beam.BeamParams(), 0.05, cache=False))
+    with pytest.raises(eigen.RigidModeError, match="rigid modes, expected 6"):
+        eigen.free_free_modes(fe, 4)
+
+
+def test_mass_properties_of_offset_box_are_analytic():
+    p = beam.BeamParams(length=0.8, width=0.1, height=0.2)
+    m = mesh.mesh_model("beam", beam.build, p, 0.05)
+    c = np.array([0.3, -0.2, 0.5])
+    m.points = m.points + c
+    mp = massprops.from_model(assembly.assemble(m))
+    mass = RHO * p.length * p.width * p.height
+    J = mass / 12 * np.diag([p.width ** 2 + p.height ** 2, p.length ** 2 + p.height ** 2,
+                             p.length ** 2 + p.width ** 2])
+    assert mp.mass == pytest.approx(mass, rel=0.005)
+    np.testing.assert_allclose(mp.center_of_mass, c, atol=0.005 * p.length)
+    np.testing.assert_allclose(mp.inertia, J, atol=0.005 * J.max())
+
+
+@pytest.mark.parametrize("method", ["guyan", "craig-bampton"])
+def test_reduced_rigid_mass_properties_equal_full(slender, method):
+    _, fe, _ = slender
+    itf = interfaces.make_interfaces(fe, {"end_a": "rbe2", "end_b": "rbe3"})
+    body, _ = make_body("beam", fe, itf, method=method, n_modes=8)
+    full = massprops.from_model(fe)
+    assert body.mass == pytest.approx(full.mass, rel=1e-6)
+    np.testing.assert_allclose(body.center_of_mass, full.center_of_mass, atol=1e-6 * 2.0)
+    np.testing.assert_allclose(body.inertia, full.inertia, rtol=1e-6, atol=1e-6 * np.abs(full.inertia).max())
+
+
+def test_ffrf_invariants_of_free_free_modes(slender):
+    """Elastic modes are M-orthogonal to the rigid motions: Ct = Cr = 0, Me = I, m = mass."""
+    _, fe, _ = slender
+    itf = interfaces.make_interfaces(fe, {"end_a": "rbe3", "end_b": "rbe3"})
+    body, _ = make_body("beam", fe, itf, n_modes=8)
+    inv = body.invariants
+    scale = np.sqrt(body.mass)          # |int rho phi| <= sqrt(m) for mass-normalised phi
+    assert np.abs(inv["Ct"]).max() < 1e-8 * scale
+    assert np.abs(inv["Cr"]).max() < 1e-8 * scale * 2.0
+    np.testing.assert_allclose(inv["Me"], np.eye(body.n_modes), atol=1e-8)
+    assert float(inv["m"]) == pytest.approx(body.mass, rel=1e-9)
+    np.testing.assert_allclose(body.reduced_stiffness, np.diag((2 * np.pi * body.frequencies_hz) ** 2),
+                               rtol=1e-8, atol=1e-6 * body.reduced_stiffness.max())
+
+
+def test_rbe3_adds_no_stiffness_rbe2_does(slender):
+    """RBE3 only averages: the reduced free-free modes converge to the full ones.
+    An RBE2 spider rigidifies its face: frequencies may only rise."""
+    _, fe, modes = slender
+    for kind in ("rbe3", "rbe2"):
+        itf = interfaces.make_interfaces(fe, {"end_a": kind, "end_b": kind})
+        body, _ = make_body("beam", fe, itf, n_modes=20)
+        f = body.frequencies_hz[:6]
+        assert np.all(f >= modes.frequencies_hz[:6] * (1 - 1e-9))
+        if kind == "rbe3":
+            np.testing.assert_allclose(f, modes.frequencies_hz[:6], rtol=2e-3)

@@ -1,0 +1,29 @@
+"""Mesh convergence of the wheelset bending frequencies (slow: full size with AXLEBOX_FULL=1)."""
+import numpy as np
+import pytest
+
+from conftest import full_size
+from fem import assembly, eigen
+from geometry import mesh, wheelset
+from pipelines import modeid
+
+
+@pytest.mark.slow
+def test_wheelset_bending_converges_with_mesh():
+    """Displacement FE is stiff: refining lowers the bending frequencies (to 0.1 %
+    noise, the meshes are not nested), and the finest two meshes agree within
+    1 % (full size) / 3 % (CI size)."""
+    sizes, tol = ((0.06, 0.045, 0.035), 0.01) if full_size() else ((0.09, 0.075, 0.06), 0.03)
+    p = wheelset.WheelsetParams()
+    f = []
+    for h in sizes:
+        fe = assembly.assemble(mesh.mesh_model("wheelset", wheelset.build, p, h))
+        modes = eigen.free_free_modes(fe, 20)
+        lab = modeid.classify(fe.points, fe.field(modes.shapes))
+        f.append([modeid.first_of(lab, modes.frequencies_hz, "bending-1"),
+                  modeid.first_of(lab, modes.frequencies_hz, "bending-2")])
+    f = np.array(f)
+    print("\nwheelset bending (Hz) by mesh size:", dict(zip(sizes, f.round(2).tolist())))
+    change = np.diff(f, axis=0) / f[1:]
+    assert np.all(np.abs(change[-1]) < tol)
+    assert np.all(change < 1e-3)

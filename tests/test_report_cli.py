@@ -1,0 +1,70 @@
+"""Off-screen report with no display, and the command line's handling of bad input."""
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from pipelines.bodies import build_body
+from pipelines.render import report
+
+
+@pytest.fixture(scope="module")
+def body_dir(tmp_path_factory):
+    out = tmp_path_factory.mktemp("bodies")
+    build_body("wheelset", mesh_size=0.07, n_modes=6, n_reference=0, out_dir=out, log=lambda s: None)
+    return out
+
+
+def test_report_pictures_exist_and_are_not_blank(body_dir, tmp_path):
+    assert "DISPLAY" not in os.environ
+    index = report(body_dir, tmp_path, max_modes=3, log=lambda s: None)
+    pngs = sorted(tmp_path.glob("wheelset_mode*.png"))
+    assert len(pngs) == 3
+    for png in pngs:
+        img = np.asarray(Image.open(png).convert("L"), dtype=float)
+        # a blank (single-colour) render has zero variance; a body with a colour map has a lot
+        assert img.var() > 100, png
+        assert (img < 200).mean() > 0.02, png        # the body covers part of the picture
+    text = index.read_text()
+    for png in pngs:
+        assert png.name in text
+    assert "Hz" in text and "wheelset" in text
+
+
+def _cli(*args):
+    env = dict(os.environ)
+    env.pop("DISPLAY", None)
+    return subprocess.run([sys.executable, "-m", "pipelines.cli", *args], capture_output=True,
+                          text=True, env=env, timeout=300)
+
+
+@pytest.mark.parametrize("args,names", [
+    (["bodies", "build", "--body", "wheelset", "--mesh-size", "0", "--out", "x"], "--mesh-size"),
+    (["bodies", "build", "--body", "wheelset", "--mesh-size", "-0.01", "--out", "x"], "--mesh-size"),
+    (["bodies", "build", "--body", "wheelset", "--param", "r_wheel=0.08", "--out", "x"], "r_wheel"),
+    (["bodies", "build", "--body", "wheelset", "--param", "journal_length=2.5", "--out", "x"],
+     "journal_length"),
+    (["bodies", "build", "--body", "wheelset", "--param", "journal_length=0.45", "--out", "x"],
+     "journal_length"),
+    (["bodies", "build", "--body", "bogie", "--out", "x"], "--body"),
+    (["bodies", "build", "--body", "axlebox", "--modes", "0", "--out", "x"], "--modes"),
+    (["bodies", "report", "/nonexistent/dir", "--out", "x"], "/nonexistent/dir"),
+])
+def test_bad_input_exits_2_with_one_line(args, names, tmp_path):
+    r = _cli(*[a if a != "x" else str(tmp_path / "o") for a in args])
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1, r.stderr
+    assert names in lines[0]
+    assert "Traceback" not in r.stderr + r.stdout
+
+
+def test_cli_builds_a_body(tmp_path):
+    r = _cli("bodies", "build", "--body", "axlebox", "--mesh-size", "0.05", "--modes", "4",
+             "--method", "guyan", "--out", str(tmp_path), "--vtu")
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "axlebox.h5").exists() and (tmp_path / "axlebox.vtu").exists()
+    assert "error %" in r.stdout            # Guyan's error against the full model is printed
