@@ -19,14 +19,31 @@ class Modes:
     rigid_frequencies_hz: np.ndarray   # (6,) the near-zero ones, as computed
     rigid_shapes: np.ndarray     # (ndof, 6)
     rigid_residual: float        # how far the analytic rigid motions lie outside their span
+    residual: float = 0.0        # max ||K phi - w^2 M phi|| / ||K phi|| over the elastic modes
 
 
 class RigidModeError(RuntimeError):
     """The free-free spectrum does not show exactly six rigid-body modes."""
 
 
-def free_free_modes(model: FEModel, n_elastic: int = 20, *, shift_hz: float = 1.0,
-                    rigid_tol: float = 1e-3) -> Modes:
+def free_free_modes(model: FEModel, n_elastic: int = 20, *, shift_hz: float | None = None,
+                    rigid_tol: float = 1e-3, residual_tol: float = 1e-6) -> Modes:
+    """Lowest ``n_elastic`` elastic free-free modes of ``model`` (see :func:`_solve`).
+
+    With ``shift_hz=None`` the shift is chosen from the body: a first solve at
+    10 Hz, and if its eigen-residuals exceed ``residual_tol`` (a shift far below
+    the first elastic mode leaves ``K - sigma M`` badly conditioned, about
+    1e12 for steel parts), a second at half the first elastic frequency.
+    """
+    if shift_hz is not None:
+        return _solve(model, n_elastic, shift_hz, rigid_tol)
+    modes = _solve(model, n_elastic, 10.0, rigid_tol)
+    if modes.residual > residual_tol:
+        modes = _solve(model, n_elastic, 0.5 * modes.frequencies_hz[0], rigid_tol)
+    return modes
+
+
+def _solve(model: FEModel, n_elastic: int, shift_hz: float, rigid_tol: float) -> Modes:
     """Lowest ``n_elastic`` elastic free-free modes of ``model``.
 
     The shift ``sigma = -(2 pi shift_hz)^2`` makes ``K - sigma M`` positive
@@ -54,8 +71,11 @@ def free_free_modes(model: FEModel, n_elastic: int = 20, *, shift_hz: float = 1.
     if residual > rigid_tol:
         raise RigidModeError(f"the six near-zero modes do not span the rigid motions "
                              f"(residual {residual:.2e} > {rigid_tol:g})")
-    return Modes(frequencies_hz=f[6:], shapes=phi[:, 6:], rigid_frequencies_hz=f[:6],
-                 rigid_shapes=phi[:, :6], rigid_residual=residual)
+    P = phi[:, 6:]
+    KP = model.K @ P
+    res = np.linalg.norm(KP - (model.M @ P) * lam[6:], axis=0) / np.linalg.norm(KP, axis=0)
+    return Modes(frequencies_hz=f[6:], shapes=P, rigid_frequencies_hz=f[:6],
+                 rigid_shapes=phi[:, :6], rigid_residual=residual, residual=float(res.max()))
 
 
 def rigid_residual(model: FEModel, phi_r: np.ndarray) -> float:

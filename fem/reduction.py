@@ -111,9 +111,13 @@ def reduce(model: FEModel, cond: Condensation, method: str = "craig-bampton", *,
     nf = Phi.shape[1]
     Kr = np.zeros((nf + nb, nf + nb))
     Mr = np.zeros_like(Kr)
-    Kr[:nf, :nf] = np.diag(lam)
+    # exact Galerkin projections, not the eigensolver's idealised diag(lam) and I:
+    # then the reduced eigenvalues are Ritz values, bounded below by the full model's
+    Kr[:nf, :nf] = Phi.T @ (Kii @ Phi)
+    Kr[:nf, nf:] = Phi.T @ (Kii @ Psi + Kib)
+    Kr[nf:, :nf] = Kr[:nf, nf:].T
     Kr[nf:, nf:] = Kbb_r
-    Mr[:nf, :nf] = np.eye(nf)
+    Mr[:nf, :nf] = Phi.T @ (Mii @ Phi)
     Mr[:nf, nf:] = Phi.T @ MPsi
     Mr[nf:, :nf] = Mr[:nf, nf:].T
     Mr[nf:, nf:] = Mbb_r
