@@ -28,7 +28,6 @@ def make_body(name: str, model: FEModel, interfaces: list[Interface], *,
     U = red.physical(X)
     flip = np.sign(U[np.abs(U).argmax(axis=0), np.arange(U.shape[1])])
     X, U = X * flip, U * flip
-    w2 = (2 * np.pi * red.frequencies_hz) ** 2
     Me = X.T @ red.M @ X
     Ke = X.T @ red.K @ X
     Me, Ke = 0.5 * (Me + Me.T), 0.5 * (Ke + Ke.T)
@@ -62,5 +61,4 @@ def make_body(name: str, model: FEModel, interfaces: list[Interface], *,
         reduced_stiffness=Ke, reduced_damping=D, nodes=nodes, invariants=inv,
         component=component, mesh_points=model.points, mesh_cells=model.mesh.cells,
         mode_shapes=shapes, reference_frequencies_hz=reference_hz, meta=meta)
-    del w2
     return body, red

@@ -44,7 +44,7 @@ def free_free_modes(model: FEModel, n_elastic: int = 20, *, shift_hz: float | No
 
 
 def _solve(model: FEModel, n_elastic: int, shift_hz: float, rigid_tol: float) -> Modes:
-    """Lowest ``n_elastic`` elastic free-free modes of ``model``.
+    """One shift-invert solve for the lowest ``n_elastic`` elastic free-free modes.
 
     The shift ``sigma = -(2 pi shift_hz)^2`` makes ``K - sigma M`` positive
     definite, so the singular free-free stiffness can be factored.  The rigid

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import dataclasses
+import json
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -106,12 +107,14 @@ def _number(cls, k, v):
 def build_body(body: str, *, method: str = "craig-bampton", n_modes: int | None = 20,
                fmax_hz: float | None = None, mesh_size: float | None = None,
                params=None, coupling: str | None = None, damping: tuple = ("modal", 0.01),
-               n_reference: int = 30, out_dir: str | Path | None = None,
+               n_reference: int = 30, out_dir: str | Path | None = None, force: bool = False,
                log: Callable[[str], None] = print) -> tuple[bodyfile.ReducedBody, Path | None]:
     """Mesh, assemble, reduce and (if ``out_dir``) write ``<out_dir>/<body>.h5``.
 
     ``coupling`` forces one interface kind ("rbe2" or "rbe3") on every surface.
     ``n_reference`` full-model free-free modes are computed for comparison (0: none).
+    An existing ``<out_dir>/<body>.h5`` built from the same request is kept
+    (so an interrupted ``--body all`` resumes where it stopped) unless ``force``.
     """
     if body not in BODIES:
         raise ParameterError(f"body = {body!r} is not allowed: expected one of {sorted(BODIES)}")
@@ -122,6 +125,14 @@ def build_body(body: str, *, method: str = "craig-bampton", n_modes: int | None 
     spec = BODIES[body]
     p = params if params is not None else spec.params()
     h = spec.mesh_size if mesh_size is None else mesh_size
+    request = {"body": body, "params": dataclasses.asdict(p), "mesh_size": h, "method": method,
+               "n_modes": n_modes, "fmax_hz": fmax_hz, "coupling": coupling,
+               "damping": list(damping), "n_reference": n_reference}
+    if out_dir is not None and not force:
+        done = _up_to_date(Path(out_dir) / f"{body}.h5", request)
+        if done is not None:
+            log(f"{body}: {Path(out_dir) / f'{body}.h5'} is up to date (same request); --force rebuilds")
+            return done, Path(out_dir) / f"{body}.h5"
     t0 = time.perf_counter()
     msh = mesh.mesh_model(body, spec.build, p, h)
     fe = assembly.assemble(msh)
@@ -138,8 +149,7 @@ def build_body(body: str, *, method: str = "craig-bampton", n_modes: int | None 
         kinds = {k: coupling for k in kinds}
     itf = interfaces.make_interfaces(fe, kinds, spec.positions(p))
     meta = {"body": body, "params": dataclasses.asdict(p), "mesh_size": h,
-            "mesh_file": str(msh.path) if msh.path else "", "n_modes_requested": n_modes,
-            "fmax_hz": fmax_hz}
+            "mesh_file": str(msh.path) if msh.path else "", "request": request}
     rb, _ = make_body(body, fe, itf, method=method, n_modes=n_modes, fmax_hz=fmax_hz,
                       damping=damping, reference_hz=ref, meta=meta)
     wall = time.perf_counter() - t0
@@ -152,6 +162,19 @@ def build_body(body: str, *, method: str = "craig-bampton", n_modes: int | None 
         path = bodyfile.write(rb, Path(out_dir) / f"{body}.h5")
         log(f"{body}: wrote {path}")
     return rb, path
+
+
+def _up_to_date(path: Path, request: dict) -> bodyfile.ReducedBody | None:
+    if not path.is_file():
+        return None
+    try:
+        body = bodyfile.read(path)
+    except bodyfile.BodyFileError:
+        return None
+    # JSON round trip so tuples and lists compare alike
+    same = json.loads(json.dumps(body.meta.get("request"), default=str)) == \
+        json.loads(json.dumps(request, default=str))
+    return body if same else None
 
 
 def compare_table(rb: bodyfile.ReducedBody, n: int = 12) -> str:

@@ -49,7 +49,7 @@ def _cmd_bodies_build(a) -> None:
                               fmax_hz=a.fmax, mesh_size=a.mesh_size, params=params[n],
                               coupling=None if a.coupling == "default" else a.coupling,
                               damping=("modal", a.zeta), n_reference=0 if a.no_reference else 30,
-                              out_dir=a.out)
+                              out_dir=a.out, force=a.force)
         if a.vtu:
             print(f"{n}: wrote {bodyfile.export_vtu(rb, Path(a.out) / f'{n}.vtu')}")
 
@@ -97,6 +97,8 @@ def parser() -> argparse.ArgumentParser:
     bb.add_argument("--no-reference", action="store_true",
                     help="skip the full-model free-free modes used to report the reduction error")
     bb.add_argument("--vtu", action="store_true", help="also write <body>.vtu with the mode shapes")
+    bb.add_argument("--force", action="store_true",
+                    help="rebuild even if <out>/<body>.h5 holds the same request (default: keep it)")
     bb.add_argument("--out", required=True, help="output folder")
     bb.set_defaults(func=_cmd_bodies_build)
 

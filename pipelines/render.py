@@ -14,6 +14,10 @@ def _pyvista():
     # no display: let VTK pick its off-screen (EGL / OSMesa) window instead of X
     if not os.environ.get("DISPLAY"):
         os.environ.setdefault("PYVISTA_OFF_SCREEN", "true")
+        # go straight to EGL when it is there, instead of failing on X first (a warning)
+        import ctypes.util
+        if ctypes.util.find_library("EGL"):
+            os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
     import pyvista as pv
     pv.OFF_SCREEN = True
     return pv

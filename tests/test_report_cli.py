@@ -68,3 +68,17 @@ def test_cli_builds_a_body(tmp_path):
     assert r.returncode == 0, r.stderr
     assert (tmp_path / "axlebox.h5").exists() and (tmp_path / "axlebox.vtu").exists()
     assert "error %" in r.stdout            # Guyan's error against the full model is printed
+
+
+def test_build_resumes_instead_of_rebuilding(tmp_path):
+    """A second identical request keeps the finished file; a changed request rebuilds."""
+    args = ("bodies", "build", "--body", "axlebox", "--mesh-size", "0.05", "--modes", "4",
+            "--no-reference", "--out", str(tmp_path))
+    assert _cli(*args).returncode == 0
+    mtime = (tmp_path / "axlebox.h5").stat().st_mtime_ns
+    r = _cli(*args)
+    assert r.returncode == 0 and "up to date" in r.stdout
+    assert (tmp_path / "axlebox.h5").stat().st_mtime_ns == mtime
+    r = _cli(*[a if a != "4" else "5" for a in args])
+    assert r.returncode == 0 and "up to date" not in r.stdout
+    assert not list(tmp_path.glob("*.part"))
