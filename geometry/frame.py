@@ -70,7 +70,8 @@ def build(p: FrameParams) -> dict[str, list[int]]:
     ss = p.seat_size
     for x in (p.wheelbase / 2, -p.wheelbase / 2):
         for s in (1, -1):
-            parts.append(occ.addBox(x - ss / 2, s * p.side_beam_y - ss / 2, -h / 2 - p.pad, ss, ss, p.pad + 0.005))
+            parts.append(occ.addBox(x - ss / 2, s * p.side_beam_y - ss / 2, -h / 2 - p.pad,
+                                    ss, ss, p.pad + 0.005))
     for s in (1, -1):
         parts.append(occ.addBox(-p.air_seat_length / 2, s * p.side_beam_y - b / 2, h / 2 - 0.005,
                                 p.air_seat_length, b, p.pad + 0.005))

@@ -43,8 +43,7 @@ def classify(points: np.ndarray, shapes: np.ndarray, r_wheel: float = 0.42) -> l
             nodes = int(np.sum(np.diff(np.sign(v)) != 0))
             labels.append(f"bending-{nodes - 1}" if nodes >= 2 else "other")
             continue
-        spin = lambda m: np.mean(np.cross(points[m], u[m])[:, 1] / r[m] ** 2)  # noqa: E731
-        sl, sr = spin(left), spin(right)
+        sl, sr = (np.mean(np.cross(points[m], u[m])[:, 1] / r[m] ** 2) for m in (left, right))
         if sl * sr < 0 and min(abs(sl), abs(sr)) * r_wheel > 0.3 * peak:
             labels.append("torsion")
         else:

@@ -43,6 +43,7 @@ def test_six_rigid_modes_identified(slender):
     assert len(modes.rigid_frequencies_hz) == 6
     assert modes.rigid_frequencies_hz.max() < 1e-3 * modes.frequencies_hz[0]
     assert modes.rigid_residual < 1e-6
+    assert modes.residual < 1e-4          # ||K phi - w^2 M phi|| / ||K phi|| of the elastic modes
 
 
 def test_disconnected_body_is_refused():
