@@ -1,0 +1,129 @@
+"""Quasi-static equilibrium of the DTRB under ring loads (Newton's method).
+
+Unknowns: the inner ring's displacement relative to the outer ring,
+``q = (x, y, z, theta_x, theta_z)`` (the spin rotation theta_y is free).  For
+the roller k of row j at azimuth ``psi_k = 2 pi (k - 1) / Z`` (measured from
++z towards +x, the paper's Eq. 2 convention) and axial position
+``y_j = -+ row_offset``, the inner ring moves ``d = t + theta x r`` at the
+roller, and Eqs. (1) and (3) give the normal approach along the contact
+normal ``n = cos(alpha) e_r + s_j sin(alpha) e_y`` (``s_j = (-1)^(j-1)``):
+
+``delta_n = d . n - (u_r / 2) cos(alpha) - (u_a / 2) sin(alpha)``.
+
+The clearances are taken about the concentric position (Harris's form).  The
+paper's ``h = u_r (1 - cos psi) / 2`` (below Eq. 1) is the same law with the
+origin moved by u_r / 2 along a vertical load; the concentric form holds for
+a load in any direction.  Each roller carries ``Q = K_n delta_n^(10/9)``
+(Eq. 4a, quasi-static: no damping), with K_n the outer and inner raceway
+contacts in series; the rib and cage carry no load at equilibrium in this
+model (the roller's own force balance between the two raceway angles is
+closed by the rib, which the dynamic model resolves).
+
+Equilibrium: ``F = sum Q n`` and ``M = sum r x (Q n)`` for the external load
+(F, M) on the inner ring.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from geometry._params import ParameterError
+
+from .params import BearingParams
+from .stiffness import roller_raceways
+
+N_EXP = 10 / 9
+
+
+@dataclass
+class Equilibrium:
+    q: np.ndarray            # (5,) x, y, z (m), theta_x, theta_z (rad) of the inner ring
+    psi: np.ndarray          # (Z,) roller azimuths, rad
+    delta: np.ndarray        # (2, Z) normal approach, m (negative: no contact)
+    Q: np.ndarray            # (2, Z) roller loads, N
+    load: np.ndarray         # (5,) the applied Fx, Fy, Fz, Mx, Mz
+    iterations: int
+    residual: float          # |load - roller resultant| / |load|
+
+    def resultant(self, p: BearingParams) -> np.ndarray:
+        """(5,) force and moment the rollers exert, for the equilibrium check."""
+        G = _geometry(p, self.psi)[0]
+        return np.einsum("jk,jkc->c", self.Q, G)
+
+    def loaded_zone(self, row: int) -> float:
+        """Half-angle of the loaded zone of ``row`` (0 or 1), rad: the largest |psi| carrying load."""
+        psi = np.angle(np.exp(1j * self.psi))
+        loaded = self.Q[row] > 0
+        return float(np.abs(psi[loaded]).max()) if loaded.any() else 0.0
+
+
+def _geometry(p: BearingParams, psi: np.ndarray):
+    """Per roller: generalised normal ``g = [n; r x n]`` restricted to q (2, Z, 5) and clearance."""
+    R = 0.5 * p.D_m
+    s = np.array([1.0, -1.0])
+    y = np.array([-p.row_offset, p.row_offset])
+    ca, sa = np.cos(p.alpha_o), np.sin(p.alpha_o)
+    er = np.stack([np.sin(psi), np.zeros_like(psi), np.cos(psi)], axis=-1)        # (Z, 3)
+    G = np.zeros((2, len(psi), 5))
+    for j in range(2):
+        n = ca * er + s[j] * sa * np.array([0.0, 1.0, 0.0])
+        r = R * er + np.array([0.0, y[j], 0.0])
+        m = np.cross(r, n)
+        G[j, :, :3] = n
+        G[j, :, 3] = m[:, 0]
+        G[j, :, 4] = m[:, 2]
+    c = 0.5 * p.u_r * ca + 0.5 * p.u_a * sa
+    return G, c
+
+
+def solve(p: BearingParams, F, M=(0.0, 0.0), *, tol: float = 1e-10, max_iter: int = 100,
+          psi0: float = 0.0) -> Equilibrium:
+    """Equilibrium under the external load ``F = (Fx, Fy, Fz)`` (N) and moments
+    ``M = (Mx, Mz)`` (N m) on the inner ring; Newton with backtracking."""
+    load = np.concatenate([np.asarray(F, float).ravel(), np.asarray(M, float).ravel()])
+    if load.shape != (5,) or not np.all(np.isfinite(load)):
+        raise ParameterError(f"load = {load.tolist()!r} is not allowed: expected F (3,) and M (2,) finite")
+    if not np.any(load[:3]):
+        raise ParameterError("load F = (0, 0, 0) is not allowed: the rings are free within the clearance")
+    _, _, K = roller_raceways(p)
+    psi = psi0 + 2 * np.pi * np.arange(p.Z) / p.Z
+    G, c = _geometry(p, psi)
+
+    def state(q):
+        delta = G @ q - c
+        dp = np.maximum(delta, 0.0)
+        Q = K * dp ** N_EXP
+        dQ = N_EXP * K * dp ** (N_EXP - 1) if N_EXP > 1 else np.where(delta > 0, K, 0.0)
+        res = load - np.einsum("jk,jkc->c", Q, G)
+        J = np.einsum("jk,jka,jkb->ab", dQ, G, G)     # d(sum Q g)/dq
+        return delta, Q, res, J
+
+    # start: rigid shift along the force, deep enough to engage a few rollers
+    f = load[:3]
+    Fn = np.linalg.norm(f)
+    guess = (Fn / (0.25 * p.Z * K)) ** (1 / N_EXP) + c
+    q = np.zeros(5)
+    q[:3] = f / Fn * guess * 2
+    scale = np.abs(load).max()
+    it = 0
+    while it < max_iter:
+        it += 1
+        delta, Q, res, J = state(q)
+        r0 = np.linalg.norm(res / scale)
+        if r0 < tol:
+            break
+        J = J + 1e-12 * np.trace(J) * np.eye(5)            # keep it invertible if a DOF is unloaded
+        step = np.linalg.solve(J, res)
+        t = 1.0
+        while t > 1e-6:                                    # backtracking on the residual norm
+            if np.linalg.norm(state(q + t * step)[2] / scale) < (1 - 1e-4 * t) * r0:
+                break
+            t *= 0.5
+        q = q + t * step
+    delta, Q, res, _ = state(q)
+    rel = float(np.linalg.norm(res) / np.linalg.norm(load))
+    if rel > 1e-6:
+        raise RuntimeError(f"quasi-static equilibrium did not converge (residual {rel:.1e} "
+                           f"after {max_iter} Newton steps)")
+    return Equilibrium(q=q, psi=psi, delta=delta, Q=Q, load=load, iterations=it, residual=rel)
