@@ -41,7 +41,8 @@ class BearingParams:
                 f"D_m = {self.D_m:g} m")
         # the rollers must fit around the pitch circle
         require(self.Z * self.D_b < pi * self.D_m, self, "Z",
-                f"{self.Z} rollers of {self.D_b * 1e3:g} mm do not fit on a {self.D_m * 1e3:g} mm pitch circle")
+                f"{self.Z} rollers of {self.D_b * 1e3:g} mm do not fit on a "
+                f"{self.D_m * 1e3:g} mm pitch circle")
 
     @property
     def gamma(self) -> float:
