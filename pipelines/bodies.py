@@ -8,7 +8,6 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-import numpy as np
 
 from fem import assembly, bodyfile, eigen, interfaces
 from fem.body import make_body
@@ -186,9 +185,3 @@ def compare_table(rb: bodyfile.ReducedBody, n: int = 12) -> str:
         lines.append(f"  {k + 1:4d} {ref[k]:12.2f} {rb.frequencies_hz[k]:14.2f} {e:9.3f}")
     return "\n".join(lines)
 
-
-def reduction_error(rb: bodyfile.ReducedBody) -> np.ndarray:
-    """Relative error of each reduced frequency that has a full-model counterpart."""
-    ref = rb.reference_frequencies_hz
-    k = min(len(ref), rb.n_modes)
-    return (rb.frequencies_hz[:k] - ref[:k]) / ref[:k]
