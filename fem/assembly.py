@@ -96,7 +96,7 @@ def assemble(mesh: MeshData, material: Material = STEEL) -> FEModel:
         m = MeshTet1(mesh.points.T.copy(), mesh.cells.T.copy())
         elem = ElementVector(ElementTetP1())
     kb = Basis(m, elem, intorder=2 if quadratic else 1)
-    mb = kb.with_quadrature(intorder=4) if hasattr(kb, "with_quadrature") else Basis(m, elem, intorder=4)
+    mb = Basis(m, elem, intorder=4)
     K = linear_elasticity(*lame_parameters(material.E, material.nu)).assemble(kb)
     rho = material.rho
 
