@@ -46,11 +46,6 @@ class Equilibrium:
     iterations: int
     residual: float          # |load - roller resultant| / |load|
 
-    def resultant(self, p: BearingParams) -> np.ndarray:
-        """(5,) force and moment the rollers exert, for the equilibrium check."""
-        G = _geometry(p, self.psi)[0]
-        return np.einsum("jk,jkc->c", self.Q, G)
-
     def loaded_zone(self, row: int) -> float:
         """Half-angle of the loaded zone of ``row`` (0 or 1), rad: the largest |psi| carrying load."""
         psi = np.angle(np.exp(1j * self.psi))
@@ -94,7 +89,7 @@ def solve(p: BearingParams, F, M=(0.0, 0.0), *, tol: float = 1e-10, max_iter: in
         delta = G @ q - c
         dp = np.maximum(delta, 0.0)
         Q = K * dp ** N_EXP
-        dQ = N_EXP * K * dp ** (N_EXP - 1) if N_EXP > 1 else np.where(delta > 0, K, 0.0)
+        dQ = N_EXP * K * dp ** (N_EXP - 1)          # 0 at delta = 0: no jump (N_EXP > 1)
         res = load - np.einsum("jk,jkc->c", Q, G)
         J = np.einsum("jk,jka,jkb->ab", dQ, G, G)     # d(sum Q g)/dq
         return delta, Q, res, J

@@ -8,7 +8,6 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-
 from fem import assembly, bodyfile, eigen, interfaces
 from fem.body import make_body
 from fem.reduction import METHODS
