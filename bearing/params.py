@@ -8,9 +8,12 @@ are SI; angles in radians (the defaults are written ``radians(deg)``).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from math import cos, pi, radians
+from math import cos, pi, radians, sin
 
 from geometry._params import ParameterError, check_ranges, param, require
+
+DAMPING_LAWS = ("ratio", "paper")
+CAGE_MODES = ("dynamic", "kinematic")
 
 
 @dataclass(frozen=True)
@@ -31,11 +34,34 @@ class BearingParams:
     E_c: float = param(8.0e9, 1e8, 1e12, unit="Pa", doc="Young's modulus of the cage (glass-filled PA66)")
     nu_c: float = param(0.35, 0.0, 0.5, unit="", doc="Poisson's ratio of the cage")
     mu_race: float = param(0.005, 0.0, 0.5, unit="", doc="roller-raceway friction, lubricated")
+    # rib (cone back face) contact, Eqs. (3c), (4b), (8); assumed values for a 180 mm TDO unit
+    alpha_f: float = param(radians(8.75), 0.0, radians(30.0), unit="rad",
+                           doc="rib contact normal from the bearing axis (square to the roller axis)")
+    h_r: float = param(0.006, 0.0, 0.1, doc="rib contact height above the roller axis (Fig. 3d)")
+    R_e: float = param(0.50, 0.01, 10.0, doc="sphere radius of the roller's large end (about 0.85 x "
+                       "the cone apex distance)")
+    mu_rib: float = param(0.03, 0.0, 0.5, unit="", doc="roller end - rib sliding friction")
+    # cage (roller-guided, Eqs. 9-11, 13)
+    alpha_c: float = param(radians(5.0), 0.0, radians(45.0), unit="rad", doc="pocket pressing slope angle")
+    s_p: float = param(0.30e-3, 0.0, 5e-3, doc="circumferential pocket clearance, both sides together")
+    s_pa: float = param(0.50e-3, 0.0, 10e-3, doc="axial pocket clearance (side beams), both ends together")
+    mu_cage: float = param(0.05, 0.0, 0.5, unit="", doc="roller-cage sliding friction")
+    # friction regularisation and contact damping
+    v_s: float = param(0.01, 1e-5, 1.0, unit="m/s", doc="slip speed over which friction builds up "
+                       "to mu Q (regularised Coulomb)")
+    damping: str = "ratio"
+    zeta: float = param(0.10, 0.0, 5.0, unit="", doc="contact damping ratio (damping='ratio')")
+    c_rule: float = param(1e-3, 0.0, 1.0, unit="s", doc="the paper's C = c_rule x K (damping='paper')")
+    cage: str = "dynamic"
 
     def __post_init__(self):
         if isinstance(self.Z, bool) or not isinstance(self.Z, int):
             raise ParameterError(f"BearingParams.Z = {self.Z!r} is not allowed: "
                                  "expected an integer >= 3")
+        for name, allowed in (("damping", DAMPING_LAWS), ("cage", CAGE_MODES)):
+            if getattr(self, name) not in allowed:
+                raise ParameterError(f"BearingParams.{name} = {getattr(self, name)!r} is not allowed: "
+                                     f"expected one of {', '.join(allowed)}")
         check_ranges(self)
         require(self.D_b < 0.5 * self.D_m, self, "D_b", f"must be below half the pitch diameter "
                 f"D_m = {self.D_m:g} m")
@@ -43,6 +69,8 @@ class BearingParams:
         require(self.Z * self.D_b < pi * self.D_m, self, "Z",
                 f"{self.Z} rollers of {self.D_b * 1e3:g} mm do not fit on a "
                 f"{self.D_m * 1e3:g} mm pitch circle")
+
+        require(self.h_r < self.r_b, self, "h_r", f"must be below the roller radius {self.r_b:g} m")
 
     @property
     def gamma(self) -> float:
@@ -57,3 +85,35 @@ class BearingParams:
     @property
     def r_b(self) -> float:
         return 0.5 * self.D_b
+
+    @property
+    def alpha_m(self) -> float:
+        """Angle of the roller axis from the bearing axis: the mean of cup and cone angles."""
+        return 0.5 * (self.alpha_o + self.alpha_i)
+
+    @property
+    def D_o(self) -> float:
+        """Outer raceway diameter at the contact (Eq. 14's D_o)."""
+        return self.D_m + self.D_b * cos(self.alpha_o)
+
+    @property
+    def clearance_n(self) -> float:
+        """Clearance along the cup contact normal, one row, rings concentric (m).
+
+        For a rigid tapered unit the radial and axial clearances are one gap read in two
+        directions (``u_a = u_r cot(alpha)``); the larger reading is kept, so each stated
+        clearance is at least reached: ``max(u_r cos(alpha_o), u_a sin(alpha_o)) / 2``.
+        """
+        return 0.5 * max(self.u_r * cos(self.alpha_o), self.u_a * sin(self.alpha_o))
+
+    @property
+    def J_r(self) -> tuple[float, float]:
+        """Roller moments of inertia (axial, diametral) as a solid cylinder (kg m^2)."""
+        r, L = self.r_b, self.L_b
+        return 0.5 * self.M_r * r * r, self.M_r * (3 * r * r + L * L) / 12
+
+    @property
+    def J_c(self) -> tuple[float, float]:
+        """Cage moments of inertia (polar, diametral) as a thin ring on the pitch circle (kg m^2)."""
+        R, L = 0.5 * self.D_m, self.L_b
+        return self.M_c * R * R, self.M_c * (0.5 * R * R + L * L / 12)

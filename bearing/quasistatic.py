@@ -8,9 +8,10 @@ the roller k of row j at azimuth ``psi_k = 2 pi (k - 1) / Z`` (measured from
 roller, and Eqs. (1) and (3) give the normal approach along the contact
 normal ``n = cos(alpha) e_r + s_j sin(alpha) e_y`` (``s_j = (-1)^(j-1)``):
 
-``delta_n = d . n - (u_r / 2) cos(alpha) - (u_a / 2) sin(alpha)``.
+``delta_n = d . n - c_n``, ``c_n = max(u_r cos(alpha), u_a sin(alpha)) / 2``
+(:attr:`BearingParams.clearance_n`).
 
-The clearances are taken about the concentric position (Harris's form).  The
+The clearance is taken about the concentric position (Harris's form).  The
 paper's ``h = u_r (1 - cos psi) / 2`` (below Eq. 1) is the same law with the
 origin moved by u_r / 2 along a vertical load; the concentric form holds for
 a load in any direction.  Each roller carries ``Q = K_n delta_n^(10/9)``
@@ -68,8 +69,7 @@ def _geometry(p: BearingParams, psi: np.ndarray):
         G[j, :, :3] = n
         G[j, :, 3] = m[:, 0]
         G[j, :, 4] = m[:, 2]
-    c = 0.5 * p.u_r * ca + 0.5 * p.u_a * sa
-    return G, c
+    return G, p.clearance_n
 
 
 def solve(p: BearingParams, F, M=(0.0, 0.0), *, tol: float = 1e-10, max_iter: int = 100,

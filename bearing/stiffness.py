@@ -10,6 +10,12 @@ The paper's Eq. (5) for the raceways, ``6.24e4 Le^0.82 Db^(10/9) [...]^-1.11``,
 does not state its units and gives values about twenty times Palmgren's in
 N/mm^(10/9); this package uses Eq. (10) with the raceway materials for the
 raceways instead, which reproduces the paper's own closed-form references.
+
+The rib contact (Eq. 8, ``K_a = 2.15e5 delta*^-3/2 sum(rho)^-1/2`` in N and mm,
+Harris and Kotzalas eq. 6.43; the paper prints the exponent of the curvature
+sum as +1/2, a sign slip) is the roller's spherical large end on the flat rib
+face: ``delta* = 1`` and ``sum(rho) = 2 / R_e``, which is Hertz's sphere on a
+plane, ``K_a = (4/3) E* sqrt(R_e)`` in SI (:func:`k_point_sphere`).
 """
 from __future__ import annotations
 
@@ -43,3 +49,22 @@ def roller_raceways(p) -> tuple[float, float, float]:
     K_o = k_line(E, p.L_e)
     K_i = k_line(E, p.L_e)
     return K_o, K_i, series(K_o, K_i)
+
+
+def k_point_sphere(E_prime: float, R: float) -> float:
+    """Hertz sphere of radius R on a plane, ``Q = K delta^(3/2)`` (N/m^(3/2)); ``E* = E'/2``."""
+    return (4.0 / 3.0) * 0.5 * E_prime * R ** 0.5
+
+
+def harris_point(sum_rho: float, delta_star: float = 1.0) -> float:
+    """Eq. (8) with Harris's exponent: ``2.15e5 delta*^-1.5 sum_rho^-0.5`` (N, mm) in SI (N/m^1.5)."""
+    return 2.15e5 * delta_star ** -1.5 * (sum_rho / _MM) ** -0.5 * _MM ** 1.5
+
+
+def contacts(p) -> dict[str, float]:
+    """All contact stiffnesses of ``p``: raceways (Eq. 10, steel), rib (Eq. 8), cage (Eqs. 10-11)."""
+    E_s = e_prime(p.E_r, p.nu_r, p.E_r, p.nu_r)
+    E_c = e_prime(p.E_r, p.nu_r, p.E_c, p.nu_c)
+    K_o, K_i, K_n = roller_raceways(p)
+    return {"K_ro": K_o, "K_ri": K_i, "K_n": K_n, "K_a": k_point_sphere(E_s, p.R_e),
+            "K_cr": k_line(E_c, p.L_b)}

@@ -6,9 +6,11 @@ of the computation.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import sys
 from pathlib import Path
 
+from bearing.resultfile import ResultFileError
 from fem.bodyfile import BodyFileError
 from geometry._params import ParameterError
 
@@ -70,6 +72,45 @@ def _cmd_demo(a) -> None:
     print(f"demo: open {out / 'report' / 'index.html'}")
 
 
+def _cmd_bearing_simulate(a) -> None:
+    from math import radians
+
+    from bearing.defects import Defect
+    from bearing.params import BearingParams
+    from bearing.rig import RigConfig, simulate
+    if a.defect_width < 0:
+        raise ParameterError(f"--defect-width = {a.defect_width} is not allowed: expected a width >= 0 mm "
+                             "(0: healthy)")
+    overrides = {k: float(v) if k not in ("damping", "cage") else v for k, v in _params(a.param).items()}
+    if "Z" in overrides:
+        z = overrides["Z"]
+        overrides["Z"] = int(z) if float(z).is_integer() else z
+    known = [f.name for f in dataclasses.fields(BearingParams)]
+    for k in overrides:
+        if k not in known:
+            raise ParameterError(f"--param {k} is not allowed: expected one of {', '.join(known)}")
+    bearing = BearingParams(**{"damping": a.damping, "cage": a.cage, **overrides})
+    defects = ()
+    if a.defect_width > 0:
+        defects = (Defect(W=a.defect_width * 1e-3, L=a.defect_length * 1e-3, H=a.defect_depth * 1e-3,
+                          row=a.defect_row, angle=radians(a.defect_angle)),)
+    cfg = RigConfig(speed_kmh=a.speed_kmh, F_r=a.radial_load, F_a=a.axial_load, duration=a.duration,
+                    dt=a.dt, seed=a.seed, bearing=bearing, defects=defects)
+    out = Path(a.out)
+    if not out.parent.is_dir():
+        raise FileNotFoundError(f"--out: folder {str(out.parent)!r} does not exist")
+
+    def progress(x):
+        print(f"\rsimulating {a.duration:g} s: {100 * x:5.1f} %", end="", file=sys.stderr, flush=True)
+    res = simulate(cfg, out=out, progress=progress)
+    print(file=sys.stderr)
+    print(f"wrote {out}: cage {res.cage_hz(min(0.05, a.duration / 2)):.4f} Hz, outer-ring a_z rms "
+          f"{res.acceleration[:, 2].std():.3g} m/s^2")
+    if a.plot:
+        res.plot(out.with_suffix(".png"))
+        print(f"wrote {out.with_suffix('.png')}")
+
+
 def parser() -> argparse.ArgumentParser:
     p = _Parser(prog="axlebox", description="Railway vehicle dynamics with flexible bodies and "
                                             "axle-box bearing faults.")
@@ -107,6 +148,34 @@ def parser() -> argparse.ArgumentParser:
     br.add_argument("--out", required=True, help="report folder")
     br.add_argument("--max-modes", type=int, default=None, help="render at most N modes a body")
     br.set_defaults(func=_cmd_bodies_report)
+
+    be = sub.add_parser("bearing", help="the axle-box bearing (DTRB) alone")
+    bes = be.add_subparsers(dest="bearing_command", required=True, parser_class=_Parser)
+    bsim = bes.add_parser("simulate", help="standalone rig: spinning inner ring, outer ring on a "
+                                           "spring-damper, constant load; writes an axlebox-result file")
+    bsim.add_argument("--speed-kmh", type=float, default=48.0, help="vehicle speed (default 48)")
+    bsim.add_argument("--defect-width", type=float, default=0.0, metavar="MM",
+                      help="outer-ring defect width in mm (default 0: healthy)")
+    bsim.add_argument("--defect-length", type=float, default=50.4, metavar="MM",
+                      help="defect length across the raceway in mm (default 50.4)")
+    bsim.add_argument("--defect-depth", type=float, default=2.0, metavar="MM", help="defect depth (default 2)")
+    bsim.add_argument("--defect-row", type=int, default=2, help="row of the defect, 1 or 2 (default 2)")
+    bsim.add_argument("--defect-angle", type=float, default=0.0, metavar="DEG",
+                      help="defect centre from the top (load zone middle), degrees (default 0)")
+    bsim.add_argument("--radial-load", type=float, default=54e3, metavar="N", help="default 54e3")
+    bsim.add_argument("--axial-load", type=float, default=0.0, metavar="N", help="default 0")
+    bsim.add_argument("--duration", type=float, default=1.0, metavar="S", help="simulated time (default 1)")
+    bsim.add_argument("--dt", type=float, default=1e-5, metavar="S", help="integration step (default 1e-5)")
+    bsim.add_argument("--damping", default="ratio", choices=["ratio", "paper"],
+                      help="contact damping law (default: ratio)")
+    bsim.add_argument("--cage", default="dynamic", choices=["dynamic", "kinematic"],
+                      help="cage rotation: dynamic state or the paper's Eq. 2 (default dynamic)")
+    bsim.add_argument("--param", action="append", metavar="NAME=VALUE",
+                      help="bearing parameter (SI), repeatable, e.g. u_r=1e-4")
+    bsim.add_argument("--seed", type=int, default=0, help="turns the roller set by a random phase")
+    bsim.add_argument("--plot", action="store_true", help="also write <out>.png")
+    bsim.add_argument("--out", required=True, help="result file (.h5)")
+    bsim.set_defaults(func=_cmd_bearing_simulate)
     return p
 
 
@@ -114,7 +183,7 @@ def main(argv: list[str] | None = None) -> int:
     a = parser().parse_args(argv)
     try:
         a.func(a)
-    except (ParameterError, BodyFileError, FileNotFoundError) as err:
+    except (ParameterError, BodyFileError, ResultFileError, FileNotFoundError) as err:
         print(f"axlebox: error: {err}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:

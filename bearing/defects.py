@@ -1,0 +1,83 @@
+"""Local raceway defects as extra clearance in the contact, paper Eqs. (14)-(15).
+
+A defect of width W (along the raceway), length L (across it, along the contact line) and
+depth H on the outer ring: while a roller's azimuth, measured in the ring's own frame, lies in
+``[theta_o, theta_o + tau_o]`` the cup contact loses
+
+``h_o = A sin(pi / tau_o (phi - theta_o))``,  ``A = min(H, r_b - sqrt(r_b^2 - (W/2)^2))``,
+``tau_o = 2 arcsin(W / D_o)``,
+
+over the stretch of the contact line the defect covers.  Two readings of the paper are made
+explicit here: the window is the whole ``tau_o`` (the printed ``tau_o / 2`` would make the
+depth jump from A to zero at the defect's middle), and A is capped by the depth H (a shallow
+defect cannot let the roller drop further than its floor).  ``angle`` is the defect's centre,
+so ``theta_o = angle - tau_o / 2``.
+
+The table row ``kind, row, theta_o, tau, A, s1, s2, spare`` has room for inner-ring (kind 1,
+angle in the inner ring's frame) and roller (kind 2) defects: the kernel's signature stays.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from math import asin, pi, sqrt
+
+import numpy as np
+
+from geometry._params import ParameterError, check_ranges, param, require
+
+from .layout import KINDS
+from .params import BearingParams
+
+
+@dataclass(frozen=True)
+class Defect:
+    """A local defect; SI units, ``angle`` in rad from +z towards +x (the load zone's middle is 0)."""
+
+    W: float = param(2e-3, 1e-6, 0.1, doc="width along the raceway")
+    L: float = param(50.4e-3, 1e-6, 1.0, doc="length across the raceway (along the roller)")
+    H: float = param(2e-3, 1e-7, 0.05, doc="depth")
+    row: int = param(2, 1, 2, unit="", doc="bearing row, 1 (inboard) or 2 (outboard)")
+    angle: float = param(0.0, -2 * pi, 2 * pi, unit="rad", doc="centre of the defect")
+    offset: float = param(0.0, -0.5, 0.5, doc="centre of the defect along the contact line")
+    kind: str = "outer"
+
+    def __post_init__(self):
+        if self.kind not in KINDS:
+            raise ParameterError(f"Defect.kind = {self.kind!r} is not allowed: expected one of "
+                                 f"{', '.join(KINDS)} (inner-ring and roller defects are not modelled yet)")
+        if isinstance(self.row, bool) or not isinstance(self.row, int):
+            raise ParameterError(f"Defect.row = {self.row!r} is not allowed: expected 1 or 2")
+        check_ranges(self)
+
+    def depth(self, p: BearingParams) -> float:
+        """A of Eq. (14), capped by H (m)."""
+        r = p.r_b
+        return min(self.H, r - sqrt(r * r - (0.5 * self.W) ** 2))
+
+    def tau(self, p: BearingParams) -> float:
+        """tau_o of Eq. (14) (rad)."""
+        return 2 * asin(self.W / p.D_o)
+
+
+def table(defects, p: BearingParams) -> np.ndarray:
+    """The kernel's defect table for ``defects``; refuses defects the model cannot represent."""
+    rows = []
+    spans = []
+    for d in defects:
+        require(d.W < p.D_b, d, "W", f"a defect wider than the roller diameter D_b = {p.D_b:g} m "
+                "is not a local defect of Eq. (14) (the roller would meet its floor)")
+        tau = d.tau(p)
+        require(tau < 2 * pi / p.Z, d, "W", f"the defect spans more than the roller pitch "
+                f"({pi * p.D_o / p.Z:.4g} m on the cup)")
+        half = 0.5 * p.L_e
+        require(abs(d.offset) < half, d, "offset", f"must lie on the contact line, |offset| < {half:g} m")
+        s1, s2 = max(-half, d.offset - 0.5 * d.L), min(half, d.offset + 0.5 * d.L)
+        start = (d.angle - 0.5 * tau) % (2 * pi)
+        for other_start, other_tau, other_row in spans:
+            gap = (start - other_start) % (2 * pi)
+            if other_row == d.row and (gap < other_tau or (2 * pi - gap) < tau):
+                raise ParameterError(f"Defect.angle = {d.angle!r} is not allowed: the defect overlaps "
+                                     f"another one on row {d.row}")
+        spans.append((start, tau, d.row))
+        rows.append([KINDS[d.kind], d.row - 1, start, tau, d.depth(p), s1, s2, 0.0])
+    return np.array(rows, dtype=float).reshape(-1, 8)

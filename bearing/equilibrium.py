@@ -1,0 +1,110 @@
+"""Quasi-static start of the dynamic model: rings and rollers in equilibrium under the load.
+
+Unknowns: the outer ring's displacement relative to the inner ring (3) and, for every roller,
+its radial and axial displacement and tilt (3 each).  Equations: the ring carries the applied
+load, and every roller's radial, axial and tilt accelerations vanish, all taken from the same
+kernel that integrates the dynamics (:func:`.kernel.dtrb_rhs`), with the rollers rolling at the
+epicyclic speeds so that centrifugal forces and rib sliding are included.  Solved by Powell's
+Newton's method nested in two levels (the rollers, each a 3 x 3 block, for given rings; the
+ring's 3 unknowns outside), started from the series-spring solution of :mod:`.quasistatic`.  What is left (the cage's and rollers' orbital balance) settles within a
+few cage pocket oscillations and does not disturb the ring.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import quasistatic
+from .kernel import dtrb_rhs
+from .layout import ETA, PHI, RHO, TH_T, nominal_state, n_state, views
+
+
+def ring_motion(omega_w: float, uo=(0.0, 0.0, 0.0), t: float = 0.0) -> np.ndarray:
+    """The kernel's ring array: inner ring at the origin spinning at omega_w, outer ring at uo."""
+    ring = np.zeros((2, 12))
+    ring[0, 4] = omega_w * t
+    ring[0, 10] = omega_w
+    ring[1, :3] = uo
+    return ring
+
+
+def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9):
+    """``(y, uo)``: the bearing state and the outer ring's displacement at which the bearing
+    carries ``F_outer`` (N, the load applied to the outer ring) with no radial, axial or tilt
+    acceleration of any roller.  Raises RuntimeError when it does not converge."""
+    F_outer = np.asarray(F_outer, float)
+    Fn = float(np.linalg.norm(F_outer))
+    y = nominal_state(p, omega_w)
+    rol, _ = views(y, p.Z)
+    n = n_state(p.Z)
+    yd, F, Q = np.zeros(n), np.zeros((2, 6)), np.zeros((2, p.Z, 6))
+
+    # start: series springs (quasistatic.solve takes the load on the inner ring)
+    e = quasistatic.solve(p, -F_outer, (0.0, 0.0))
+    uo0 = -e.q[:3]
+    for j, s in enumerate((1.0, -1.0)):
+        d = np.clip(e.delta[j], 0.0, None)
+        rol[j, :, RHO] = -0.5 * d * np.cos(p.alpha_o)
+        rol[j, :, ETA] = -0.5 * d * s * np.sin(p.alpha_o)
+    cols = (RHO, ETA, TH_T)
+    steps = np.array([1e-9, 1e-9, 1e-7])                 # m, m, rad
+    weights = np.array([p.M_r, p.M_r, p.J_r[1]])         # accelerations -> forces, moment
+    Fs = max(Fn, 1.0)
+
+    def roller_residual(uo):
+        dtrb_rhs(0.0, y, ring_motion(omega_w, uo), P, D, yd, F, Q)
+        acc = views(yd, p.Z)[0]
+        return np.stack([acc[:, :, 6 + c] for c in cols], axis=-1) * weights, F[1, :3].copy()
+
+    def norm(r):
+        return np.sqrt(r[..., 0] ** 2 + r[..., 1] ** 2 + (r[..., 2] / p.L_b) ** 2)
+
+    nominal = views(nominal_state(p, omega_w), p.Z)[0]
+
+    def solve_rollers(uo):
+        """Block Newton with backtracking: every roller is independent once the rings are placed.
+
+        A roller that touches neither raceway carries nothing; it is put back at its nominal
+        place (touching cone and rib without load) and left there."""
+        for _ in range(100):
+            r, Fo = roller_residual(uo)
+            free = Q[:, :, 0] + Q[:, :, 1] == 0.0
+            rol[free] = nominal[free]
+            r, Fo = roller_residual(uo)
+            r0 = norm(r)
+            r0[free] = 0.0
+            if r0.max() < 1e-9 * Fs:
+                return Fo
+            J = np.empty(r.shape + (3,))
+            for a, c in enumerate(cols):
+                rol[:, :, c] += steps[a]
+                J[..., a] = (roller_residual(uo)[0] - r) / steps[a]
+                rol[:, :, c] -= steps[a]
+            J[free] = np.eye(3)
+            dx = -np.linalg.solve(J, r[..., None])[..., 0]
+            dx[free] = 0.0
+            x0 = np.stack([rol[:, :, c] for c in cols], axis=-1)
+            t = np.ones(r0.shape)
+            for _ in range(40):                      # halve each roller's step until it helps
+                for a, c in enumerate(cols):
+                    rol[:, :, c] = x0[..., a] + t * dx[..., a]
+                worse = (norm(roller_residual(uo)[0]) > (1 - 1e-4 * t) * r0) & (r0 > 0)
+                if not worse.any():
+                    break
+                t[worse] *= 0.5
+        raise RuntimeError(f"quasi-static start: the rollers did not settle (largest residual "
+                           f"{r0.max():.1e} N)")
+
+    uo = uo0.copy()
+    for _ in range(50):
+        res = solve_rollers(uo) + F_outer
+        if np.linalg.norm(res) < tol * Fs:
+            return y.copy(), uo
+        J = np.empty((3, 3))
+        saved = y.copy()
+        for a in range(3):
+            du = np.zeros(3)
+            du[a] = 1e-9
+            J[:, a] = (solve_rollers(uo + du) + F_outer - res) / 1e-9
+            y[:] = saved
+        uo = uo - np.linalg.solve(J, res)
+    raise RuntimeError(f"quasi-static start did not converge (ring residual {np.linalg.norm(res):.1e} N)")

@@ -1,0 +1,391 @@
+"""Numba right-hand side of the DTRB: rollers and cages of both rows (paper Eqs. 1-16).
+
+Plain arrays in, plain arrays out (slots in :mod:`.layout`); vectors are 3-tuples so that
+nothing is allocated inside the loops.  Frame: the bearing's, origin at the inner-ring centre
+and translating with it (not spinning); x longitudinal, y along the axle, z vertical.  For a
+roller at azimuth phi: ``e_r = (sin phi, 0, cos phi)``, ``e_t = (cos phi, 0, -sin phi)``,
+``e_r x e_t = e_y``.  Row j (0, 1) sits at ``y = -s row_offset`` with ``s = +1, -1``: the
+back-to-back (O) arrangement, contact lines crossing the axis outside the bearing.
+
+What the paper's equations become here (one vector form for both rows and both signs):
+
+* Eqs. (1), (3), (15): the normal approach of each contact is the relative displacement of
+  the two bodies at the contact point along the contact normal, ``n_o = cos a_o e_r +
+  s sin a_o e_y`` (cup), ``n_i`` (cone, same form), ``n_a = -sin a_f e_r + s cos a_f e_y``
+  (rib), less the clearance (on the cup contact) and the outer-ring defect depth ``h_o``.
+* Eq. (4a): raceway line contacts ``q(sigma) = (K / L_e) delta(sigma)^(10/9)`` integrated in
+  closed form along the contact line, ``delta(sigma) = delta_0 + kappa sigma`` with the
+  roller's tilt relative to the ring in kappa: the same law as Eq. (4a) for an untilted
+  roller, and the tilt restoring moment the paper's Eq. (12d) lacks (slicing, done exactly).
+* Eq. (4b), (8): rib point contact ``K_a delta^(3/2)`` at height h_r on the large end.
+* Eq. (9)-(11): pocket walls (slope alpha_c) as line contacts along the roller, skew in kappa;
+  side beams as the same law in the axial direction (the paper leaves them out; they keep the
+  cage from drifting axially).
+* Friction (the paper's "conventional friction model", f = mu Q): Coulomb on the slip
+  velocity in the contact plane, regularised ``f = -mu Q v / sqrt(|v|^2 + v_s^2)``: raceway
+  tangential and axial (f_r, f_r^a), rib (f_a), pocket (f_cr, f_cr^a).
+* Damping (see :func:`_normal`): law 0, ``c = 2 zeta sqrt(m k_lin)`` with the contact's
+  tangent stiffness, or law 1, the paper's ``c = c_rule K``.  The force never pulls.
+* Eqs. (12), (13): Newton-Euler for each roller in polar form (centrifugal and Coriolis terms)
+  and small tilt/skew with the orbiting frame's gyroscopic terms; for each cage, translation,
+  small tilt and rotation.  Eq. (16): the reactions summed on the rings, with moments.
+* Eq. (2): with ``KINEMATIC`` the cage turns at ``omega_c = (1 - D_b/D_m) omega_w / 2`` and each
+  roller sits at its pocket centre ``2 pi (k - 1) / Z + phi_c``; otherwise the cage angle and
+  every roller's azimuth are dynamic states and cage slip follows from the contacts.
+"""
+from __future__ import annotations
+
+from math import pi, sin, cos, sqrt
+
+import numpy as np
+from numba import njit
+
+from .layout import (C_O, C_RULE, CAC, CAF, CAI, CAM, CAO, GX, GY, GZ, H_R, J_CD, J_CP, J_RA,
+                     J_RD, K_A, K_CR, K_I, K_O, KINEMATIC, L_B, L_E, LAW, M_C, M_R, MU_A, MU_C,
+                     MU_R, N_CAGE, N_ROLLER, R_B, R_M, RATIO, ROW, S_P, S_PA, SAC, SAF, SAI, SAM,
+                     SAO, V_S, ZETA, Z)
+
+N_LINE = 10.0 / 9.0
+N_POINT = 1.5
+TWO_PI = 2.0 * pi
+
+
+# --- small vector algebra on tuples --------------------------------------------------------
+@njit(inline="always")
+def _add(a, b):
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+@njit(inline="always")
+def _sub(a, b):
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+@njit(inline="always")
+def _mul(k, a):
+    return (k * a[0], k * a[1], k * a[2])
+
+
+@njit(inline="always")
+def _dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+@njit(inline="always")
+def _cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+@njit(inline="always")
+def _lin(ka, a, kb, b):
+    return (ka * a[0] + kb * b[0], ka * a[1] + kb * b[1], ka * a[2] + kb * b[2])
+
+
+# --- contact laws ---------------------------------------------------------------------------
+@njit(cache=True)
+def line_integrals(d0, kap, a, b, n):
+    """``(int u^n ds, int s u^n ds)`` over ``[a, b]`` where ``u = d0 + kap s > 0``.
+
+    Closed form; when the compression is nearly uniform (``|kap| (b - a) < 0.1 u_mid``) a
+    Taylor series about the midpoint instead, whose first neglected terms are below 1e-8
+    relative (the closed form loses digits to cancellation there).
+    """
+    if b <= a:
+        return 0.0, 0.0
+    h = b - a
+    m = 0.5 * (a + b)
+    um = d0 + kap * m
+    if um > 0.0 and abs(kap) * h < 0.1 * um:
+        r = kap * h / um
+        r2 = r * r
+        f = um ** n
+        i0 = h * f * (1.0 + n * (n - 1.0) / 24.0 * r2 + n * (n - 1.0) * (n - 2.0) * (n - 3.0) / 1920.0 * r2 * r2)
+        i1 = m * i0 + n * um ** (n - 1.0) * kap * h ** 3 / 12.0 * (1.0 + (n - 1.0) * (n - 2.0) / 40.0 * r2)
+        return i0, i1
+    ua = d0 + kap * a
+    ub = d0 + kap * b
+    if ua <= 0.0 and ub <= 0.0:
+        return 0.0, 0.0
+    if ua < 0.0:
+        ua = 0.0
+    if ub < 0.0:
+        ub = 0.0
+    n1 = n + 1.0
+    n2 = n + 2.0
+    pa1 = ua ** n1
+    pb1 = ub ** n1
+    i0 = (pb1 - pa1) / (n1 * kap)
+    i1 = ((ub * pb1 - ua * pa1) / n2 - d0 * (pb1 - pa1) / n1) / (kap * kap)
+    return i0, i1
+
+
+@njit(cache=True)
+def _normal(q_el, K, n, ddot, m, P):
+    """Normal force from the elastic part ``q_el = K delta^n`` and the approach rate ``ddot``.
+
+    Law 0 (default): ``c = 2 zeta sqrt(m k)`` with the tangent stiffness
+    ``k = n K^(1/n) q_el^(1 - 1/n)``, i.e. the damping ratio zeta of the contact oscillator of
+    mass m at its current load.  Law 1: the paper's ``c = c_rule K`` (below Eq. 4).
+    """
+    if q_el <= 0.0:
+        return 0.0
+    if P[LAW] == 0.0:
+        k = n * K ** (1.0 / n) * q_el ** (1.0 - 1.0 / n)
+        c = 2.0 * P[ZETA] * sqrt(m * k)
+    else:
+        c = P[C_RULE] * K
+    q = q_el + c * ddot
+    return q if q > 0.0 else 0.0
+
+
+@njit(inline="always")
+def _friction(v, nrm, muq, vs):
+    """Regularised Coulomb friction on the body whose relative slip velocity is ``v``."""
+    vn = _dot(v, nrm)
+    vt = _lin(1.0, v, -vn, nrm)
+    g = -muq / sqrt(_dot(vt, vt) + vs * vs)
+    return _mul(g, vt)
+
+
+@njit(cache=True)
+def _outer_defect(D, j, phi, theta_oy):
+    """Depth ``h_o`` of an outer-ring defect under a roller of row j at azimuth phi, Eq. (14),
+    and the stretch ``[s1, s2]`` of the contact line it covers.  Defects turn with the ring."""
+    for d in range(D.shape[0]):
+        if D[d, 0] != 0.0 or D[d, 1] != j:
+            continue
+        x = (phi - theta_oy - D[d, 2]) % TWO_PI
+        tau = D[d, 3]
+        if x < tau:
+            return D[d, 4] * sin(pi * x / tau), D[d, 5], D[d, 6]
+    return 0.0, 0.0, 0.0
+
+
+@njit(cache=True)
+def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
+    """State derivative ``ydot`` and ring loads ``F (2, 6)`` of one DTRB.
+
+    ``F[0]``/``F[1]``: force (3) and moment (3) on the inner/outer ring, moments about each
+    ring's centre (paper Eq. 16 plus moments).  ``Qc (2, Z, 6)``: normal contact forces
+    (cup, cone, rib, pocket wall 1, pocket wall 2, side beams).
+    """
+    nz = int(P[Z])
+    R = P[R_M]
+    rb = P[R_B]
+    Le = P[L_E]
+    Lb = P[L_B]
+    cao, sao, cai, sai = P[CAO], P[SAO], P[CAI], P[SAI]
+    caf, saf, cam, sam = P[CAF], P[SAF], P[CAM], P[SAM]
+    cac, sac = P[CAC], P[SAC]
+    Mr, Ja, Jd = P[M_R], P[J_RA], P[J_RD]
+    Mc, Jcp, Jcd = P[M_C], P[J_CP], P[J_CD]
+    vs = P[V_S]
+    m_cage = Mr * Mc / (Mr + Mc)
+    g = (P[GX], P[GY], P[GZ])
+    kinematic = P[KINEMATIC] != 0.0
+
+    # ring motion relative to the inner-ring centre
+    ui = (0.0, 0.0, 0.0)
+    th_i = (ring[0, 3], 0.0, ring[0, 5])
+    vi = (0.0, 0.0, 0.0)
+    wi = (ring[0, 9], ring[0, 10], ring[0, 11])
+    uo = (ring[1, 0] - ring[0, 0], ring[1, 1] - ring[0, 1], ring[1, 2] - ring[0, 2])
+    th_o = (ring[1, 3], 0.0, ring[1, 5])
+    vo = (ring[1, 6] - ring[0, 6], ring[1, 7] - ring[0, 7], ring[1, 8] - ring[0, 8])
+    wo = (ring[1, 9], ring[1, 10], ring[1, 11])
+    theta_oy = ring[1, 4]
+    omega_w = ring[0, 10] - ring[1, 10]
+
+    Fi = (0.0, 0.0, 0.0)
+    Mi = (0.0, 0.0, 0.0)
+    Fo = (0.0, 0.0, 0.0)
+    Mo = (0.0, 0.0, 0.0)
+    ey = (0.0, 1.0, 0.0)
+    nr = 2 * nz * N_ROLLER
+
+    for j in range(2):
+        s = 1.0 if j == 0 else -1.0
+        yj = -s * P[ROW]
+        cb = nr + j * N_CAGE
+        xc = (y[cb], y[cb + 1], y[cb + 2])
+        th_c = (y[cb + 3], 0.0, y[cb + 4])
+        phi_c = y[cb + 5]
+        vc = (y[cb + 6], y[cb + 7], y[cb + 8])
+        wcx, wcz, phid_c = y[cb + 9], y[cb + 10], y[cb + 11]
+        if kinematic:
+            phid_c = P[RATIO] * omega_w
+        wc = (wcx, phid_c, wcz)
+        Fc = (0.0, 0.0, 0.0)
+        Mcg = (0.0, 0.0, 0.0)
+
+        for k in range(nz):
+            b0 = (j * nz + k) * N_ROLLER
+            rho, phi, eta, tht, ths = y[b0], y[b0 + 1], y[b0 + 2], y[b0 + 3], y[b0 + 4]
+            rhod, phid, etad, thtd, thsd, ws = (y[b0 + 6], y[b0 + 7], y[b0 + 8], y[b0 + 9],
+                                                y[b0 + 10], y[b0 + 11])
+            if kinematic:
+                phi = phi_c + TWO_PI * k / nz
+                phid = phid_c
+            sp, cp = sin(phi), cos(phi)
+            er = (sp, 0.0, cp)
+            et = (cp, 0.0, -sp)
+            ax = _lin(s * cam, ey, -sam, er)          # roller axis, large end -> small end
+            bx = _lin(cam, er, s * sam, ey)           # normal to it in the axial plane
+            no = _lin(cao, er, s * sao, ey)
+            ni = _lin(cai, er, s * sai, ey)
+            na = _lin(-saf, er, s * caf, ey)
+            c = _lin(R + rho, er, yj + eta, ey)
+            disp = _lin(rho, er, eta, ey)
+            Vc = _add(_lin(rhod, er, (R + rho) * phid, et), _mul(etad, ey))
+            wr = _add(_lin(phid, ey, ws, ax), _lin(thtd, et, thsd, bx))
+            thr = _lin(tht, et, ths, bx)
+            Fr = _mul(Mr, g)
+            Mr_ = (0.0, 0.0, 0.0)
+
+            # --- cup (outer raceway), Eqs. (1), (3a), (4a), (14), (15) ---
+            po = _lin(1.0, c, rb, no)
+            d0 = _dot(_sub(disp, _add(uo, _cross(th_o, po))), no) - P[C_O]
+            kap = s * (tht - _dot(th_o, et))
+            h, s1, s2 = _outer_defect(D, j, phi, theta_oy)
+            if h > 0.0:
+                a0, a1 = line_integrals(d0, kap, -0.5 * Le, s1, N_LINE)
+                b0_, b1 = line_integrals(d0 - h, kap, s1, s2, N_LINE)
+                c0, c1 = line_integrals(d0, kap, s2, 0.5 * Le, N_LINE)
+                i0, i1 = a0 + b0_ + c0, a1 + b1 + c1
+            else:
+                i0, i1 = line_integrals(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
+            Qo = 0.0
+            if i0 > 0.0:
+                vrel = _sub(_add(Vc, _cross(wr, _mul(rb, no))), _add(vo, _cross(wo, _sub(po, uo))))
+                Qo = _normal(P[K_O] / Le * i0, P[K_O], N_LINE, _dot(vrel, no), Mr, P)
+                m1 = P[K_O] / Le * i1
+                f = _friction(vrel, no, P[MU_R] * Qo, vs)
+                fr = _lin(-Qo, no, 1.0, f)
+                Fr = _add(Fr, fr)
+                Mr_ = _add(Mr_, _add(_mul(-s * m1, et), _cross(_mul(rb, no), f)))
+                Fo = _sub(Fo, fr)
+                Mo = _sub(Mo, _add(_cross(_sub(po, uo), fr), _mul(-s * m1, et)))
+
+            # --- cone (inner raceway), Eqs. (1), (3b), (4a) ---
+            pi_ = _lin(1.0, c, -rb, ni)
+            d0 = _dot(_sub(_add(ui, _cross(th_i, pi_)), disp), ni)
+            kap = s * (_dot(th_i, et) - tht)
+            i0, i1 = line_integrals(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
+            Qi = 0.0
+            if i0 > 0.0:
+                vrel = _sub(_add(Vc, _cross(wr, _mul(-rb, ni))), _add(vi, _cross(wi, _sub(pi_, ui))))
+                Qi = _normal(P[K_I] / Le * i0, P[K_I], N_LINE, -_dot(vrel, ni), Mr, P)
+                m1 = P[K_I] / Le * i1
+                f = _friction(vrel, ni, P[MU_R] * Qi, vs)
+                fr = _lin(Qi, ni, 1.0, f)
+                Fr = _add(Fr, fr)
+                Mr_ = _add(Mr_, _add(_mul(s * m1, et), _cross(_mul(-rb, ni), f)))
+                Fi = _sub(Fi, fr)
+                Mi = _sub(Mi, _add(_cross(_sub(pi_, ui), fr), _mul(s * m1, et)))
+
+            # --- rib of the cone on the large end, Eqs. (3c), (4b), (8) ---
+            ra = _lin(-0.5 * Lb, ax, -P[H_R], bx)
+            pa = _add(c, ra)
+            d0 = _dot(_sub(_add(ui, _cross(th_i, pa)), _add(disp, _cross(thr, ra))), na)
+            Qa = 0.0
+            if d0 > 0.0:
+                vrel = _sub(_add(Vc, _cross(wr, ra)), _add(vi, _cross(wi, _sub(pa, ui))))
+                Qa = _normal(P[K_A] * d0 ** N_POINT, P[K_A], N_POINT, -_dot(vrel, na), Mr, P)
+                f = _friction(vrel, na, P[MU_A] * Qa, vs)
+                fr = _lin(Qa, na, 1.0, f)
+                Fr = _add(Fr, fr)
+                Mr_ = _add(Mr_, _cross(ra, fr))
+                Fi = _sub(Fi, fr)
+                Mi = _sub(Mi, _cross(_sub(pa, ui), fr))
+
+            # --- cage pocket: walls (Eqs. 9-11) and side beams ---
+            php = phi_c + TWO_PI * k / nz
+            erp = (sin(php), 0.0, cos(php))
+            etp = (cos(php), 0.0, -sin(php))
+            P0 = _lin(R, erp, yj, ey)
+            dd = _sub(c, _add(xc, _add(P0, _cross(th_c, P0))))
+            skew = ths - _dot(th_c, bx)
+            Qw1 = 0.0
+            Qw2 = 0.0
+            for w in range(2):
+                sw = 1.0 if w == 0 else -1.0
+                nw = _lin(sw * cac, etp, sac, erp)
+                d0 = _dot(dd, nw) - P[S_P]
+                kap = -sw * s * cac * skew
+                i0, i1 = line_integrals(d0, kap, -0.5 * Lb, 0.5 * Lb, N_LINE)
+                if i0 > 0.0:
+                    pw = _lin(1.0, c, rb, nw)
+                    vrel = _sub(_add(Vc, _cross(wr, _mul(rb, nw))), _add(vc, _cross(wc, _sub(pw, xc))))
+                    Qw = _normal(P[K_CR] / Lb * i0, P[K_CR], N_LINE, _dot(vrel, nw), m_cage, P)
+                    m1 = P[K_CR] / Lb * i1
+                    f = _friction(vrel, nw, P[MU_C] * Qw, vs)
+                    fr = _lin(-Qw, nw, 1.0, f)
+                    couple = _mul(m1, _cross(ax, nw))
+                    Fr = _add(Fr, fr)
+                    Mr_ = _add(Mr_, _sub(_cross(_mul(rb, nw), f), couple))
+                    Fc = _sub(Fc, fr)
+                    Mcg = _add(Mcg, _sub(couple, _cross(_sub(pw, xc), fr)))
+                    if w == 0:
+                        Qw1 = Qw
+                    else:
+                        Qw2 = Qw
+            chi = dd[1]
+            chid = Vc[1] - vc[1] - _cross(wc, _sub(c, xc))[1]
+            Qs = 0.0
+            for w in range(2):
+                sw = 1.0 if w == 0 else -1.0
+                d0 = sw * chi - P[S_PA]
+                if d0 > 0.0:
+                    Q = _normal(P[K_CR] * d0 ** N_LINE, P[K_CR], N_LINE, sw * chid, m_cage, P)
+                    fr = _mul(-sw * Q, ey)
+                    pe = _lin(1.0, c, 0.5 * sw * Lb, ey)
+                    Fr = _add(Fr, fr)
+                    Fc = _sub(Fc, fr)
+                    Mcg = _sub(Mcg, _cross(_sub(pe, xc), fr))
+                    Qs += Q
+
+            # --- Newton-Euler of the roller, Eq. (12) in polar form ---
+            Rr = R + rho
+            ydot[b0] = rhod
+            ydot[b0 + 2] = etad
+            ydot[b0 + 3] = thtd
+            ydot[b0 + 4] = thsd
+            ydot[b0 + 5] = ws
+            ydot[b0 + 6] = _dot(Fr, er) / Mr + Rr * phid * phid
+            ydot[b0 + 8] = _dot(Fr, ey) / Mr
+            if kinematic:
+                phidd = 0.0
+                ydot[b0 + 1] = phid_c
+                ydot[b0 + 7] = 0.0
+            else:
+                phidd = (_dot(Fr, et) / Mr - 2.0 * rhod * phid) / Rr
+                ydot[b0 + 1] = phid
+                ydot[b0 + 7] = phidd
+            wa = ws + phid * s * cam
+            ydot[b0 + 9] = (_dot(Mr_, et) + Ja * wa * phid * sam - Jd * phid * phid * s * sam * cam
+                            - Jd * phid * thsd * cam) / Jd
+            ydot[b0 + 10] = (_dot(Mr_, bx) - Jd * phidd * s * sam + Jd * phid * thtd * cam) / Jd
+            ydot[b0 + 11] = _dot(Mr_, ax) / Ja - s * cam * phidd
+            Qc[j, k, 0] = Qo
+            Qc[j, k, 1] = Qi
+            Qc[j, k, 2] = Qa
+            Qc[j, k, 3] = Qw1
+            Qc[j, k, 4] = Qw2
+            Qc[j, k, 5] = Qs
+
+        # --- the cage, Eq. (13) ---
+        for q in range(3):
+            ydot[cb + q] = y[cb + 6 + q]
+            ydot[cb + 6 + q] = Fc[q] / Mc + g[q]
+        ydot[cb + 3] = wcx
+        ydot[cb + 4] = wcz
+        ydot[cb + 9] = (Mcg[0] + Jcp * phid_c * wcz) / Jcd
+        ydot[cb + 10] = (Mcg[2] - Jcp * phid_c * wcx) / Jcd
+        ydot[cb + 5] = phid_c
+        ydot[cb + 11] = 0.0 if kinematic else Mcg[1] / Jcp
+
+    for q in range(3):
+        F[0, q] = Fi[q]
+        F[0, 3 + q] = Mi[q]
+        F[1, q] = Fo[q]
+        F[1, 3 + q] = Mo[q]
