@@ -4,10 +4,11 @@ Unknowns: the outer ring's displacement relative to the inner ring (3) and, for 
 its radial and axial displacement and tilt (3 each).  Equations: the ring carries the applied
 load, and every roller's radial, axial and tilt accelerations vanish, all taken from the same
 kernel that integrates the dynamics (:func:`.kernel.dtrb_rhs`), with the rollers rolling at the
-epicyclic speeds so that centrifugal forces and rib sliding are included.  Solved by Powell's
-Newton's method nested in two levels (the rollers, each a 3 x 3 block, for given rings; the
-ring's 3 unknowns outside), started from the series-spring solution of :mod:`.quasistatic`.  What is left (the cage's and rollers' orbital balance) settles within a
-few cage pocket oscillations and does not disturb the ring.
+epicyclic speeds so that centrifugal forces and rib sliding are included.  Solved by Newton's
+method nested in two levels (the rollers, each a 3 x 3 block with backtracking, for given rings;
+the ring's 3 unknowns outside), started from the series-spring solution of :mod:`.quasistatic`.
+What is left (the rollers' orbital and spin balance against rib friction, which the cage takes)
+settles in the first milliseconds and hardly moves the ring.
 """
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ import numpy as np
 
 from . import quasistatic
 from .kernel import dtrb_rhs
-from .layout import ETA, PHI, RHO, TH_T, nominal_state, n_state, views
+from .layout import ETA, RHO, TH_T, nominal_state, n_state, views
 
 
 def ring_motion(omega_w: float, uo=(0.0, 0.0, 0.0), t: float = 0.0) -> np.ndarray:

@@ -29,7 +29,8 @@ def _rig_rhs(t, Y, P, D, rig, ring, dY, F, Qc):
         ring[1, 6 + q] = Y[n + 3 + q]
     dtrb_rhs(t, Y[:n], ring, P, D, dY[:n], F, Qc)
     for q in range(3):
-        f = F[1, q] + rig[R_FX + q] - rig[R_KX + q] * (Y[n + q] - rig[R_UX + q]) - rig[R_CX + q] * Y[n + 3 + q]
+        f = (F[1, q] + rig[R_FX + q] - rig[R_KX + q] * (Y[n + q] - rig[R_UX + q])
+             - rig[R_CX + q] * Y[n + 3 + q])
         dY[n + q] = Y[n + 3 + q]
         dY[n + 3 + q] = f / rig[R_MASS]
 

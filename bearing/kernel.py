@@ -37,7 +37,6 @@ from __future__ import annotations
 
 from math import pi, sin, cos, sqrt
 
-import numpy as np
 from numba import njit
 
 from .layout import (C_O, C_RULE, CAC, CAF, CAI, CAM, CAO, GX, GY, GZ, H_R, J_CD, J_CP, J_RA,
@@ -99,7 +98,8 @@ def line_integrals(d0, kap, a, b, n):
         r = kap * h / um
         r2 = r * r
         f = um ** n
-        i0 = h * f * (1.0 + n * (n - 1.0) / 24.0 * r2 + n * (n - 1.0) * (n - 2.0) * (n - 3.0) / 1920.0 * r2 * r2)
+        i0 = h * f * (1.0 + n * (n - 1.0) / 24.0 * r2
+                      + n * (n - 1.0) * (n - 2.0) * (n - 3.0) / 1920.0 * r2 * r2)
         i1 = m * i0 + n * um ** (n - 1.0) * kap * h ** 3 / 12.0 * (1.0 + (n - 1.0) * (n - 2.0) / 40.0 * r2)
         return i0, i1
     ua = d0 + kap * a

@@ -242,7 +242,8 @@ def simulate(c: RigConfig, out=None, progress=None, chunk_s: float = 0.05,
                      acc[done * every:(done + m) * every], Fout[done:done + m], Qout[done:done + m],
                      cage[done:done + m])
         if not ok:
-            raise FloatingPointError(f"the rig state stopped being finite near t = {(done + m) / c.fs_out:.4f} s: "
+            t_end = (done + m) / c.fs_out
+            raise FloatingPointError(f"the rig state stopped being finite near t = {t_end:.4f} s: "
                                      f"dt = {c.dt:g} s is too large for these contacts")
         done += m
         if progress is not None:

@@ -14,7 +14,8 @@ def envelope(x: np.ndarray, fs: float, band: tuple[float, float] | None = None) 
     if band is not None:
         lo, hi = band
         if not 0 < lo < hi < fs / 2:
-            raise ValueError(f"band = {band!r} is not allowed: expected 0 < low < high < fs/2 = {fs / 2:g} Hz")
+            raise ValueError(f"band = {band!r} is not allowed: expected 0 < low < high < fs/2 "
+                             f"= {fs / 2:g} Hz")
         x = sosfiltfilt(butter(4, [lo, hi], btype="band", fs=fs, output="sos"), x)
     return np.abs(hilbert(x))
 

@@ -158,7 +158,8 @@ def parser() -> argparse.ArgumentParser:
                       help="outer-ring defect width in mm (default 0: healthy)")
     bsim.add_argument("--defect-length", type=float, default=50.4, metavar="MM",
                       help="defect length across the raceway in mm (default 50.4)")
-    bsim.add_argument("--defect-depth", type=float, default=2.0, metavar="MM", help="defect depth (default 2)")
+    bsim.add_argument("--defect-depth", type=float, default=2.0, metavar="MM",
+                      help="defect depth in mm (default 2)")
     bsim.add_argument("--defect-row", type=int, default=2, help="row of the defect, 1 or 2 (default 2)")
     bsim.add_argument("--defect-angle", type=float, default=0.0, metavar="DEG",
                       help="defect centre from the top (load zone middle), degrees (default 0)")
