@@ -1,0 +1,284 @@
+"""Plain-numpy twin of bearing.kernel (same equations, vectorised over rollers): the baseline for
+benchmarks/bearing.py and a cross-check of the numba kernel.
+
+Vectors are arrays ``(3, ...)``: the component first, then the (row, roller) axes, so that
+``k * a`` with ``k (2, Z)`` scales a vector field and ring or cage vectors ``(3, 1, 1)`` /
+``(3, 2, 1)`` broadcast against roller vectors ``(3, 2, Z)``.  The row sign ``s`` is ``(2, 1)``.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .layout import (C_O, C_RULE, CAC, CAF, CAI, CAM, CAO, GX, GY, GZ, H_R, J_CD, J_CP, J_RA,
+                     J_RD, K_A, K_CR, K_I, K_O, KINEMATIC, L_B, L_E, LAW, M_C, M_R, MU_A, MU_C,
+                     MU_R, N_CAGE, N_ROLLER, R_B, R_M, RATIO, ROW, S_P, S_PA, SAC, SAF, SAI, SAM,
+                     SAO, V_S, ZETA, Z)
+
+N_LINE = 10.0 / 9.0
+N_POINT = 1.5
+TWO_PI = 2.0 * np.pi
+EY = np.array([0.0, 1.0, 0.0]).reshape(3, 1, 1)
+
+
+def _dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def _cross(a, b):
+    return np.stack(np.broadcast_arrays(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                                        a[0] * b[1] - a[1] * b[0]))
+
+
+def _vec(x, y, z):
+    """A vector field from three broadcastable components."""
+    return np.stack(np.broadcast_arrays(x, y, z))
+
+
+def line_integrals_numpy(d0, kap, a, b, n):
+    """Vectorised :func:`bearing.kernel.line_integrals`: ``(int u^n ds, int s u^n ds)`` over
+    ``[a, b]``, ``u = max(d0 + kap s, 0)``, with the same Taylor / closed-form branches."""
+    d0, kap, a, b = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (d0, kap, a, b)))
+    h = b - a
+    m = 0.5 * (a + b)
+    um = d0 + kap * m
+    taylor = (um > 0.0) & (np.abs(kap) * h < 0.1 * um)
+    # Taylor series about the midpoint (nearly uniform compression)
+    ums = np.where(taylor, um, 1.0)
+    r2 = (kap * h / ums) ** 2
+    t0 = h * ums ** n * (1.0 + n * (n - 1.0) / 24.0 * r2
+                         + n * (n - 1.0) * (n - 2.0) * (n - 3.0) / 1920.0 * r2 * r2)
+    t1 = m * t0 + n * ums ** (n - 1.0) * kap * h ** 3 / 12.0 * (1.0 + (n - 1.0) * (n - 2.0) / 40.0 * r2)
+    # closed form on the compressed part (zero where u <= 0 all along; kap = 0 lands in Taylor)
+    ua = np.maximum(d0 + kap * a, 0.0)
+    ub = np.maximum(d0 + kap * b, 0.0)
+    ks = np.where(kap == 0.0, 1.0, kap)
+    n1, n2 = n + 1.0, n + 2.0
+    pa1, pb1 = ua ** n1, ub ** n1
+    c0 = (pb1 - pa1) / (n1 * ks)
+    c1 = ((ub * pb1 - ua * pa1) / n2 - d0 * (pb1 - pa1) / n1) / (ks * ks)
+    off = (b <= a) | (~taylor & (ua <= 0.0) & (ub <= 0.0))
+    return (np.where(off, 0.0, np.where(taylor, t0, c0)),
+            np.where(off, 0.0, np.where(taylor, t1, c1)))
+
+
+def _normal(q_el, K, n, ddot, m, P):
+    """Normal force from ``q_el = K delta^n`` and the approach rate (see kernel._normal)."""
+    if P[LAW] == 0.0:
+        k = n * K ** (1.0 / n) * np.maximum(q_el, 0.0) ** (1.0 - 1.0 / n)
+        c = 2.0 * P[ZETA] * np.sqrt(m * k)
+    else:
+        c = P[C_RULE] * K
+    return np.where(q_el > 0.0, np.maximum(q_el + c * ddot, 0.0), 0.0)
+
+
+def _friction(v, nrm, muq, vs):
+    """Regularised Coulomb friction on the body whose relative slip velocity is ``v``."""
+    vt = v - _dot(v, nrm) * nrm
+    return -muq / np.sqrt(_dot(vt, vt) + vs * vs) * vt
+
+
+def _outer_defect(D, phi, theta_oy):
+    """``(h_o, s1, s2)`` per roller, Eq. (14): the first matching defect of each roller's row."""
+    h, s1, s2 = np.zeros_like(phi), np.zeros_like(phi), np.zeros_like(phi)
+    found = np.zeros(phi.shape, dtype=bool)
+    row = np.arange(2)[:, None]
+    for d in range(D.shape[0]):
+        if D[d, 0] != 0.0:
+            continue
+        x = np.mod(phi - theta_oy - D[d, 2], TWO_PI)
+        tau = D[d, 3]
+        hit = ~found & (row == D[d, 1]) & (x < tau)
+        h = np.where(hit, D[d, 4] * np.sin(np.pi * x / tau), h)
+        s1 = np.where(hit, D[d, 5], s1)
+        s2 = np.where(hit, D[d, 6], s2)
+        found |= hit
+    return h, s1, s2
+
+
+def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(ydot, F (2, 6), Qc (2, Z, 6))`` as written by :func:`bearing.kernel.dtrb_rhs`."""
+    nz = int(P[Z])
+    R, rb, Le, Lb = P[R_M], P[R_B], P[L_E], P[L_B]
+    cao, sao, cai, sai = P[CAO], P[SAO], P[CAI], P[SAI]
+    caf, saf, cam, sam = P[CAF], P[SAF], P[CAM], P[SAM]
+    cac, sac = P[CAC], P[SAC]
+    Mr, Ja, Jd = P[M_R], P[J_RA], P[J_RD]
+    Mc, Jcp, Jcd = P[M_C], P[J_CP], P[J_CD]
+    vs = P[V_S]
+    m_cage = Mr * Mc / (Mr + Mc)
+    g = np.array([P[GX], P[GY], P[GZ]])
+    kinematic = P[KINEMATIC] != 0.0
+    nr = 2 * nz * N_ROLLER
+    rol = y[:nr].reshape(2, nz, N_ROLLER)
+    cag = y[nr:nr + 2 * N_CAGE].reshape(2, N_CAGE)
+
+    # rings relative to the inner-ring centre (ui = vi = 0)
+    th_i = np.array([ring[0, 3], 0.0, ring[0, 5]]).reshape(3, 1, 1)
+    wi = ring[0, 9:12].reshape(3, 1, 1)
+    uo = (ring[1, :3] - ring[0, :3]).reshape(3, 1, 1)
+    th_o = np.array([ring[1, 3], 0.0, ring[1, 5]]).reshape(3, 1, 1)
+    vo = (ring[1, 6:9] - ring[0, 6:9]).reshape(3, 1, 1)
+    wo = ring[1, 9:12].reshape(3, 1, 1)
+    theta_oy = ring[1, 4]
+    omega_w = ring[0, 10] - ring[1, 10]
+
+    s = np.array([1.0, -1.0])[:, None]                      # row sign
+    yj = -s * P[ROW]
+    pocket = TWO_PI * np.arange(nz) / nz
+
+    # cages (3, 2, 1)
+    xc = cag[:, 0:3].T[:, :, None]
+    th_c = _vec(cag[:, 3], 0.0, cag[:, 4])[:, :, None]
+    phi_c = cag[:, 5][:, None]
+    vc = cag[:, 6:9].T[:, :, None]
+    wcx, wcz, phid_c = cag[:, 9], cag[:, 10], cag[:, 11]
+    if kinematic:
+        phid_c = np.full(2, P[RATIO] * omega_w)
+    wc = _vec(wcx, phid_c, wcz)[:, :, None]
+
+    # rollers (2, Z)
+    rho, phi, eta, tht, ths = (rol[..., q] for q in range(5))
+    rhod, phid, etad, thtd, thsd, ws = (rol[..., 6 + q] for q in range(6))
+    if kinematic:
+        phi = phi_c + pocket
+        phid = np.broadcast_to(phid_c[:, None], phi.shape)
+    sp, cp = np.sin(phi), np.cos(phi)
+    er = _vec(sp, 0.0, cp)
+    et = _vec(cp, 0.0, -sp)
+    ax = s * cam * EY - sam * er                      # roller axis, large end -> small end
+    bx = cam * er + s * sam * EY
+    no = cao * er + s * sao * EY
+    ni = cai * er + s * sai * EY
+    na = -saf * er + s * caf * EY
+    c = (R + rho) * er + (yj + eta) * EY
+    disp = rho * er + eta * EY
+    Vc = rhod * er + (R + rho) * phid * et + etad * EY
+    wr = phid * EY + ws * ax + thtd * et + thsd * bx
+    thr = tht * et + ths * bx
+    Fr = np.zeros((3, 2, nz)) + Mr * g[:, None, None]
+    Mr_ = np.zeros((3, 2, nz))
+
+    # --- cup, Eqs. (1), (3a), (4a), (14), (15) ---
+    po = c + rb * no
+    d0 = _dot(disp - (uo + _cross(th_o, po)), no) - P[C_O]
+    kap = s * (tht - _dot(th_o, et))
+    i0, i1 = line_integrals_numpy(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
+    h, s1, s2 = _outer_defect(D, phi, theta_oy)
+    dent = h > 0.0
+    if dent.any():
+        a0, a1 = line_integrals_numpy(d0, kap, -0.5 * Le, s1, N_LINE)
+        b0, b1 = line_integrals_numpy(d0 - h, kap, s1, s2, N_LINE)
+        e0, e1 = line_integrals_numpy(d0, kap, s2, 0.5 * Le, N_LINE)
+        i0 = np.where(dent, a0 + b0 + e0, i0)
+        i1 = np.where(dent, a1 + b1 + e1, i1)
+    vrel = Vc + _cross(wr, rb * no) - (vo + _cross(wo, po - uo))
+    Qo = _normal(P[K_O] / Le * i0, P[K_O], N_LINE, _dot(vrel, no), Mr, P)
+    m1 = np.where(i0 > 0.0, P[K_O] / Le * i1, 0.0)
+    f = _friction(vrel, no, P[MU_R] * Qo, vs)
+    fr = -Qo * no + f
+    Fr += fr
+    Mr_ += -s * m1 * et + _cross(rb * no, f)
+    Fo = -fr.sum(axis=(1, 2))
+    Mo = -(_cross(po - uo, fr) - s * m1 * et).sum(axis=(1, 2))
+
+    # --- cone, Eqs. (1), (3b), (4a) ---
+    pi_ = c - rb * ni
+    d0 = _dot(_cross(th_i, pi_) - disp, ni)
+    kap = s * (_dot(th_i, et) - tht)
+    i0, i1 = line_integrals_numpy(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
+    vrel = Vc + _cross(wr, -rb * ni) - _cross(wi, pi_)
+    Qi = _normal(P[K_I] / Le * i0, P[K_I], N_LINE, -_dot(vrel, ni), Mr, P)
+    m1 = np.where(i0 > 0.0, P[K_I] / Le * i1, 0.0)
+    f = _friction(vrel, ni, P[MU_R] * Qi, vs)
+    fr = Qi * ni + f
+    Fr += fr
+    Mr_ += s * m1 * et + _cross(-rb * ni, f)
+    Fi = -fr.sum(axis=(1, 2))
+    Mi = -(_cross(pi_, fr) + s * m1 * et).sum(axis=(1, 2))
+
+    # --- rib on the large end, Eqs. (3c), (4b), (8) ---
+    ra = -0.5 * Lb * ax - P[H_R] * bx
+    pa = c + ra
+    d0 = _dot(_cross(th_i, pa) - (disp + _cross(thr, ra)), na)
+    vrel = Vc + _cross(wr, ra) - _cross(wi, pa)
+    Qa = _normal(P[K_A] * np.maximum(d0, 0.0) ** N_POINT, P[K_A], N_POINT, -_dot(vrel, na), Mr, P)
+    f = _friction(vrel, na, P[MU_A] * Qa, vs)
+    fr = Qa * na + f
+    Fr += fr
+    Mr_ += _cross(ra, fr)
+    Fi -= fr.sum(axis=(1, 2))
+    Mi -= _cross(pa, fr).sum(axis=(1, 2))
+
+    # --- cage pocket walls (Eqs. 9-11) and side beams ---
+    php = phi_c + pocket
+    erp = _vec(np.sin(php), 0.0, np.cos(php))
+    etp = _vec(np.cos(php), 0.0, -np.sin(php))
+    P0 = R * erp + yj * EY
+    dd = c - (xc + P0 + _cross(th_c, P0))
+    skew = ths - _dot(th_c, bx)
+    Fc = np.zeros((3, 2))
+    Mcg = np.zeros((3, 2))
+    Qw = []
+    for sw in (1.0, -1.0):
+        nw = sw * cac * etp + sac * erp
+        d0 = _dot(dd, nw) - P[S_P]
+        kap = -sw * s * cac * skew
+        i0, i1 = line_integrals_numpy(d0, kap, -0.5 * Lb, 0.5 * Lb, N_LINE)
+        pw = c + rb * nw
+        vrel = Vc + _cross(wr, rb * nw) - (vc + _cross(wc, pw - xc))
+        Q = _normal(P[K_CR] / Lb * i0, P[K_CR], N_LINE, _dot(vrel, nw), m_cage, P)
+        m1 = np.where(i0 > 0.0, P[K_CR] / Lb * i1, 0.0)
+        f = _friction(vrel, nw, P[MU_C] * Q, vs)
+        fr = -Q * nw + f
+        couple = m1 * _cross(ax, nw)
+        Fr += fr
+        Mr_ += _cross(rb * nw, f) - couple
+        Fc -= fr.sum(axis=2)
+        Mcg += (couple - _cross(pw - xc, fr)).sum(axis=2)
+        Qw.append(Q)
+    chi = dd[1]
+    chid = Vc[1] - vc[1] - _cross(wc, c - xc)[1]
+    Qs = np.zeros_like(chi)
+    for sw in (1.0, -1.0):
+        d0 = sw * chi - P[S_PA]
+        Q = _normal(P[K_CR] * np.maximum(d0, 0.0) ** N_LINE, P[K_CR], N_LINE, sw * chid, m_cage, P)
+        fr = -sw * Q * EY
+        pe = c + 0.5 * sw * Lb * EY
+        Fr += fr
+        Fc -= fr.sum(axis=2)
+        Mcg -= _cross(pe - xc, fr).sum(axis=2)
+        Qs = Qs + Q
+
+    # --- Newton-Euler of the rollers, Eq. (12) in polar form ---
+    ydot = np.zeros(nr + 2 * N_CAGE)
+    yr = ydot[:nr].reshape(2, nz, N_ROLLER)
+    yc = ydot[nr:].reshape(2, N_CAGE)
+    Rr = R + rho
+    yr[..., 0], yr[..., 2], yr[..., 3], yr[..., 4], yr[..., 5] = rhod, etad, thtd, thsd, ws
+    yr[..., 6] = _dot(Fr, er) / Mr + Rr * phid * phid
+    yr[..., 8] = Fr[1] / Mr
+    if kinematic:
+        phidd = np.zeros_like(rho)
+        yr[..., 1] = phid
+        yr[..., 7] = 0.0
+    else:
+        phidd = (_dot(Fr, et) / Mr - 2.0 * rhod * phid) / Rr
+        yr[..., 1] = phid
+        yr[..., 7] = phidd
+    wa = ws + phid * s * cam
+    yr[..., 9] = (_dot(Mr_, et) + Ja * wa * phid * sam - Jd * phid * phid * s * sam * cam
+                  - Jd * phid * thsd * cam) / Jd
+    yr[..., 10] = (_dot(Mr_, bx) - Jd * phidd * s * sam + Jd * phid * thtd * cam) / Jd
+    yr[..., 11] = _dot(Mr_, ax) / Ja - s * cam * phidd
+
+    # --- the cages, Eq. (13) ---
+    yc[:, 0:3] = cag[:, 6:9]
+    yc[:, 6:9] = Fc.T / Mc + g
+    yc[:, 3], yc[:, 4], yc[:, 5] = wcx, wcz, phid_c
+    yc[:, 9] = (Mcg[0] + Jcp * phid_c * wcz) / Jcd
+    yc[:, 10] = (Mcg[2] - Jcp * phid_c * wcx) / Jcd
+    yc[:, 11] = 0.0 if kinematic else Mcg[1] / Jcp
+
+    F = np.stack([np.concatenate([Fi, Mi]), np.concatenate([Fo, Mo])])
+    Qc = np.stack([Qo, Qi, Qa, Qw[0], Qw[1], Qs], axis=-1)
+    return ydot, F, Qc

@@ -1,0 +1,217 @@
+"""DTRB dynamics on the standalone rig against the kinematic closed forms and the paper's numbers
+(issue 3).  Each simulation runs once per module (fixtures); the default step is 1e-5 s."""
+import numpy as np
+import pytest
+from scipy.signal import find_peaks
+
+from bearing import defects, equilibrium, kernel, layout, stiffness
+from bearing.defects import Defect
+from bearing.frequencies import orders, shaft_hz
+from bearing.params import BearingParams
+from bearing.rig import RigConfig, load, simulate
+from bearing.spectra import envelope, envelope_spectrum
+from geometry._params import ParameterError
+
+F_S = shaft_hz(48.0, 0.42)                       # 5.05 Hz
+BPFO = orders(BearingParams()).BPFO * F_S        # 44.06 Hz at the cup angle
+BAND = (500.0, 4500.0)                           # around the outer ring's resonance (~1.4 kHz)
+T0 = 0.05                                        # skip the first roller-pocket settling
+
+
+@pytest.fixture(scope="module")
+def healthy():
+    return simulate(RigConfig(duration=1.0))
+
+
+@pytest.fixture(scope="module")
+def faulty():
+    return simulate(RigConfig(duration=0.4, defects=(Defect(W=2e-3),)))
+
+
+def _after(res, t0=T0):
+    return res.acceleration[res.time >= t0, 2]
+
+
+def _impulse_times(res):
+    e = envelope(_after(res), res.fs, BAND)
+    peaks, _ = find_peaks(e, height=0.3 * e.max(), distance=int(0.6 * res.fs / BPFO))
+    return peaks / res.fs, e
+
+
+def test_rib_stiffness_eq8_is_hertz_sphere_on_plane():
+    """Eq. (8) (Harris eq. 6.43 with delta* = 1, sum rho = 2/R) against Hertz's (4/3) E* sqrt(R)."""
+    E = stiffness.e_prime(2.08e11, 0.3, 2.08e11, 0.3)
+    for R in (0.05, 0.5, 2.0):
+        assert stiffness.harris_point(2 / R) == pytest.approx(stiffness.k_point_sphere(E, R), rel=0.005)
+
+
+def test_static_start_balances_the_load_and_matches_stribeck():
+    """Zero clearance, pure radial load on the full dynamic model (rib, tilt, centrifugal
+    forces included): the ring load is carried to 1e-6, Q_max Z cos(a) / F_row within 3 % of
+    4.08 (Stribeck/Harris), and each roller is in radial, axial and tilt balance."""
+    p = BearingParams(u_r=0.0, u_a=0.0)
+    P, D = layout.pack(p, gravity=(0.0, 0.0, 0.0)), np.zeros((0, 8))
+    Fr = 60e3
+    y, uo = equilibrium.static_state(p, P, D, (0.0, 0.0, -Fr), 1e-9)
+    yd, F, Q = np.zeros_like(y), np.zeros((2, 6)), np.zeros((2, p.Z, 6))
+    kernel.dtrb_rhs(0.0, y, equilibrium.ring_motion(1e-9, uo), P, D, yd, F, Q)
+    assert np.abs(F[1, :3] - (0.0, 0.0, Fr)).max() < 1e-6 * Fr
+    ratio = Q[:, :, 0].max() * p.Z * np.cos(p.alpha_o) / (Fr / 2)
+    assert ratio == pytest.approx(4.08, rel=0.03)
+    acc = layout.views(yd, p.Z)[0]
+    assert np.abs(acc[:, :, 6 + layout.RHO]).max() * p.M_r < 1e-6 * Fr
+    assert np.abs(acc[:, :, 6 + layout.ETA]).max() * p.M_r < 1e-6 * Fr
+    # the roller's three forces close as Harris's roller equilibrium says: Q_i / Q_o
+    # = sin(a_o + a_f') / sin(a_i + a_f'), a_f' = 90 deg - a_f
+    af = np.pi / 2 - p.alpha_f
+    loaded = Q[:, :, 0] > 0.05 * Q[:, :, 0].max()
+    np.testing.assert_allclose(Q[:, :, 1][loaded] / Q[:, :, 0][loaded],
+                               np.sin(p.alpha_o + af) / np.sin(p.alpha_i + af), rtol=0.01)
+
+
+def test_healthy_cage_frequency_and_slip(healthy):
+    """The paper's 2.196 Hz at 48 km/h within 2 %; the cage lags the kinematic FTF (slip)."""
+    f_c = healthy.cage_hz(0.1)
+    ftf = orders(BearingParams()).FTF * F_S
+    slip = 1 - f_c / ftf
+    print(f"cage {f_c:.4f} Hz, kinematic {ftf:.4f} Hz, slip {100 * slip:.2f} %")
+    assert f_c == pytest.approx(2.196, rel=0.02)
+    assert 0 < slip < 0.03
+
+
+def test_roller_load_repeats_with_the_cage_period(healthy):
+    """A roller's cup load peaks each time it passes the load zone's middle: once a cage turn
+    (the paper's 'roller contact force period about 0.456 s')."""
+    q = healthy.Q[:, 0, 0, 0]
+    hot = q > 0.9 * q.max()
+    starts = np.flatnonzero(np.diff(hot.astype(int)) == 1)
+    ends = np.flatnonzero(np.diff(hot.astype(int)) == -1)
+    centres = [healthy.time[a:b + 1].mean() for a, b in zip(starts, ends[ends > starts[0]])]
+    period = np.diff(centres)
+    assert len(period) >= 1
+    np.testing.assert_allclose(period, 1 / healthy.cage_hz(0.1), rtol=0.01)
+    assert period[0] == pytest.approx(0.456, rel=0.02)
+
+
+def test_defect_impulses_are_spaced_one_over_bpfo(faulty):
+    t, _ = _impulse_times(faulty)
+    spacing = np.median(np.diff(t))
+    assert len(t) >= 10
+    assert spacing == pytest.approx(1 / BPFO, rel=0.03)
+
+
+def test_envelope_spectrum_peaks_at_bpfo_only_with_a_defect(faulty, healthy):
+    """The faulty envelope spectrum's highest line below 500 Hz is BPFO, with its 2nd and 3rd
+    harmonics standing out; the healthy bearing's roller-passage modulation (varying
+    compliance) at BPFO is more than 30 times weaker."""
+    f, A = envelope_spectrum(_after(faulty), faulty.fs, BAND)
+    df = f[1]
+    m = (f > 5) & (f < 500)
+    assert abs(f[m][np.argmax(A[m])] - BPFO) <= 1.5 * df
+    floor = np.median(A[m])
+    for h in (1, 2, 3):
+        near = np.abs(f - h * BPFO) <= 1.5 * df
+        assert A[near].max() > 50 * floor
+    fh, Ah = envelope_spectrum(_after(healthy), healthy.fs, BAND)
+    near_h = np.abs(fh - BPFO) <= 1.5 * fh[1]
+    assert Ah[near_h].max() < A[np.abs(f - BPFO) <= 1.5 * df].max() / 30
+
+
+def test_wider_defects_give_larger_impulses():
+    amp = []
+    for W in (1e-3, 3e-3, 5e-3):
+        r = simulate(RigConfig(duration=0.15, defects=(Defect(W=W),)))
+        amp.append(envelope(_after(r, 0.03), r.fs, BAND).max())
+    print("impulse amplitude (m/s^2) for 1, 3, 5 mm:", np.round(amp, 1))
+    assert amp[0] < amp[1] < amp[2]
+
+
+def test_halving_the_step_changes_the_rms_by_less_than_2_percent(faulty):
+    half = simulate(RigConfig(duration=0.4, dt=5e-6, defects=(Defect(W=2e-3),)))
+    a, b = _after(faulty, 0.1), _after(half, 0.1)
+    change = abs(a.std() / b.std() - 1)
+    print(f"RMS {a.std():.3f} (1e-5 s) vs {b.std():.3f} m/s^2 (5e-6 s): {100 * change:.2f} %")
+    assert change < 0.02
+
+
+def test_kinematic_cage_turns_at_eq2():
+    """The paper's Eq. (2): omega_c = (1 - D_b/D_m) omega_w / 2, no slip by construction."""
+    r = simulate(RigConfig(duration=0.05, bearing=BearingParams(cage="kinematic")))
+    assert r.cage_hz() == pytest.approx(0.5 * (1 - BearingParams().gamma) * F_S, rel=1e-9)
+
+
+def test_paper_damping_rule_is_overdamped_default_is_not():
+    """The roller-raceway contact as an oscillator of the roller mass at Q = 7 kN: the paper's
+    'C = 1e-3 x K' read in SI gives a damping ratio far above 1; the default law gives zeta."""
+    p = BearingParams()
+    K = stiffness.contacts(p)["K_ro"]
+    n, Q = 10 / 9, 7e3
+    k_lin = n * K ** (1 / n) * Q ** (1 - 1 / n)
+    zeta_paper = p.c_rule * K / (2 * np.sqrt(p.M_r * k_lin))
+    assert zeta_paper > 10
+    # the kernel's law 0 reproduces zeta: damping force / (2 sqrt(m k) v) at a known rate
+    c0 = kernel._normal(Q, K, n, 1.0, p.M_r, layout.pack(p)) - Q
+    assert c0 / (2 * np.sqrt(p.M_r * k_lin)) == pytest.approx(p.zeta, rel=1e-12)
+
+
+def test_result_file_roundtrip_and_resume(tmp_path):
+    cfg = RigConfig(duration=0.02, defects=(Defect(W=1e-3, angle=0.3),))
+    full = simulate(cfg)
+    out = tmp_path / "rig.h5"
+
+    class Stop(Exception):
+        pass
+
+    def interrupt(x):
+        if x > 0.4:
+            raise Stop
+    with pytest.raises(Stop):
+        simulate(cfg, out=out, progress=interrupt, chunk_s=0.005, checkpoint_every_s=0.0)
+    assert (tmp_path / "rig.h5.partial.h5").is_file() and not out.exists()
+    seen = []
+    simulate(cfg, out=out, progress=seen.append, chunk_s=0.005)
+    assert seen[0] > 0.4                                  # it went on from the checkpoint
+    back = load(out)
+    np.testing.assert_array_equal(back.acceleration, full.acceleration)
+    np.testing.assert_allclose(back.Q, full.Q, rtol=1e-6)    # stored as float32
+    assert back.config == cfg
+    assert not (tmp_path / "rig.h5.partial.h5").exists()
+
+
+@pytest.mark.parametrize("make,field", [
+    (lambda: RigConfig(defects=(Defect(W=30e-3),)), "W"),
+    (lambda: defects.table((Defect(W=2e-3, angle=0.0), Defect(W=2e-3, angle=0.005)), BearingParams()),
+     "angle"),
+    (lambda: Defect(row=3), "row"),
+    (lambda: Defect(kind="inner"), "kind"),
+    (lambda: RigConfig(speed_kmh=0.0), "speed_kmh"),
+    (lambda: RigConfig(dt=3e-5), "dt"),
+    (lambda: BearingParams(damping="viscous"), "damping"),
+    (lambda: BearingParams(h_r=0.02), "h_r"),
+])
+def test_bad_rig_input_is_named(make, field):
+    with pytest.raises(ParameterError, match=field):
+        make()
+
+
+@pytest.mark.parametrize("args,field", [
+    (["--param", "u_r=-1e-5"], "u_r"), (["--param", "Z=2"], "Z"), (["--defect-width", "30"], "W"),
+    (["--speed-kmh", "0"], "speed"), (["--speed-kmh", "-5"], "speed"), (["--dt", "3e-5"], "dt"),
+    (["--defect-width", "-1"], "defect-width"), (["--defect-width", "2", "--defect-row", "3"], "row"),
+])
+def test_cli_bad_input_exits_2_naming_the_parameter(args, field, tmp_path, capsys):
+    from pipelines.cli import main
+    assert main(["bearing", "simulate", *args, "--out", str(tmp_path / "x.h5")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and field in err
+
+
+def test_cli_simulate_writes_the_result_file(tmp_path, capsys):
+    from bearing.resultfile import open_result
+    from pipelines.cli import main
+    out = tmp_path / "rig.h5"
+    assert main(["bearing", "simulate", "--duration", "0.01", "--defect-width", "2", "--out", str(out)]) == 0
+    with open_result(out) as f:
+        assert f["signals/outer_ring/acceleration"].shape == (100, 3)
+        assert f["signals/outer_ring/acceleration"].attrs["fs_hz"] == 10e3
+        assert f.attrs["format"] == "axlebox-result" and "W = 0.002" in f.attrs["config"]

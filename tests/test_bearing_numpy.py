@@ -1,0 +1,161 @@
+"""The plain-numpy twin of the DTRB kernel (bearing.kernel_numpy) against the numba kernel, and
+both closed-form line integrals against quadrature."""
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from bearing import defects, equilibrium, layout
+from bearing.kernel import dtrb_rhs, line_integrals
+from bearing.kernel_numpy import dtrb_rhs_numpy, line_integrals_numpy
+from bearing.layout import CPHI, CTX, CTZ, CX, CY, CZ, ETA, PHI, PSI, RHO, TH_S, TH_T
+from bearing.params import BearingParams
+
+OMEGA = 2 * np.pi * 5.05
+RTOL = 1e-9
+
+
+@pytest.fixture(scope="module")
+def start():
+    """Default bearing with a 2 mm defect on row 2 at angle 0, quasi-static under 54 kN."""
+    p = BearingParams()
+    P = layout.pack(p)
+    D = defects.table((defects.Defect(W=2e-3),), p)
+    y, uo = equilibrium.static_state(p, P, D, (0.0, 0.0, -54e3), OMEGA)
+    return p, P, D, y, equilibrium.ring_motion(OMEGA, uo)
+
+
+def perturbed(p, y, ring, seed=1):
+    """The start shaken: rollers, cages (into pocket walls and side beams) and rings moving."""
+    rng = np.random.default_rng(seed)
+    y = y.copy()
+    rol, cag = layout.views(y, p.Z)
+    sh = rol.shape[:2]
+    for q, scale in ((RHO, 1e-6), (ETA, 1e-6), (PHI, 1e-3), (TH_T, 1e-4), (TH_S, 1e-4), (PSI, 1e-2)):
+        rol[..., q] += scale * rng.standard_normal(sh)
+    for q, scale in ((RHO, 1e-3), (ETA, 1e-3), (PHI, 0.1), (TH_T, 0.1), (TH_S, 0.1), (PSI, 1.0)):
+        rol[..., 6 + q] += scale * rng.standard_normal(sh)
+    cag[:, CX] += 0.2e-3
+    cag[:, CY] += 0.3e-3
+    cag[:, CZ] += 0.05e-3 * rng.standard_normal(2)
+    cag[:, CTX] += 1e-3
+    cag[:, CTZ] -= 5e-4
+    cag[:, CPHI] += 1e-3 * rng.standard_normal(2)
+    cag[:, 6:12] += np.array([1e-3, -2e-3, 5e-4, 0.05, -0.05, 0.3]) * rng.standard_normal((2, 6))
+    ring = ring.copy()
+    ring[0, [3, 5, 9, 11]] = 1e-4, -5e-5, 0.02, -0.03
+    ring[1, [3, 4, 5]] = -8e-5, 0.01, 6e-5
+    ring[1, 6:12] = 1e-3, -2e-3, 5e-3, 0.1, 0.2, -0.1
+    return y, ring
+
+
+def both(y, ring, P, D):
+    n = y.shape[0]
+    Z = int(P[layout.Z])
+    yd, F, Qc = np.zeros(n), np.zeros((2, 6)), np.zeros((2, Z, layout.N_Q))
+    dtrb_rhs(0.0, y, ring, P, D, yd, F, Qc)
+    return (yd, F, Qc), dtrb_rhs_numpy(0.0, y, ring, P, D)
+
+
+def assert_same(y, ring, P, D):
+    ref, out = both(y, ring, P, D)
+    for name, a, b in zip(("ydot", "F", "Qc"), out, ref):
+        assert a.shape == b.shape, name
+        assert np.all(np.isfinite(a)), name
+        err = np.abs(a - b).max()
+        assert err <= RTOL * max(np.abs(b).max(), 1e-300), (name, err, np.abs(b).max())
+    return ref
+
+
+def test_quasi_static_start(start):
+    p, P, D, y, ring = start
+    _, F, Qc = assert_same(y, ring, P, D)
+    assert abs(F[1, 2] + 54e3) < 1.0          # the outer ring carries the load
+
+
+def test_perturbed_contacts(start):
+    p, P, D, y, ring = start
+    y, ring = perturbed(p, y, ring)
+    _, _, Qc = assert_same(y, ring, P, D)
+    for q in (layout.Q_O, layout.Q_I, layout.Q_A, layout.Q_CR1, layout.Q_CR2, layout.Q_SIDE):
+        assert (Qc[..., q] > 0).any(), q      # every contact law is exercised
+
+
+@pytest.mark.parametrize("kw", [dict(damping="paper"), dict(cage="kinematic"),
+                                dict(damping="paper", cage="kinematic")])
+def test_variants(start, kw):
+    p, _, D, y0, ring0 = start
+    p2 = BearingParams(**kw)
+    P2 = layout.pack(p2)
+    assert_same(y0, ring0, P2, D)
+    for seed in (1, 2):
+        y, ring = perturbed(p2, y0, ring0, seed)
+        assert_same(y, ring, P2, D)
+
+
+def test_defect(start):
+    p, P, D, y, ring = start
+    none = defects.table((), p)
+    rol, _ = layout.views(y, p.Z)
+    assert rol[1, 0, PHI] == 0.0             # roller k = 0 of row 2 sits in the defect's middle
+    _, _, Q = assert_same(y, ring, P, D)
+    _, _, Q0 = assert_same(y, ring, P, none)
+    assert Q0[1, 0, 0] > 1e3 and Q[1, 0, 0] < Q0[1, 0, 0]
+    assert np.array_equal(Q[0], Q0[0])        # row 1 has no defect
+
+    # at the defect's edge (shallow), and a short defect covering part of the contact line
+    d = defects.Defect(W=2e-3)
+    y2 = y.copy()
+    layout.views(y2, p.Z)[0][1, 0, PHI] = -0.5 * d.tau(p) + 0.03 * d.tau(p)
+    short = defects.table((defects.Defect(W=2e-3, L=8e-3, offset=-6e-3),), p)
+    for Dx in (D, short):
+        _, _, Qd = assert_same(y2, ring, P, Dx)
+        _, _, Qn = assert_same(y2, ring, P, none)
+        assert 0.0 < Qd[1, 0, 0] < Qn[1, 0, 0]
+    y3, ring3 = perturbed(p, y, ring)
+    assert_same(y3, ring3, P, short)
+
+
+N = 10.0 / 9.0
+H = 0.02
+LINE_CASES = {
+    "uniform": (1e-5, 0.0, -H, H),
+    "nearly uniform": (1e-5, 0.05 * 1e-5 / (2 * H), -H, H),
+    "nearly uniform, off centre": (1e-5, 0.05 * 1e-5 / (H + 0.05 * 0.5 * H), -H, 0.0),  # kap h = 0.05 u_mid
+    "strongly tilted": (1e-5, 4e-4, -H, H),
+    "strongly tilted, negative": (1e-5, -4e-4, -0.5 * H, H),
+    "partially negative": (1e-6, 2e-4, -H, H),
+    "partially negative, falling": (2e-6, -3e-4, -H, 0.5 * H),
+    "fully negative": (-1e-5, 2e-4, -H, H),
+    "fully negative, uniform": (-1e-6, 0.0, -H, H),
+}
+
+
+def quad_integrals(d0, kap, a, b, n):
+    u = lambda s: max(d0 + kap * s, 0.0) ** n    # noqa: E731
+    pts = [-d0 / kap] if kap != 0.0 and a < -d0 / kap < b else None
+    kw = dict(points=pts, epsabs=0.0, epsrel=1e-13, limit=200)
+    return quad(u, a, b, **kw)[0], quad(lambda s: s * u(s), a, b, **kw)[0]
+
+
+@pytest.mark.parametrize("case", LINE_CASES)
+def test_line_integrals(case):
+    d0, kap, a, b = LINE_CASES[case]
+    r0, r1 = quad_integrals(d0, kap, a, b, N)
+    # scales: i0 itself; for the first moment, max|s| i0 (it may vanish by symmetry)
+    s0 = abs(r0)
+    s1 = max(abs(a), abs(b)) * abs(r0)
+    for i0, i1 in (line_integrals(d0, kap, a, b, N), line_integrals_numpy(d0, kap, a, b, N)):
+        if "fully negative" in case:
+            assert float(i0) == 0.0 and float(i1) == 0.0
+            continue
+        assert abs(i0 - r0) <= RTOL * s0, (i0, r0)
+        assert abs(i1 - r1) <= RTOL * s1, (i1, r1)
+    assert line_integrals(d0, kap, b, a, N) == (0.0, 0.0)
+
+
+def test_line_integrals_vectorised():
+    d0, kap, a, b = (np.array(v) for v in zip(*LINE_CASES.values()))
+    i0, i1 = line_integrals_numpy(d0, kap, a, b, N)
+    for k in range(len(d0)):
+        j0, j1 = line_integrals(d0[k], kap[k], a[k], b[k], N)
+        assert abs(i0[k] - j0) <= 1e-13 * abs(j0) and abs(i1[k] - j1) <= 1e-13 * max(abs(j0), 1e-300)
