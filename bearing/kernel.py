@@ -50,38 +50,38 @@ TWO_PI = 2.0 * pi
 
 
 # --- small vector algebra on tuples --------------------------------------------------------
-@njit(inline="always")
+@njit(inline="always", fastmath=True)
 def _add(a, b):
     return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
 
 
-@njit(inline="always")
+@njit(inline="always", fastmath=True)
 def _sub(a, b):
     return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
 
 
-@njit(inline="always")
+@njit(inline="always", fastmath=True)
 def _mul(k, a):
     return (k * a[0], k * a[1], k * a[2])
 
 
-@njit(inline="always")
+@njit(inline="always", fastmath=True)
 def _dot(a, b):
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-@njit(inline="always")
+@njit(inline="always", fastmath=True)
 def _cross(a, b):
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
-@njit(inline="always")
+@njit(inline="always", fastmath=True)
 def _lin(ka, a, kb, b):
     return (ka * a[0] + kb * b[0], ka * a[1] + kb * b[1], ka * a[2] + kb * b[2])
 
 
 # --- contact laws ---------------------------------------------------------------------------
-@njit(cache=True)
+@njit(cache=True, fastmath=True)
 def line_integrals(d0, kap, a, b, n):
     """``(int u^n ds, int s u^n ds)`` over ``[a, b]`` where ``u = d0 + kap s > 0``.
 
@@ -97,10 +97,11 @@ def line_integrals(d0, kap, a, b, n):
     if um > 0.0 and abs(kap) * h < 0.1 * um:
         r = kap * h / um
         r2 = r * r
-        f = um ** n
+        pm = um ** (n - 1.0)
+        f = um * pm
         i0 = h * f * (1.0 + n * (n - 1.0) / 24.0 * r2
                       + n * (n - 1.0) * (n - 2.0) * (n - 3.0) / 1920.0 * r2 * r2)
-        i1 = m * i0 + n * um ** (n - 1.0) * kap * h ** 3 / 12.0 * (1.0 + (n - 1.0) * (n - 2.0) / 40.0 * r2)
+        i1 = m * i0 + n * pm * kap * h ** 3 / 12.0 * (1.0 + (n - 1.0) * (n - 2.0) / 40.0 * r2)
         return i0, i1
     ua = d0 + kap * a
     ub = d0 + kap * b
@@ -119,26 +120,27 @@ def line_integrals(d0, kap, a, b, n):
     return i0, i1
 
 
-@njit(cache=True)
-def _normal(q_el, K, n, ddot, m, P):
-    """Normal force from the elastic part ``q_el = K delta^n`` and the approach rate ``ddot``.
+@njit(cache=True, fastmath=True)
+def _normal(q_el, K, n, ddot, m, P, dmax):
+    """Normal force from the elastic part ``q_el`` and the approach rate ``ddot``.
 
-    Law 0 (default): ``c = 2 zeta sqrt(m k)`` with the tangent stiffness
-    ``k = n K^(1/n) q_el^(1 - 1/n)``, i.e. the damping ratio zeta of the contact oscillator of
-    mass m at its current load.  Law 1: the paper's ``c = c_rule K`` (below Eq. 4).
+    Law 0 (default): ``c = 2 zeta sqrt(m k)`` with the contact's tangent stiffness
+    ``k = n q_el / dmax`` (exact for ``q_el = K delta^n`` at uniform compression dmax; a tilted
+    line contact, whose largest compression is dmax, gets a little less), i.e. the damping
+    ratio zeta of the contact oscillator of mass m at its current load.  Law 1: the paper's
+    ``c = c_rule K`` (below Eq. 4).
     """
     if q_el <= 0.0:
         return 0.0
     if P[LAW] == 0.0:
-        k = n * K ** (1.0 / n) * q_el ** (1.0 - 1.0 / n)
-        c = 2.0 * P[ZETA] * sqrt(m * k)
+        c = 2.0 * P[ZETA] * sqrt(m * n * q_el / dmax)
     else:
         c = P[C_RULE] * K
     q = q_el + c * ddot
     return q if q > 0.0 else 0.0
 
 
-@njit(inline="always")
+@njit(inline="always", fastmath=True)
 def _friction(v, nrm, muq, vs):
     """Regularised Coulomb friction on the body whose relative slip velocity is ``v``."""
     vn = _dot(v, nrm)
@@ -147,7 +149,7 @@ def _friction(v, nrm, muq, vs):
     return _mul(g, vt)
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=True)
 def _outer_defect(D, j, phi, theta_oy):
     """Depth ``h_o`` of an outer-ring defect under a roller of row j at azimuth phi, Eq. (14),
     and the stretch ``[s1, s2]`` of the contact line it covers.  Defects turn with the ring."""
@@ -161,7 +163,7 @@ def _outer_defect(D, j, phi, theta_oy):
     return 0.0, 0.0, 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=True)
 def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
     """State derivative ``ydot`` and ring loads ``F (2, 6)`` of one DTRB.
 
@@ -217,6 +219,8 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
         wc = (wcx, phid_c, wcz)
         Fc = (0.0, 0.0, 0.0)
         Mcg = (0.0, 0.0, 0.0)
+        spc, cpc = sin(phi_c), cos(phi_c)             # pocket k at phi_c + 2 pi k / Z, by rotation
+        sd, cd = sin(TWO_PI / nz), cos(TWO_PI / nz)
 
         for k in range(nz):
             b0 = (j * nz + k) * N_ROLLER
@@ -226,7 +230,9 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
             if kinematic:
                 phi = phi_c + TWO_PI * k / nz
                 phid = phid_c
-            sp, cp = sin(phi), cos(phi)
+                sp, cp = spc, cpc
+            else:
+                sp, cp = sin(phi), cos(phi)
             er = (sp, 0.0, cp)
             et = (cp, 0.0, -sp)
             ax = _lin(s * cam, ey, -sam, er)          # roller axis, large end -> small end
@@ -257,7 +263,8 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
             Qo = 0.0
             if i0 > 0.0:
                 vrel = _sub(_add(Vc, _cross(wr, _mul(rb, no))), _add(vo, _cross(wo, _sub(po, uo))))
-                Qo = _normal(P[K_O] / Le * i0, P[K_O], N_LINE, _dot(vrel, no), Mr, P)
+                Qo = _normal(P[K_O] / Le * i0, P[K_O], N_LINE, _dot(vrel, no), Mr, P,
+                             d0 + 0.5 * Le * abs(kap))
                 m1 = P[K_O] / Le * i1
                 f = _friction(vrel, no, P[MU_R] * Qo, vs)
                 fr = _lin(-Qo, no, 1.0, f)
@@ -274,7 +281,8 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
             Qi = 0.0
             if i0 > 0.0:
                 vrel = _sub(_add(Vc, _cross(wr, _mul(-rb, ni))), _add(vi, _cross(wi, _sub(pi_, ui))))
-                Qi = _normal(P[K_I] / Le * i0, P[K_I], N_LINE, -_dot(vrel, ni), Mr, P)
+                Qi = _normal(P[K_I] / Le * i0, P[K_I], N_LINE, -_dot(vrel, ni), Mr, P,
+                             d0 + 0.5 * Le * abs(kap))
                 m1 = P[K_I] / Le * i1
                 f = _friction(vrel, ni, P[MU_R] * Qi, vs)
                 fr = _lin(Qi, ni, 1.0, f)
@@ -290,7 +298,7 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
             Qa = 0.0
             if d0 > 0.0:
                 vrel = _sub(_add(Vc, _cross(wr, ra)), _add(vi, _cross(wi, _sub(pa, ui))))
-                Qa = _normal(P[K_A] * d0 ** N_POINT, P[K_A], N_POINT, -_dot(vrel, na), Mr, P)
+                Qa = _normal(P[K_A] * d0 * sqrt(d0), P[K_A], N_POINT, -_dot(vrel, na), Mr, P, d0)
                 f = _friction(vrel, na, P[MU_A] * Qa, vs)
                 fr = _lin(Qa, na, 1.0, f)
                 Fr = _add(Fr, fr)
@@ -299,9 +307,9 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
                 Mi = _sub(Mi, _cross(_sub(pa, ui), fr))
 
             # --- cage pocket: walls (Eqs. 9-11) and side beams ---
-            php = phi_c + TWO_PI * k / nz
-            erp = (sin(php), 0.0, cos(php))
-            etp = (cos(php), 0.0, -sin(php))
+            erp = (spc, 0.0, cpc)
+            etp = (cpc, 0.0, -spc)
+            spc, cpc = spc * cd + cpc * sd, cpc * cd - spc * sd
             P0 = _lin(R, erp, yj, ey)
             dd = _sub(c, _add(xc, _add(P0, _cross(th_c, P0))))
             skew = ths - _dot(th_c, bx)
@@ -316,7 +324,8 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
                 if i0 > 0.0:
                     pw = _lin(1.0, c, rb, nw)
                     vrel = _sub(_add(Vc, _cross(wr, _mul(rb, nw))), _add(vc, _cross(wc, _sub(pw, xc))))
-                    Qw = _normal(P[K_CR] / Lb * i0, P[K_CR], N_LINE, _dot(vrel, nw), m_cage, P)
+                    Qw = _normal(P[K_CR] / Lb * i0, P[K_CR], N_LINE, _dot(vrel, nw), m_cage, P,
+                                 d0 + 0.5 * Lb * abs(kap))
                     m1 = P[K_CR] / Lb * i1
                     f = _friction(vrel, nw, P[MU_C] * Qw, vs)
                     fr = _lin(-Qw, nw, 1.0, f)
@@ -336,7 +345,7 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
                 sw = 1.0 if w == 0 else -1.0
                 d0 = sw * chi - P[S_PA]
                 if d0 > 0.0:
-                    Q = _normal(P[K_CR] * d0 ** N_LINE, P[K_CR], N_LINE, sw * chid, m_cage, P)
+                    Q = _normal(P[K_CR] * d0 ** N_LINE, P[K_CR], N_LINE, sw * chid, m_cage, P, d0)
                     fr = _mul(-sw * Q, ey)
                     pe = _lin(1.0, c, 0.5 * sw * Lb, ey)
                     Fr = _add(Fr, fr)

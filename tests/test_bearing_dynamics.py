@@ -150,7 +150,7 @@ def test_paper_damping_rule_is_overdamped_default_is_not():
     zeta_paper = p.c_rule * K / (2 * np.sqrt(p.M_r * k_lin))
     assert zeta_paper > 10
     # the kernel's law 0 reproduces zeta: damping force / (2 sqrt(m k) v) at a known rate
-    c0 = kernel._normal(Q, K, n, 1.0, p.M_r, layout.pack(p)) - Q
+    c0 = kernel._normal(Q, K, n, 1.0, p.M_r, layout.pack(p), (Q / K) ** (1 / n)) - Q
     assert c0 / (2 * np.sqrt(p.M_r * k_lin)) == pytest.approx(p.zeta, rel=1e-12)
 
 
