@@ -45,6 +45,9 @@ def run_rk4(Y, t0, dt, n_steps, every, P, D, rig, acc, Fout, Qout, cage):
     """
     n = Y.shape[0]
     nb = n - 6
+    n_out = (n_steps + every - 1) // every
+    if acc.shape[0] < n_steps or Fout.shape[0] < n_out or Qout.shape[0] < n_out or cage.shape[0] < n_out:
+        raise ValueError("run_rk4: output arrays are shorter than the run")    # no bounds checks below
     nz = Qout.shape[2]
     k1 = np.empty(n)
     k2 = np.empty(n)

@@ -86,8 +86,8 @@ def line_integrals(d0, kap, a, b, n):
     """``(int u^n ds, int s u^n ds)`` over ``[a, b]`` where ``u = d0 + kap s > 0``.
 
     Closed form; when the compression is nearly uniform (``|kap| (b - a) < 0.1 u_mid``) a
-    Taylor series about the midpoint instead, whose first neglected terms are below 1e-8
-    relative (the closed form loses digits to cancellation there).
+    Taylor series about the midpoint instead, whose first neglected terms are below about
+    1e-8 of the force and of ``max|s| x force`` (the closed form loses digits there).
     """
     if b <= a:
         return 0.0, 0.0
@@ -250,7 +250,7 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
 
             # --- cup (outer raceway), Eqs. (1), (3a), (4a), (14), (15) ---
             po = _lin(1.0, c, rb, no)
-            d0 = _dot(_sub(disp, _add(uo, _cross(th_o, po))), no) - P[C_O]
+            d0 = _dot(_sub(disp, _add(uo, _cross(th_o, _sub(po, uo)))), no) - P[C_O]
             kap = s * (tht - _dot(th_o, et))
             h, s1, s2 = _outer_defect(D, j, phi, theta_oy)
             if h > 0.0:
@@ -265,7 +265,7 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
                 vrel = _sub(_add(Vc, _cross(wr, _mul(rb, no))), _add(vo, _cross(wo, _sub(po, uo))))
                 Qo = _normal(P[K_O] / Le * i0, P[K_O], N_LINE, _dot(vrel, no), Mr, P,
                              d0 + 0.5 * Le * abs(kap))
-                m1 = P[K_O] / Le * i1
+                m1 = P[K_O] / Le * i1 if Qo > 0.0 else 0.0
                 f = _friction(vrel, no, P[MU_R] * Qo, vs)
                 fr = _lin(-Qo, no, 1.0, f)
                 Fr = _add(Fr, fr)
@@ -283,7 +283,7 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
                 vrel = _sub(_add(Vc, _cross(wr, _mul(-rb, ni))), _add(vi, _cross(wi, _sub(pi_, ui))))
                 Qi = _normal(P[K_I] / Le * i0, P[K_I], N_LINE, -_dot(vrel, ni), Mr, P,
                              d0 + 0.5 * Le * abs(kap))
-                m1 = P[K_I] / Le * i1
+                m1 = P[K_I] / Le * i1 if Qi > 0.0 else 0.0
                 f = _friction(vrel, ni, P[MU_R] * Qi, vs)
                 fr = _lin(Qi, ni, 1.0, f)
                 Fr = _add(Fr, fr)
@@ -326,7 +326,7 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
                     vrel = _sub(_add(Vc, _cross(wr, _mul(rb, nw))), _add(vc, _cross(wc, _sub(pw, xc))))
                     Qw = _normal(P[K_CR] / Lb * i0, P[K_CR], N_LINE, _dot(vrel, nw), m_cage, P,
                                  d0 + 0.5 * Lb * abs(kap))
-                    m1 = P[K_CR] / Lb * i1
+                    m1 = P[K_CR] / Lb * i1 if Qw > 0.0 else 0.0
                     f = _friction(vrel, nw, P[MU_C] * Qw, vs)
                     fr = _lin(-Qw, nw, 1.0, f)
                     couple = _mul(m1, _cross(ax, nw))
@@ -371,9 +371,11 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
                 ydot[b0 + 1] = phid
                 ydot[b0 + 7] = phidd
             wa = ws + phid * s * cam
+            # gyroscopic terms: the spinning axis turned by the orbit and by tilt/skew rates
             ydot[b0 + 9] = (_dot(Mr_, et) + Ja * wa * phid * sam - Jd * phid * phid * s * sam * cam
-                            - Jd * phid * thsd * cam) / Jd
-            ydot[b0 + 10] = (_dot(Mr_, bx) - Jd * phidd * s * sam + Jd * phid * thtd * cam) / Jd
+                            - Jd * phid * thsd * cam + s * Ja * wa * thsd) / Jd
+            ydot[b0 + 10] = (_dot(Mr_, bx) - Jd * phidd * s * sam + Jd * phid * thtd * cam
+                             - s * Ja * wa * thtd) / Jd
             ydot[b0 + 11] = _dot(Mr_, ax) / Ja - s * cam * phidd
             Qc[j, k, 0] = Qo
             Qc[j, k, 1] = Qi

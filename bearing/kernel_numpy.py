@@ -61,14 +61,15 @@ def line_integrals_numpy(d0, kap, a, b, n):
             np.where(off, 0.0, np.where(taylor, t1, c1)))
 
 
-def _normal(q_el, K, n, ddot, m, P):
-    """Normal force from ``q_el = K delta^n`` and the approach rate (see kernel._normal)."""
+def _normal(q_el, K, n, ddot, m, P, dmax):
+    """Normal force from the elastic part ``q_el``, the approach rate ``ddot`` and the largest
+    compression ``dmax`` (see kernel._normal)."""
+    on = q_el > 0.0
     if P[LAW] == 0.0:
-        k = n * K ** (1.0 / n) * np.maximum(q_el, 0.0) ** (1.0 - 1.0 / n)
-        c = 2.0 * P[ZETA] * np.sqrt(m * k)
+        c = 2.0 * P[ZETA] * np.sqrt(m * n * np.where(on, q_el / np.where(on, dmax, 1.0), 0.0))
     else:
         c = P[C_RULE] * K
-    return np.where(q_el > 0.0, np.maximum(q_el + c * ddot, 0.0), 0.0)
+    return np.where(on, np.maximum(q_el + c * ddot, 0.0), 0.0)
 
 
 def _friction(v, nrm, muq, vs):
@@ -160,7 +161,7 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
 
     # --- cup, Eqs. (1), (3a), (4a), (14), (15) ---
     po = c + rb * no
-    d0 = _dot(disp - (uo + _cross(th_o, po)), no) - P[C_O]
+    d0 = _dot(disp - (uo + _cross(th_o, po - uo)), no) - P[C_O]
     kap = s * (tht - _dot(th_o, et))
     i0, i1 = line_integrals_numpy(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
     h, s1, s2 = _outer_defect(D, phi, theta_oy)
@@ -172,8 +173,9 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
         i0 = np.where(dent, a0 + b0 + e0, i0)
         i1 = np.where(dent, a1 + b1 + e1, i1)
     vrel = Vc + _cross(wr, rb * no) - (vo + _cross(wo, po - uo))
-    Qo = _normal(P[K_O] / Le * i0, P[K_O], N_LINE, _dot(vrel, no), Mr, P)
-    m1 = np.where(i0 > 0.0, P[K_O] / Le * i1, 0.0)
+    Qo = _normal(P[K_O] / Le * i0, P[K_O], N_LINE, _dot(vrel, no), Mr, P,
+                 d0 + 0.5 * Le * np.abs(kap))
+    m1 = np.where(Qo > 0.0, P[K_O] / Le * i1, 0.0)
     f = _friction(vrel, no, P[MU_R] * Qo, vs)
     fr = -Qo * no + f
     Fr += fr
@@ -187,8 +189,9 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     kap = s * (_dot(th_i, et) - tht)
     i0, i1 = line_integrals_numpy(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
     vrel = Vc + _cross(wr, -rb * ni) - _cross(wi, pi_)
-    Qi = _normal(P[K_I] / Le * i0, P[K_I], N_LINE, -_dot(vrel, ni), Mr, P)
-    m1 = np.where(i0 > 0.0, P[K_I] / Le * i1, 0.0)
+    Qi = _normal(P[K_I] / Le * i0, P[K_I], N_LINE, -_dot(vrel, ni), Mr, P,
+                 d0 + 0.5 * Le * np.abs(kap))
+    m1 = np.where(Qi > 0.0, P[K_I] / Le * i1, 0.0)
     f = _friction(vrel, ni, P[MU_R] * Qi, vs)
     fr = Qi * ni + f
     Fr += fr
@@ -201,7 +204,8 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     pa = c + ra
     d0 = _dot(_cross(th_i, pa) - (disp + _cross(thr, ra)), na)
     vrel = Vc + _cross(wr, ra) - _cross(wi, pa)
-    Qa = _normal(P[K_A] * np.maximum(d0, 0.0) ** N_POINT, P[K_A], N_POINT, -_dot(vrel, na), Mr, P)
+    dp = np.maximum(d0, 0.0)
+    Qa = _normal(P[K_A] * dp * np.sqrt(dp), P[K_A], N_POINT, -_dot(vrel, na), Mr, P, d0)
     f = _friction(vrel, na, P[MU_A] * Qa, vs)
     fr = Qa * na + f
     Fr += fr
@@ -226,8 +230,9 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
         i0, i1 = line_integrals_numpy(d0, kap, -0.5 * Lb, 0.5 * Lb, N_LINE)
         pw = c + rb * nw
         vrel = Vc + _cross(wr, rb * nw) - (vc + _cross(wc, pw - xc))
-        Q = _normal(P[K_CR] / Lb * i0, P[K_CR], N_LINE, _dot(vrel, nw), m_cage, P)
-        m1 = np.where(i0 > 0.0, P[K_CR] / Lb * i1, 0.0)
+        Q = _normal(P[K_CR] / Lb * i0, P[K_CR], N_LINE, _dot(vrel, nw), m_cage, P,
+                    d0 + 0.5 * Lb * np.abs(kap))
+        m1 = np.where(Q > 0.0, P[K_CR] / Lb * i1, 0.0)
         f = _friction(vrel, nw, P[MU_C] * Q, vs)
         fr = -Q * nw + f
         couple = m1 * _cross(ax, nw)
@@ -241,7 +246,7 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     Qs = np.zeros_like(chi)
     for sw in (1.0, -1.0):
         d0 = sw * chi - P[S_PA]
-        Q = _normal(P[K_CR] * np.maximum(d0, 0.0) ** N_LINE, P[K_CR], N_LINE, sw * chid, m_cage, P)
+        Q = _normal(P[K_CR] * np.maximum(d0, 0.0) ** N_LINE, P[K_CR], N_LINE, sw * chid, m_cage, P, d0)
         fr = -sw * Q * EY
         pe = c + 0.5 * sw * Lb * EY
         Fr += fr
@@ -267,8 +272,9 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
         yr[..., 7] = phidd
     wa = ws + phid * s * cam
     yr[..., 9] = (_dot(Mr_, et) + Ja * wa * phid * sam - Jd * phid * phid * s * sam * cam
-                  - Jd * phid * thsd * cam) / Jd
-    yr[..., 10] = (_dot(Mr_, bx) - Jd * phidd * s * sam + Jd * phid * thtd * cam) / Jd
+                  - Jd * phid * thsd * cam + s * Ja * wa * thsd) / Jd
+    yr[..., 10] = (_dot(Mr_, bx) - Jd * phidd * s * sam + Jd * phid * thtd * cam
+                   - s * Ja * wa * thtd) / Jd
     yr[..., 11] = _dot(Mr_, ax) / Ja - s * cam * phidd
 
     # --- the cages, Eq. (13) ---

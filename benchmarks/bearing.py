@@ -38,8 +38,9 @@ def rhs_timings():
     n = layout.n_state(p.Z)
     Yr = Y.copy()                     # a running state: 0.1 s of the rig from the start
     every = cfg.fs_out_every
-    run_rk4(Yr, 0.0, cfg.dt, 10000, every, P, D, rig, np.zeros((10000, 3)), np.zeros((100, 2, 6)),
-            np.zeros((100, 2, p.Z, 6)), np.zeros((100, 2, 2)))
+    m = 10000 // every
+    run_rk4(Yr, 0.0, cfg.dt, 10000, every, P, D, rig, np.zeros((10000, 3)), np.zeros((m, 2, 6)),
+            np.zeros((m, 2, p.Z, 6)), np.zeros((m, 2, 2)))
     rows = []
     for name, Ys in (("quasi-static start", Y), ("running rig, t = 0.1 s", Yr)):
         y = Ys[:n].copy()
