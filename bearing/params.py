@@ -50,7 +50,8 @@ class BearingParams:
     v_s: float = param(0.01, 1e-5, 1.0, unit="m/s", doc="slip speed over which friction builds up "
                        "to mu Q (regularised Coulomb)")
     damping: str = "ratio"
-    zeta: float = param(0.10, 0.0, 5.0, unit="", doc="contact damping ratio (damping='ratio')")
+    zeta: float = param(0.10, 0.0, 5.0, unit="", doc="contact damping ratio (damping='ratio'); "
+                        "assumed, an underdamped lubricated contact (see benchmarks/README.md)")
     c_rule: float = param(1e-3, 0.0, 1.0, unit="s", doc="the paper's C = c_rule x K (damping='paper')")
     cage: str = "dynamic"
 
