@@ -141,6 +141,16 @@ def _normal(q_el, K, n, ddot, m, P, dmax):
 
 
 @njit(inline="always", fastmath=True)
+def _line_contact(i0, i1, K, L, d0, kap, ddot, m, mu, vrel, nrm, P):
+    """A line contact (Eqs. 4a, 9) from its integrals ``i0, i1`` over the line of length L:
+    normal force Q, elastic couple ``m1 = (K/L) int s delta^n`` (none once Q is clipped to 0),
+    and the friction ``mu Q`` against the slip ``vrel``."""
+    Q = _normal(K / L * i0, K, N_LINE, ddot, m, P, d0 + 0.5 * L * abs(kap))
+    m1 = K / L * i1 if Q > 0.0 else 0.0
+    return Q, m1, _friction(vrel, nrm, mu * Q, P[V_S])
+
+
+@njit(inline="always", fastmath=True)
 def _friction(v, nrm, muq, vs):
     """Regularised Coulomb friction on the body whose relative slip velocity is ``v``."""
     vn = _dot(v, nrm)
@@ -263,10 +273,8 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
             Qo = 0.0
             if i0 > 0.0:
                 vrel = _sub(_add(Vc, _cross(wr, _mul(rb, no))), _add(vo, _cross(wo, _sub(po, uo))))
-                Qo = _normal(P[K_O] / Le * i0, P[K_O], N_LINE, _dot(vrel, no), Mr, P,
-                             d0 + 0.5 * Le * abs(kap))
-                m1 = P[K_O] / Le * i1 if Qo > 0.0 else 0.0
-                f = _friction(vrel, no, P[MU_R] * Qo, vs)
+                Qo, m1, f = _line_contact(i0, i1, P[K_O], Le, d0, kap, _dot(vrel, no), Mr, P[MU_R],
+                                          vrel, no, P)
                 fr = _lin(-Qo, no, 1.0, f)
                 Fr = _add(Fr, fr)
                 Mr_ = _add(Mr_, _add(_mul(-s * m1, et), _cross(_mul(rb, no), f)))
@@ -281,10 +289,8 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
             Qi = 0.0
             if i0 > 0.0:
                 vrel = _sub(_add(Vc, _cross(wr, _mul(-rb, ni))), _add(vi, _cross(wi, _sub(pi_, ui))))
-                Qi = _normal(P[K_I] / Le * i0, P[K_I], N_LINE, -_dot(vrel, ni), Mr, P,
-                             d0 + 0.5 * Le * abs(kap))
-                m1 = P[K_I] / Le * i1 if Qi > 0.0 else 0.0
-                f = _friction(vrel, ni, P[MU_R] * Qi, vs)
+                Qi, m1, f = _line_contact(i0, i1, P[K_I], Le, d0, kap, -_dot(vrel, ni), Mr, P[MU_R],
+                                          vrel, ni, P)
                 fr = _lin(Qi, ni, 1.0, f)
                 Fr = _add(Fr, fr)
                 Mr_ = _add(Mr_, _add(_mul(s * m1, et), _cross(_mul(-rb, ni), f)))
@@ -324,10 +330,8 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
                 if i0 > 0.0:
                     pw = _lin(1.0, c, rb, nw)
                     vrel = _sub(_add(Vc, _cross(wr, _mul(rb, nw))), _add(vc, _cross(wc, _sub(pw, xc))))
-                    Qw = _normal(P[K_CR] / Lb * i0, P[K_CR], N_LINE, _dot(vrel, nw), m_cage, P,
-                                 d0 + 0.5 * Lb * abs(kap))
-                    m1 = P[K_CR] / Lb * i1 if Qw > 0.0 else 0.0
-                    f = _friction(vrel, nw, P[MU_C] * Qw, vs)
+                    Qw, m1, f = _line_contact(i0, i1, P[K_CR], Lb, d0, kap, _dot(vrel, nw), m_cage,
+                                              P[MU_C], vrel, nw, P)
                     fr = _lin(-Qw, nw, 1.0, f)
                     couple = _mul(m1, _cross(ax, nw))
                     Fr = _add(Fr, fr)

@@ -72,6 +72,12 @@ def _normal(q_el, K, n, ddot, m, P, dmax):
     return np.where(on, np.maximum(q_el + c * ddot, 0.0), 0.0)
 
 
+def _line_contact(i0, i1, K, L, d0, kap, ddot, m, mu, vrel, nrm, P):
+    """Normal force, elastic couple and friction of a line contact (see kernel._line_contact)."""
+    Q = _normal(K / L * i0, K, N_LINE, ddot, m, P, d0 + 0.5 * L * np.abs(kap))
+    return Q, np.where(Q > 0.0, K / L * i1, 0.0), _friction(vrel, nrm, mu * Q, P[V_S])
+
+
 def _friction(v, nrm, muq, vs):
     """Regularised Coulomb friction on the body whose relative slip velocity is ``v``."""
     vt = v - _dot(v, nrm) * nrm
@@ -173,10 +179,8 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
         i0 = np.where(dent, a0 + b0 + e0, i0)
         i1 = np.where(dent, a1 + b1 + e1, i1)
     vrel = Vc + _cross(wr, rb * no) - (vo + _cross(wo, po - uo))
-    Qo = _normal(P[K_O] / Le * i0, P[K_O], N_LINE, _dot(vrel, no), Mr, P,
-                 d0 + 0.5 * Le * np.abs(kap))
-    m1 = np.where(Qo > 0.0, P[K_O] / Le * i1, 0.0)
-    f = _friction(vrel, no, P[MU_R] * Qo, vs)
+    Qo, m1, f = _line_contact(i0, i1, P[K_O], Le, d0, kap, _dot(vrel, no), Mr, P[MU_R],
+                               vrel, no, P)
     fr = -Qo * no + f
     Fr += fr
     Mr_ += -s * m1 * et + _cross(rb * no, f)
@@ -189,10 +193,8 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     kap = s * (_dot(th_i, et) - tht)
     i0, i1 = line_integrals_numpy(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
     vrel = Vc + _cross(wr, -rb * ni) - _cross(wi, pi_)
-    Qi = _normal(P[K_I] / Le * i0, P[K_I], N_LINE, -_dot(vrel, ni), Mr, P,
-                 d0 + 0.5 * Le * np.abs(kap))
-    m1 = np.where(Qi > 0.0, P[K_I] / Le * i1, 0.0)
-    f = _friction(vrel, ni, P[MU_R] * Qi, vs)
+    Qi, m1, f = _line_contact(i0, i1, P[K_I], Le, d0, kap, -_dot(vrel, ni), Mr, P[MU_R],
+                               vrel, ni, P)
     fr = Qi * ni + f
     Fr += fr
     Mr_ += s * m1 * et + _cross(-rb * ni, f)
@@ -230,10 +232,8 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
         i0, i1 = line_integrals_numpy(d0, kap, -0.5 * Lb, 0.5 * Lb, N_LINE)
         pw = c + rb * nw
         vrel = Vc + _cross(wr, rb * nw) - (vc + _cross(wc, pw - xc))
-        Q = _normal(P[K_CR] / Lb * i0, P[K_CR], N_LINE, _dot(vrel, nw), m_cage, P,
-                    d0 + 0.5 * Lb * np.abs(kap))
-        m1 = np.where(Q > 0.0, P[K_CR] / Lb * i1, 0.0)
-        f = _friction(vrel, nw, P[MU_C] * Q, vs)
+        Q, m1, f = _line_contact(i0, i1, P[K_CR], Lb, d0, kap, _dot(vrel, nw), m_cage, P[MU_C],
+                                  vrel, nw, P)
         fr = -Q * nw + f
         couple = m1 * _cross(ax, nw)
         Fr += fr
