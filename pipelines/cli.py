@@ -117,6 +117,18 @@ def _cmd_bearing_simulate(a) -> None:
         print(f"wrote {out.with_suffix('.png')}")
 
 
+def _cmd_contact_geometry(a) -> None:
+    from mbs.wheelrail.geometry import TrackLayout
+    from .contact import run
+    lay = TrackLayout(r0=a.r0, gauge=a.gauge * 1e-3, back_to_back=a.back_to_back * 1e-3,
+                      cant=0.0 if a.cant == 0 else 1.0 / a.cant)
+    res = run(a.wheel, a.rail, a.out, layout=lay, y_max=a.y_max * 1e-3, amplitudes_mm=a.amplitude)
+    print(f"{' on '.join(res['table'].names)}: equivalent conicity (harmonic / Klingel)")
+    for A, h, k in zip(res["amplitude"], res["harmonic"], res["klingel"]):
+        print(f"  {A * 1e3:5.2f} mm: {h:.4f} / {k:.4f}")
+    print(f"wrote {Path(a.out) / 'contact_table.csv'}, conicity.csv, contact_table.png")
+
+
 def parser() -> argparse.ArgumentParser:
     p = _Parser(prog="axlebox", description="Railway vehicle dynamics with flexible bodies and "
                                             "axle-box bearing faults.")
@@ -184,6 +196,25 @@ def parser() -> argparse.ArgumentParser:
     bsim.add_argument("--plot", action="store_true", help="also write <out>.png")
     bsim.add_argument("--out", required=True, help="result file (.h5)")
     bsim.set_defaults(func=_cmd_bearing_simulate)
+
+    c = sub.add_parser("contact", help="wheel-rail contact")
+    cs = c.add_subparsers(dest="contact_command", required=True, parser_class=_Parser)
+    cg = cs.add_parser("geometry", help="contact geometry table of a wheelset on straight track and "
+                                        "equivalent conicity; writes CSV and a figure")
+    cg.add_argument("--wheel", default="S1002", help="S1002 or a profile file (.prw or 'y z' mm text)")
+    cg.add_argument("--rail", default="UIC60", help="UIC60 (60E1), CHN60 or a profile file (.prr, text)")
+    cg.add_argument("--gauge", type=float, default=1435.0, metavar="MM", help="track gauge (default 1435)")
+    cg.add_argument("--back-to-back", type=float, default=1360.0, metavar="MM",
+                    help="distance between the wheels' back faces (default 1360; the paper's metro 1353)")
+    cg.add_argument("--cant", type=float, default=40.0, metavar="N",
+                    help="rail cant 1:N (default 40; 0 for a file that is already canted)")
+    cg.add_argument("--r0", type=float, default=0.42, metavar="M", help="nominal wheel radius (default 0.42)")
+    cg.add_argument("--y-max", type=float, default=10.0, metavar="MM",
+                    help="lateral displacements -y..y (default 10)")
+    cg.add_argument("--amplitude", type=float, nargs="+", default=[1, 2, 3, 4, 5, 6], metavar="MM",
+                    help="amplitudes for the equivalent conicity (default 1 2 3 4 5 6)")
+    cg.add_argument("--out", required=True, help="output folder")
+    cg.set_defaults(func=_cmd_contact_geometry)
     return p
 
 

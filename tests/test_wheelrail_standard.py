@@ -80,3 +80,16 @@ def test_built_pair_conicity_equals_the_reference_pair(amplitude):
     a = equivalent_conicity(built, amplitude)[0]
     b = equivalent_conicity(ref, amplitude)[0]
     assert a == pytest.approx(b, rel=0.03)
+
+
+def test_cli_contact_geometry_writes_table_and_conicity(tmp_path, capsys):
+    from pipelines.cli import main
+    assert main(["contact", "geometry", "--rail", "CHN60", "--back-to-back", "1353", "--y-max", "4",
+                 "--amplitude", "2", "3", "--out", str(tmp_path)]) == 0
+    table = np.genfromtxt(tmp_path / "contact_table.csv", delimiter=",", names=True)
+    assert table["r_L"] - table["r_R"] == pytest.approx(-(table["r_L"] - table["r_R"])[::-1], abs=1e-9)
+    con = np.genfromtxt(tmp_path / "conicity.csv", delimiter=",", names=True)
+    assert con["amplitude"].tolist() == [0.002, 0.003]
+    assert (tmp_path / "contact_table.png").stat().st_size > 10_000
+    assert main(["contact", "geometry", "--rail", "no-such-rail", "--out", str(tmp_path)]) == 2
+    assert "--rail = 'no-such-rail' is not allowed" in capsys.readouterr().err
