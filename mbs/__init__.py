@@ -1,4 +1,7 @@
 """Floating-frame multibody solver, wheel-rail contact, track and vehicle.
 
-Empty until the vehicle issues land; it reads the reduced-body files written by :mod:`fem`.
+- :mod:`mbs.wheelrail` wheel-rail contact: profiles, contact geometry, Hertz, Kalker, FASTSIM
+- :mod:`mbs.track` track irregularities (FRA spectra, rail roughness)
+
+The multibody solver and the vehicle come next; they read the reduced-body files of :mod:`fem`.
 """

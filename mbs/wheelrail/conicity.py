@@ -66,7 +66,7 @@ def klingel_wavelength(table: ContactTable, amplitude: float) -> float:
     # an upper bound on the wavelength: the linearised motion at the smallest secant conicity
     lam = max(abs(np.interp(amplitude, table.y, table.delta_r)) / (2.0 * amplitude), 1e-4)
     span = 6.0 * 2.0 * math.pi * math.sqrt(e0 * r0 / lam)
-    sol = solve_ivp(rhs, (0.0, span), (amplitude, 0.0), events=down, rtol=1e-10, atol=1e-12,
+    sol = solve_ivp(rhs, (0.0, span), (amplitude, 0.0), events=down, rtol=1e-8, atol=1e-11,
                     max_step=span / 400.0)
     s0 = sol.t_events[0]
     if len(s0) < 3:
