@@ -1,11 +1,18 @@
 import os
 import tempfile
+from pathlib import Path
 
 import pytest
 
 # meshes go to a per-session cache unless the user points AXLEBOX_CACHE elsewhere
 os.environ.setdefault("AXLEBOX_CACHE", tempfile.mkdtemp(prefix="axlebox-test-cache-"))
 os.environ.pop("DISPLAY", None)     # every rendering test runs with no display
+
+
+def reference_dir() -> Path:
+    """../shared/reference beside the checkout, or $AXLEBOX_REFERENCE (read-only test data)."""
+    env = os.environ.get("AXLEBOX_REFERENCE")
+    return Path(env) if env else Path(__file__).resolve().parents[2] / "shared" / "reference"
 
 
 def full_size() -> bool:

@@ -1,21 +1,22 @@
 """Profile reader, contact geometry and equivalent conicity (issue 4, items 1-2)."""
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import reference_dir
 
 from geometry._params import ParameterError
 from mbs.wheelrail.conicity import equivalent_conicity, klingel_wavelength
 from mbs.wheelrail.geometry import TrackLayout, contact_table
 from mbs.wheelrail.profile import Profile, ProfileError, read_profile
 
-REF = Path(__file__).resolve().parents[1].parent / "shared" / "reference" / "profiles"
+REF = reference_dir() / "profiles"
 S1002 = REF / "MBench_S1002_v3.prw"
 UIC60_CANTED = REF / "MBench_UIC60_v3.prr"
 UIC60 = REF / "uic60_true.prr"
 
-needs_ref = pytest.mark.skipif(not S1002.is_file(), reason="../shared/reference/profiles not present")
+needs_ref = pytest.mark.skipif(not S1002.is_file(),
+                               reason=f"reference profiles not found in {REF} (set AXLEBOX_REFERENCE)")
 
 
 @pytest.fixture(scope="module")

@@ -1,9 +1,9 @@
 """Standard profiles built from their definitions against the reference files (issue 4, item 1)."""
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import reference_dir
 from scipy.optimize import least_squares
 
 from mbs.wheelrail.conicity import equivalent_conicity
@@ -11,8 +11,9 @@ from mbs.wheelrail.geometry import TrackLayout, contact_table
 from mbs.wheelrail.profile import read_profile
 from mbs.wheelrail.standard import chn60, s1002, s1002_F, uic60
 
-REF = Path(__file__).resolve().parents[1].parent / "shared" / "reference" / "profiles"
-needs_ref = pytest.mark.skipif(not REF.is_dir(), reason="../shared/reference/profiles not present")
+REF = reference_dir() / "profiles"
+needs_ref = pytest.mark.skipif(not REF.is_dir(),
+                               reason=f"reference profiles not found in {REF} (set AXLEBOX_REFERENCE)")
 
 
 def test_s1002_nominal_flange_and_continuity():

@@ -205,7 +205,7 @@ def _parse_columns(text: str, path: str):
     return np.array(points, dtype=float).reshape(-1, 2)
 
 
-def _strip_vertical_ends(y: np.ndarray, z: np.ndarray, path: str):
+def _strip_vertical_ends(y: np.ndarray, z: np.ndarray):
     """Drop the vertical flanks at the ends (equal ``y``), keeping the point nearest the top."""
     lo, hi = 0, len(y) - 1
     while lo < hi and y[lo + 1] == y[lo]:
@@ -284,7 +284,7 @@ def read_profile(path, kind: str | None = None, *, units: str = "mm", z_down: bo
         y = -y
     if y[-1] < y[0]:
         y, z = y[::-1], z[::-1]
-    y, z = _strip_vertical_ends(y, z, str(p))
+    y, z = _strip_vertical_ends(y, z)
     d = np.diff(y)
     bad = np.flatnonzero(d <= 0.0)
     if bad.size:
