@@ -73,9 +73,11 @@ class _Side:
         Z = Yw * sn + Zw * c
         return Y, Z
 
-    def gap(self, y, phi, yw, r0):
-        """Vertical gap wheel - rail at the wheel points ``yw`` (side-local), +inf off the rail."""
-        zw = self.wheel.height(yw)
+    def gap(self, y, phi, yw, r0, zw=None):
+        """Vertical gap wheel - rail at the wheel points ``yw`` (side-local), +inf off the rail;
+        ``zw`` the wheel heights there when they are already known (the search grid)."""
+        if zw is None:
+            zw = self.wheel.height(yw)
         Y, Z = self._points(y, phi, yw, zw, r0)
         yr = self.s * Y - self.y_rail
         g = Z - self.rail.height(yr)
@@ -83,7 +85,7 @@ class _Side:
         return np.where(off, np.inf, g), yr
 
     def min_gap(self, y, phi, r0):
-        g, _ = self.gap(y, phi, self.yw, r0)
+        g, _ = self.gap(y, phi, self.yw, r0, self.zw)
         i = int(np.argmin(g))
         return g[i], i
 

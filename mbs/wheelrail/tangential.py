@@ -37,7 +37,7 @@ import numpy as np
 from geometry._params import ParameterError
 
 from . import fastsim_kernel as _k
-from .kalker import creep_coefficients
+from .kalker import creep_coefficients, linear_creep_forces
 
 __all__ = ["NX", "NY", "UPDATE", "BOUNDS", "UPDATES", "FLEXES", "flexibilities", "fastsim",
            "fastsim_traction", "fastsim_numpy", "shen_hedrick_elkins", "Creepage", "creepages",
@@ -263,12 +263,7 @@ def shen_hedrick_elkins(xi, eta, phi, a, b, N, mu, G, nu):
     """
     xi, eta, phi = _creep(xi, eta, phi)
     a, b, N, mu, G, nu = _contact(a, b, N, mu, G, nu)
-    C11, C22, C23, C33 = creep_coefficients(a / b, nu)
-    c = np.sqrt(a * b)
-    Gc2 = G * c * c
-    Fx = -Gc2 * C11 * xi
-    Fy = -Gc2 * C22 * eta - Gc2 * c * C23 * phi
-    Mz = Gc2 * c * C23 * eta - Gc2 * c * c * C33 * phi
+    Fx, Fy, Mz = linear_creep_forces(xi, eta, phi, a, b, G, nu)
     FR = np.hypot(Fx, Fy)
     muN = mu * N
     beta = np.divide(FR, muN, out=np.full(np.shape(FR), np.inf), where=muN > 0.0)
