@@ -1,0 +1,146 @@
+"""Run a :class:`~mbs.system.Model` in time: fixed-step RK4 or generalized-alpha, output at a
+fixed rate, divergence caught and named, results kept when a run stops early.
+
+The run goes in chunks (``chunk`` simulated seconds) so that progress can be shown and a
+checkpoint written between them; each chunk is one call into numba.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from geometry._params import ParameterError, check_ranges, param
+
+from . import kernel_integrate as ki
+from .system import Model
+
+METHODS = ("rk4", "galpha")
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Integrator settings; ``dt`` must divide the output period."""
+
+    method: str = field(default="rk4", metadata={"doc": "'rk4' or 'galpha'"})
+    dt: float = param(2e-5, 1e-8, 1e-2, unit="s", doc="fixed step")
+    output_rate_hz: float = param(10_000.0, 1.0, 1e7, unit="Hz", doc="sensor output rate")
+    state_rate_hz: float = param(1_000.0, 0.1, 1e7, unit="Hz", doc="rate of whole-state snapshots")
+    rho_inf: float = param(0.8, 0.0, 1.0, unit="", doc="generalized-alpha spectral radius at infinity")
+    max_iter: int = param(8, 2, 50, unit="", doc="Newton iterations before the Jacobian is refreshed")
+    rtol: float = param(1e-9, 0.0, 1e-2, unit="", doc="Newton relative tolerance on the state")
+    vmax: float = param(1e3, 1.0, 1e9, unit="m/s", doc="a velocity state beyond this is a runaway")
+
+    def __post_init__(self):
+        if self.method not in METHODS:
+            raise ParameterError(f"Settings.method = {self.method!r} is not allowed: expected one of {METHODS}")
+        check_ranges(self)
+        ratio = 1.0 / (self.output_rate_hz * self.dt)
+        if ratio < 1.0 - 1e-9:
+            raise ParameterError(f"Settings.output_rate_hz = {self.output_rate_hz:g} is not allowed: "
+                                 f"above the step rate 1/dt = {1 / self.dt:g} Hz")
+        if abs(ratio - round(ratio)) > 1e-6 * ratio:
+            raise ParameterError(f"Settings.dt = {self.dt:g} is not allowed: it must divide the output "
+                                 f"period 1/{self.output_rate_hz:g} s a whole number of times")
+        if self.state_rate_hz > self.output_rate_hz:
+            raise ParameterError(f"Settings.state_rate_hz = {self.state_rate_hz:g} is not allowed: "
+                                 f"at most output_rate_hz = {self.output_rate_hz:g}")
+
+    @property
+    def n_sub(self) -> int:
+        return int(round(1.0 / (self.output_rate_hz * self.dt)))
+
+    @property
+    def state_every(self) -> int:
+        return max(1, int(round(self.output_rate_hz / self.state_rate_hz)))
+
+
+@dataclass
+class Run:
+    """What a run produced (also when it stopped early: ``status`` and ``message`` say why)."""
+
+    time: np.ndarray                 # (t,) s
+    sensors: dict[str, np.ndarray]   # name -> (t, 3) m/s^2, inertial x, y, z
+    wheels: np.ndarray               # (t, n_wheels, n_out) wheel-rail outputs
+    elements: np.ndarray             # (t, n_elements, 6) element outputs
+    state_time: np.ndarray
+    states: np.ndarray               # (ts, n_states)
+    y_end: np.ndarray
+    status: str = "done"
+    message: str = ""
+    wall_s: float = 0.0
+    stats: dict = field(default_factory=dict)
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "done"
+
+
+_STATUS = {ki.NOT_FINITE: "not finite", ki.RUNAWAY: "runaway", ki.NO_CONVERGENCE: "no convergence"}
+
+
+def simulate(model: Model, duration: float, settings: Settings | None = None, *, y0=None,
+             t0: float = 0.0, chunk: float = 0.25, progress=None) -> Run:
+    """Integrate ``model`` for ``duration`` s from ``y0`` (default: the model's initial state)."""
+    s = settings or Settings()
+    if not (math.isfinite(duration) and duration > 0):
+        raise ParameterError(f"duration = {duration!r} is not allowed: expected a time > 0 s")
+    h = s.dt
+    n_out = int(round(duration * s.output_rate_hz)) + 1
+    y = np.array(model.y0 if y0 is None else y0, float)
+    W = model.W
+    ns, nw, ne = len(model.sensor_names), len(model.wheel_names), model.S[7].shape[0]
+    out_t = np.zeros(n_out)
+    out_sens = np.zeros((n_out, W[15].shape[0], 3))
+    out_wh = np.zeros((n_out, W[14].shape[0], W[14].shape[1]))
+    out_el = np.zeros((n_out, W[13].shape[0], 6))
+    se = s.state_every
+    out_y = np.zeros(((n_out - 1) // se + 1, y.size))
+    stats = np.zeros(4, np.int64)
+    if s.method == "galpha":
+        pattern, groups, n_groups = model.coupling_pattern()
+        scale, atol = model.state_scales()
+    per = max(1, int(round(chunk * s.output_rate_hz)))
+    wall0 = time.perf_counter()
+    k, status, bad = 0, ki.OK, -1
+    while k < n_out:
+        k1 = min(n_out, k + per)
+        tk = t0 + k * s.n_sub * h
+        if s.method == "rk4":
+            status, k_done, bad = ki.run_rk4(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S, W, model.nq, s.vmax,
+                                             out_t, out_sens, out_wh, out_el, out_y, se)
+        else:
+            status, k_done, bad = ki.run_galpha(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S, W, model.nq,
+                                                s.vmax, out_t, out_sens, out_wh, out_el, out_y, se,
+                                                s.rho_inf, groups, n_groups, pattern, scale, atol,
+                                                s.rtol, s.max_iter, stats)
+        if status != ki.OK:
+            k = k_done
+            break
+        k = k1
+        if progress is not None:
+            progress(out_t[k - 1] - t0, duration)
+    wall = time.perf_counter() - wall0
+    n_keep = k + (1 if status in (ki.NOT_FINITE, ki.RUNAWAY) else 0)
+    n_keep = min(n_keep, n_out)
+    msg = ""
+    st = "done"
+    if status != ki.OK:
+        st = _STATUS[status]
+        tbad = t0 + k * s.n_sub * h
+        where = model.state_owner(bad) if bad >= 0 else "the coupled system"
+        if status == ki.NO_CONVERGENCE:
+            msg = (f"Newton did not converge at t = {tbad:.6f} s (step {h:g} s); try a smaller dt "
+                   f"or method 'rk4'")
+        else:
+            msg = f"the run diverged at t = {tbad:.6f} s: {st} in {where}"
+    ks = (n_keep - 1) // se + 1 if n_keep else 0
+    return Run(time=out_t[:n_keep], sensors={nm: out_sens[:n_keep, i] for i, nm in
+                                            enumerate(model.sensor_names)},
+               wheels=out_wh[:n_keep, :nw], elements=out_el[:n_keep, :ne],
+               state_time=out_t[:n_keep][::se][:ks], states=out_y[:ks], y_end=y, status=st,
+               message=msg, wall_s=wall,
+               stats={"steps": int(stats[0]), "newton": int(stats[1]), "jacobians": int(stats[2]),
+                      "rhs": int(stats[3]), "dt": h, "method": s.method})

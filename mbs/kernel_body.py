@@ -1,0 +1,264 @@
+"""Numba kernels of one body in the floating frame of reference: plain arrays in, arrays out.
+
+Body table ``bi`` (int, one row a body) and ``bf`` (float) slots, and the flat invariant array
+``inv`` (per flexible body, at ``bi[b, BI_INV]``: Ct (3 n), Q (9 n), R (9 n^2), Me, K, D (n^2
+each), all C order).  State ``y``: positions at ``bi[b, BI_POS]``: ``r (3), p (4)`` unit
+quaternion (w, x, y, z), ``beta`` (spinning bodies only), ``q (n)``; velocities at
+``bi[b, BI_VEL]``: ``v (3)`` inertial, ``omega (3)`` body frame, ``qd (n)``.
+
+Equations of motion (Shabana, Dynamics of Multibody Systems, 4th ed., eqs. 5.106-5.122, written
+with the body-frame angular velocity), ``M(q) [v; omega; qd]' = Q - h``:
+
+    M = [[m I,      -A S~,   A Ct ],
+         [.,         J(q),   C(q) ],
+         [.,         .,      Me   ]]
+    S = mc + Ct q,  W_k = int rho u Phi_k^T = Q_k + sum_l R_lk q_l,  u = x + Phi q,
+    J = tr(P) I - P,  P = P0 + sum_k q_k (W_k + Q_k^T),  C[:, k] = eps : W_k,
+    h_r = A (w x (w x S) + 2 w x Ct qd)
+    h_w = w_f x (J w) + 2 sum_k qd_k (w tr W_k - W_k^T w)
+    h_k = w^T W_k w - |w|^2 tr W_k + 2 sum_l qd_l w . (int rho Phi_l x Phi_k)
+
+and ``Q`` the applied loads plus ``-K q - D qd`` on the modal rows.  For a spinning body the
+frame turns with ``w_f = (w_x, 0, w_z)``; the rigid gyroscopic term uses the material rate
+``J w`` with the frame rate ``w_f`` (Euler's equations in a Resal frame), the elastic terms use
+``w_f`` (see :mod:`mbs.body`).
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+# body table slots
+BI_POS, BI_VEL, BI_N, BI_SPIN, BI_INV = range(5)
+BF_M, BF_MC, BF_P0, BF_JINV, BF_GRAV = 0, 1, 4, 13, 22
+BF_WIDTH = 24
+
+
+@njit(cache=True, inline="always")
+def quat_to_A(p0, p1, p2, p3, A):
+    """Rotation matrix of the unit quaternion (w, x, y, z), normalised on the fly."""
+    s = 1.0 / (p0 * p0 + p1 * p1 + p2 * p2 + p3 * p3)
+    A[0, 0] = 1.0 - 2.0 * s * (p2 * p2 + p3 * p3)
+    A[0, 1] = 2.0 * s * (p1 * p2 - p0 * p3)
+    A[0, 2] = 2.0 * s * (p1 * p3 + p0 * p2)
+    A[1, 0] = 2.0 * s * (p1 * p2 + p0 * p3)
+    A[1, 1] = 1.0 - 2.0 * s * (p1 * p1 + p3 * p3)
+    A[1, 2] = 2.0 * s * (p2 * p3 - p0 * p1)
+    A[2, 0] = 2.0 * s * (p1 * p3 - p0 * p2)
+    A[2, 1] = 2.0 * s * (p2 * p3 + p0 * p1)
+    A[2, 2] = 1.0 - 2.0 * s * (p1 * p1 + p2 * p2)
+
+
+@njit(cache=True, inline="always")
+def cross(a, b, out):
+    out[0] = a[1] * b[2] - a[2] * b[1]
+    out[1] = a[2] * b[0] - a[0] * b[2]
+    out[2] = a[0] * b[1] - a[1] * b[0]
+
+
+@njit(cache=True)
+def inv_views(inv, off, n):
+    """Views of one body's invariants in the flat array."""
+    o = off
+    Ct = inv[o:o + 3 * n].reshape((3, n))
+    o += 3 * n
+    Q = inv[o:o + 9 * n].reshape((3, 3, n))
+    o += 9 * n
+    R = inv[o:o + 9 * n * n].reshape((3, 3, n, n))
+    o += 9 * n * n
+    Me = inv[o:o + n * n].reshape((n, n))
+    o += n * n
+    K = inv[o:o + n * n].reshape((n, n))
+    o += n * n
+    D = inv[o:o + n * n].reshape((n, n))
+    return Ct, Q, R, Me, K, D
+
+
+@njit(cache=True)
+def frame_kinematics(b, y, bi, A, r, v, om, omf):
+    """Frame rotation ``A (3, 3)``, position, velocity, material and frame angular velocity."""
+    ip, iv = bi[b, BI_POS], bi[b, BI_VEL]
+    quat_to_A(y[ip + 3], y[ip + 4], y[ip + 5], y[ip + 6], A)
+    for a in range(3):
+        r[a] = y[ip + a]
+        v[a] = y[iv + a]
+        om[a] = y[iv + 3 + a]
+        omf[a] = om[a]
+    if bi[b, BI_SPIN] == 1:
+        omf[1] = 0.0
+
+
+@njit(cache=True)
+def position_rates(b, y, bi, omf, dy):
+    """``dr = v``, quaternion rate ``p' = p (x) (0, w_f) / 2``, spin angle and modal rates."""
+    ip, iv, n = bi[b, BI_POS], bi[b, BI_VEL], bi[b, BI_N]
+    for a in range(3):
+        dy[ip + a] = y[iv + a]
+    p0, p1, p2, p3 = y[ip + 3], y[ip + 4], y[ip + 5], y[ip + 6]
+    w0, w1, w2 = omf[0], omf[1], omf[2]
+    dy[ip + 3] = 0.5 * (-p1 * w0 - p2 * w1 - p3 * w2)
+    dy[ip + 4] = 0.5 * (p0 * w0 + p2 * w2 - p3 * w1)
+    dy[ip + 5] = 0.5 * (p0 * w1 + p3 * w0 - p1 * w2)
+    dy[ip + 6] = 0.5 * (p0 * w2 + p1 * w1 - p2 * w0)
+    s = bi[b, BI_SPIN]
+    if s == 1:
+        dy[ip + 7] = y[iv + 4]
+    for k in range(n):
+        dy[ip + 7 + s + k] = y[iv + 6 + k]
+
+
+@njit(cache=True)
+def gravity_load(b, bi, bf, inv, y, A, g, Qg):
+    """Generalised gravity load (6 + n) of body ``b``: ``m g``, ``S x A^T g``, ``Ct^T A^T g``."""
+    n = bi[b, BI_N]
+    m = bf[b, BF_M]
+    gb = np.empty(3)
+    for a in range(3):
+        Qg[a] = m * g[a]
+        gb[a] = A[0, a] * g[0] + A[1, a] * g[1] + A[2, a] * g[2]
+    S = np.empty(3)
+    for a in range(3):
+        S[a] = bf[b, BF_MC + a]
+    if n > 0:
+        Ct = inv_views(inv, bi[b, BI_INV], n)[0]
+        q0 = bi[b, BI_POS] + 7 + bi[b, BI_SPIN]
+        for a in range(3):
+            for k in range(n):
+                S[a] += Ct[a, k] * y[q0 + k]
+        for k in range(n):
+            Qg[6 + k] = Ct[0, k] * gb[0] + Ct[1, k] * gb[1] + Ct[2, k] * gb[2]
+    t = np.empty(3)
+    cross(S, gb, t)
+    for a in range(3):
+        Qg[3 + a] = t[a]
+
+
+@njit(cache=True)
+def body_accelerations(b, y, bi, bf, inv, A, om, omf, Qb, acc):
+    """Solve ``M acc = Qb - h`` for body ``b``; ``Qb`` (6 + n) holds the applied loads (gravity,
+    markers).  Adds the elastic ``-K q - D qd``.  ``acc`` gets ``[v'; omega'; qdd]``."""
+    n = bi[b, BI_N]
+    m = bf[b, BF_M]
+    if n == 0 and bf[b, BF_MC] == 0.0 and bf[b, BF_MC + 1] == 0.0 and bf[b, BF_MC + 2] == 0.0:
+        # rigid, frame at the centre of mass: m v' = Q_r, J w' = Q_w - w_f x J w
+        J = np.empty((3, 3))
+        for a in range(3):
+            for c in range(3):
+                J[a, c] = -bf[b, BF_P0 + 3 * a + c]
+            J[a, a] += bf[b, BF_P0] + bf[b, BF_P0 + 4] + bf[b, BF_P0 + 8]
+        Jw = J @ om
+        g = np.empty(3)
+        cross(omf, Jw, g)
+        for a in range(3):
+            acc[a] = Qb[a] / m
+        for a in range(3):
+            s = 0.0
+            for c in range(3):
+                s += bf[b, BF_JINV + 3 * a + c] * (Qb[3 + c] - g[c])
+            acc[3 + a] = s
+        return
+    Ct, Qi, R, Me, K, D = inv_views(inv, bi[b, BI_INV], n)
+    q0 = bi[b, BI_POS] + 7 + bi[b, BI_SPIN]
+    v0 = bi[b, BI_VEL] + 6
+    q = y[q0:q0 + n]
+    qd = y[v0:v0 + n]
+    S = np.empty(3)
+    Cq = np.zeros(3)
+    for a in range(3):
+        S[a] = bf[b, BF_MC + a]
+        for k in range(n):
+            S[a] += Ct[a, k] * q[k]
+            Cq[a] += Ct[a, k] * qd[k]
+    # W[a, c, k] = Q[a, c, k] + sum_l R[a, c, l, k] q_l
+    W = Qi.copy()
+    for a in range(3):
+        for c in range(3):
+            for l in range(n):
+                ql = q[l]
+                if ql != 0.0:
+                    for k in range(n):
+                        W[a, c, k] += R[a, c, l, k] * ql
+    P = np.empty((3, 3))
+    for a in range(3):
+        for c in range(3):
+            s = bf[b, BF_P0 + 3 * a + c]
+            for k in range(n):
+                s += q[k] * (W[a, c, k] + Qi[c, a, k])
+            P[a, c] = s
+    trP = P[0, 0] + P[1, 1] + P[2, 2]
+    N = 6 + n
+    M = np.zeros((N, N))
+    for a in range(3):
+        M[a, a] = m
+    # -A S~ : column c of S~ is e_c x S
+    St = np.array([[0.0, -S[2], S[1]], [S[2], 0.0, -S[0]], [-S[1], S[0], 0.0]])
+    for a in range(3):
+        for c in range(3):
+            s = 0.0
+            for e in range(3):
+                s -= A[a, e] * St[e, c]
+            M[a, 3 + c] = s
+            M[3 + c, a] = s
+            M[3 + a, 3 + c] = -P[a, c]
+        M[3 + a, 3 + a] += trP
+    for k in range(n):
+        for a in range(3):
+            s = 0.0
+            for e in range(3):
+                s += A[a, e] * Ct[e, k]
+            M[a, 6 + k] = s
+            M[6 + k, a] = s
+        # C[:, k] = eps_abc W[b, c, k]
+        c0 = W[1, 2, k] - W[2, 1, k]
+        c1 = W[2, 0, k] - W[0, 2, k]
+        c2 = W[0, 1, k] - W[1, 0, k]
+        M[3, 6 + k] = M[6 + k, 3] = c0
+        M[4, 6 + k] = M[6 + k, 4] = c1
+        M[5, 6 + k] = M[6 + k, 5] = c2
+        for l in range(n):
+            M[6 + k, 6 + l] = Me[k, l]
+    # quadratic velocity vector
+    w = omf
+    rhs = Qb.copy()
+    t1 = np.empty(3)
+    t2 = np.empty(3)
+    cross(w, S, t1)
+    cross(w, t1, t2)
+    cross(w, Cq, t1)
+    for a in range(3):
+        t2[a] += 2.0 * t1[a]
+    for a in range(3):
+        rhs[a] -= A[a, 0] * t2[0] + A[a, 1] * t2[1] + A[a, 2] * t2[2]
+    Jw = np.empty(3)
+    for a in range(3):
+        Jw[a] = trP * om[a] - (P[a, 0] * om[0] + P[a, 1] * om[1] + P[a, 2] * om[2])
+    cross(w, Jw, t1)
+    for a in range(3):
+        rhs[3 + a] -= t1[a]
+    ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2]
+    for k in range(n):
+        trW = W[0, 0, k] + W[1, 1, k] + W[2, 2, k]
+        for a in range(3):
+            WTw = W[0, a, k] * w[0] + W[1, a, k] * w[1] + W[2, a, k] * w[2]
+            rhs[3 + a] -= 2.0 * qd[k] * (w[a] * trW - WTw)
+        wWw = 0.0
+        for a in range(3):
+            for c in range(3):
+                wWw += w[a] * W[a, c, k] * w[c]
+        hk = wWw - ww * trW
+        # 2 sum_l qd_l w . eps_abc R[b, c, l, k]
+        s = 0.0
+        for l in range(n):
+            if qd[l] != 0.0:
+                g0 = R[1, 2, l, k] - R[2, 1, l, k]
+                g1 = R[2, 0, l, k] - R[0, 2, l, k]
+                g2 = R[0, 1, l, k] - R[1, 0, l, k]
+                s += qd[l] * (w[0] * g0 + w[1] * g1 + w[2] * g2)
+        hk += 2.0 * s
+        e = 0.0
+        for l in range(n):
+            e += K[k, l] * q[l] + D[k, l] * qd[l]
+        rhs[6 + k] -= hk + e
+    sol = np.linalg.solve(M, rhs)
+    for i in range(N):
+        acc[i] = sol[i]

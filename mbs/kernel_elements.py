@@ -1,0 +1,135 @@
+"""Numba force laws of the force elements between markers (see :mod:`mbs.elements`).
+
+Each element row ``el_i = [kind, m1, m2, aux]`` and ``el_f`` (parameters) adds forces and moments
+(inertial) to its markers' accumulators ``mkF``, ``mkM``.  Action and reaction are exact: the
+reaction on marker 1 includes the couple ``(p2 - p1) x F2`` so that momentum is conserved when
+the two markers do not coincide.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .kernel_body import cross
+
+BUSHING, SPRING, BUMPSTOP, LOAD = 1, 2, 3, 4
+EL_KIND, EL_M1, EL_M2, EL_AUX = range(4)
+# parameter slots
+B_K, B_C, B_F0 = 0, 6, 12                 # bushing: k (6), c (6), preload (6)
+S_K, S_C, S_L0, S_F0, S_NPT, S_TAB = 0, 1, 2, 3, 4, 8   # spring: table (x, f) pairs from S_TAB
+P_GAP, P_K, P_EXP, P_C = 0, 1, 2, 3       # bump stop along axis aux of marker 1
+L_F0, L_A, L_OM, L_PH, L_T0, L_T1, L_M0 = 0, 3, 6, 7, 8, 9, 10   # load on marker 1
+EL_WIDTH = 48
+
+
+@njit(cache=True, inline="always")
+def _apply_pair(m1, m2, F2, M2, mkp, mkF, mkM):
+    d = np.empty(3)
+    for a in range(3):
+        d[a] = mkp[m2, a] - mkp[m1, a]
+    c = np.empty(3)
+    cross(d, F2, c)
+    for a in range(3):
+        mkF[m2, a] += F2[a]
+        mkM[m2, a] += M2[a]
+        mkF[m1, a] -= F2[a]
+        mkM[m1, a] -= M2[a] + c[a]
+
+
+@njit(cache=True)
+def _table(x, tab, npt):
+    """Piecewise-linear characteristic through ``npt`` (x, f) pairs, extrapolated linearly."""
+    j = 0
+    while j < npt - 2 and x > tab[2 * (j + 1)]:
+        j += 1
+    x0, f0, x1, f1 = tab[2 * j], tab[2 * j + 1], tab[2 * j + 2], tab[2 * j + 3]
+    return f0 + (f1 - f0) * (x - x0) / (x1 - x0)
+
+
+@njit(cache=True)
+def element_forces(t, el_i, el_f, mkp, mkv, mkR, mkw, mkF, mkM, elout):
+    """Evaluate all elements; ``elout (ne, 6)`` gets each element's local force/moment on m2."""
+    F2 = np.empty(3)
+    M2 = np.empty(3)
+    dp = np.empty(3)
+    dv = np.empty(3)
+    dl = np.empty(3)
+    vl = np.empty(3)
+    f = np.empty(6)
+    for e in range(el_i.shape[0]):
+        kind, m1, m2 = el_i[e, EL_KIND], el_i[e, EL_M1], el_i[e, EL_M2]
+        P = el_f[e]
+        if kind == LOAD:
+            on = P[L_T0] <= t < P[L_T1]
+            s = math.sin(P[L_OM] * t + P[L_PH]) if on else 0.0
+            for a in range(3):
+                F = (P[L_F0 + a] + P[L_A + a] * s) if on else 0.0
+                mkF[m1, a] += F
+                mkM[m1, a] += P[L_M0 + a] if on else 0.0
+                elout[e, a] = F
+            continue
+        R1 = mkR[m1]
+        for a in range(3):
+            dp[a] = mkp[m2, a] - mkp[m1, a]
+            dv[a] = mkv[m2, a] - mkv[m1, a]
+        if kind == SPRING:
+            L = math.sqrt(dp[0] ** 2 + dp[1] ** 2 + dp[2] ** 2)
+            Ld = (dp[0] * dv[0] + dp[1] * dv[1] + dp[2] * dv[2]) / L
+            x = L - P[S_L0]
+            npt = int(P[S_NPT])
+            fs = _table(x, P[S_TAB:], npt) if npt >= 2 else -P[S_K] * x
+            fn = P[S_F0] + fs - P[S_C] * Ld            # > 0 pushes the markers apart
+            for a in range(3):
+                F2[a] = fn * dp[a] / L
+                M2[a] = 0.0
+            elout[e, 0] = fn
+            elout[e, 1] = x
+            _apply_pair(m1, m2, F2, M2, mkp, mkF, mkM)
+            continue
+        # relative motion in marker 1's frame: d = R1^T dp, d' = R1^T dv - w1 x d
+        w1 = np.empty(3)
+        for a in range(3):
+            dl[a] = R1[0, a] * dp[0] + R1[1, a] * dp[1] + R1[2, a] * dp[2]
+            vl[a] = R1[0, a] * dv[0] + R1[1, a] * dv[1] + R1[2, a] * dv[2]
+            w1[a] = R1[0, a] * mkw[m1, 0] + R1[1, a] * mkw[m1, 1] + R1[2, a] * mkw[m1, 2]
+        c = np.empty(3)
+        cross(w1, dl, c)
+        for a in range(3):
+            vl[a] -= c[a]
+        if kind == BUSHING:
+            R2 = mkR[m2]
+            # small relative rotation: vee of the skew part of R1^T R2; rate R1^T (w2 - w1)
+            Rr = R1.T @ R2
+            th0 = 0.5 * (Rr[2, 1] - Rr[1, 2])
+            th1 = 0.5 * (Rr[0, 2] - Rr[2, 0])
+            th2 = 0.5 * (Rr[1, 0] - Rr[0, 1])
+            for a in range(3):
+                wr = (R1[0, a] * (mkw[m2, 0] - mkw[m1, 0]) + R1[1, a] * (mkw[m2, 1] - mkw[m1, 1])
+                      + R1[2, a] * (mkw[m2, 2] - mkw[m1, 2]))
+                th = th0 if a == 0 else (th1 if a == 1 else th2)
+                f[a] = P[B_F0 + a] - P[B_K + a] * dl[a] - P[B_C + a] * vl[a]
+                f[3 + a] = P[B_F0 + 3 + a] - P[B_K + 3 + a] * th - P[B_C + 3 + a] * wr
+            for a in range(3):
+                F2[a] = R1[a, 0] * f[0] + R1[a, 1] * f[1] + R1[a, 2] * f[2]
+                M2[a] = R1[a, 0] * f[3] + R1[a, 1] * f[4] + R1[a, 2] * f[5]
+            for a in range(6):
+                elout[e, a] = f[a]
+            _apply_pair(m1, m2, F2, M2, mkp, mkF, mkM)
+        elif kind == BUMPSTOP:
+            ax = el_i[e, EL_AUX]
+            d = dl[ax]
+            over = abs(d) - P[P_GAP]
+            fa = 0.0
+            if over > 0.0:
+                sg = 1.0 if d > 0.0 else -1.0
+                fa = -sg * P[P_K] * over ** P[P_EXP] - P[P_C] * vl[ax]
+                if fa * sg > 0.0:          # damping must not pull the stop shut
+                    fa = 0.0
+            for a in range(3):
+                F2[a] = R1[a, ax] * fa
+                M2[a] = 0.0
+            elout[e, 0] = fa
+            elout[e, 1] = d
+            _apply_pair(m1, m2, F2, M2, mkp, mkF, mkM)

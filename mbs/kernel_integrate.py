@@ -1,0 +1,219 @@
+"""Fixed-step integrators over :func:`mbs.kernel_system.rhs`, whole runs in numba.
+
+* ``run_rk4``: classical Runge-Kutta 4.
+* ``run_galpha``: the first-order generalized-alpha method of Jansen, Whiting and Hulbert
+  (Comput. Methods Appl. Mech. Engrg. 190 (2000) 305-319, eqs. 2.1-2.3 and 20-22) on
+  ``y' = F(t, y)``, second-order accurate and unconditionally stable for linear problems, with
+  high-frequency damping set by ``rho_inf``:
+
+      alpha_m = (3 - rho) / (2 (1 + rho)),  alpha_f = 1 / (1 + rho),  gamma = 1/2 + alpha_m - alpha_f
+      y_{n+1} = y_n + h yd_n + gamma h (yd_{n+1} - yd_n)
+      yd_{n+am} = F(t_{n+af}, y_{n+af})
+
+  solved for ``yd_{n+1}`` by modified Newton with the iteration matrix
+  ``alpha_m I - alpha_f gamma h dF/dy``.  The Jacobian comes from finite differences over column
+  groups (columns whose rows do not overlap share one evaluation: the body coupling pattern);
+  it is refreshed only when Newton slows down.
+
+Both write outputs every ``n_sub`` steps: sensor accelerations, wheel and element outputs, and the
+whole state every ``state_every`` outputs.  They return a status (0 done, 1 not finite,
+2 runaway, 3 Newton failed), the number of outputs written, and the offending state index.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .kernel_system import rhs
+
+OK, NOT_FINITE, RUNAWAY, NO_CONVERGENCE = 0, 1, 2, 3
+
+
+@njit(cache=True)
+def _check(y, nq, vmax):
+    for i in range(y.shape[0]):
+        if not math.isfinite(y[i]):
+            return NOT_FINITE, i
+    for i in range(nq, y.shape[0]):
+        if abs(y[i]) > vmax:
+            return RUNAWAY, i
+    return OK, -1
+
+
+@njit(cache=True)
+def _record(k, t, y, W, out_t, out_sens, out_wh, out_el, out_y, state_every):
+    out_t[k] = t
+    out_sens[k] = W[15]
+    out_wh[k] = W[14]
+    out_el[k] = W[13]
+    if k % state_every == 0:
+        out_y[k // state_every] = y
+
+
+@njit(cache=True)
+def _normalise(y, bi):
+    for b in range(bi.shape[0]):
+        ip = bi[b, 0]
+        s = math.sqrt(y[ip + 3] ** 2 + y[ip + 4] ** 2 + y[ip + 5] ** 2 + y[ip + 6] ** 2)
+        for a in range(4):
+            y[ip + 3 + a] /= s
+
+
+@njit(cache=True)
+def run_rk4(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, vmax, out_t, out_sens, out_wh, out_el,
+            out_y, state_every):
+    """Advance ``y`` in place through outputs ``k0 .. n_out - 1``; output ``k`` is at
+    ``t0 + (k - k0) n_sub h`` (recorded from the first stage there); no step follows the
+    output ``k_last``."""
+    N = y.shape[0]
+    k1 = np.empty(N)
+    k2 = np.empty(N)
+    k3 = np.empty(N)
+    k4 = np.empty(N)
+    yt = np.empty(N)
+    t = t0
+    for k in range(k0, n_out):
+        for j in range(n_sub):
+            t = t0 + ((k - k0) * n_sub + j) * h
+            rhs(t, y, k1, S, W)
+            if j == 0:
+                _record(k, t, y, W, out_t, out_sens, out_wh, out_el, out_y, state_every)
+                st, i = _check(y, nq, vmax)
+                if st != OK:
+                    return st, k, i
+                if k == k_last:
+                    break
+            for i in range(N):
+                yt[i] = y[i] + 0.5 * h * k1[i]
+            rhs(t + 0.5 * h, yt, k2, S, W)
+            for i in range(N):
+                yt[i] = y[i] + 0.5 * h * k2[i]
+            rhs(t + 0.5 * h, yt, k3, S, W)
+            for i in range(N):
+                yt[i] = y[i] + h * k3[i]
+            rhs(t + h, yt, k4, S, W)
+            for i in range(N):
+                y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+            _normalise(y, S[0])
+    return OK, n_out, -1
+
+
+@njit(cache=True)
+def jacobian_fd(t, y, f0, S, W, groups, n_groups, pattern, scale, J):
+    """``J = dF/dy`` by forward differences, one evaluation per column group."""
+    N = y.shape[0]
+    yp = y.copy()
+    fp = np.empty(N)
+    eps = np.empty(N)
+    for j in range(N):
+        eps[j] = 1e-7 * max(abs(y[j]), scale[j])
+    J[:, :] = 0.0
+    for g in range(n_groups):
+        for j in range(N):
+            if groups[j] == g:
+                yp[j] = y[j] + eps[j]
+        rhs(t, yp, fp, S, W)
+        for j in range(N):
+            if groups[j] == g:
+                yp[j] = y[j]
+                for i in range(N):
+                    if pattern[i, j]:
+                        J[i, j] = (fp[i] - f0[i]) / eps[j]
+
+
+@njit(cache=True)
+def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, vmax, out_t, out_sens, out_wh,
+               out_el, out_y, state_every, rho_inf, groups, n_groups, pattern, scale, atol, rtol,
+               max_iter, stats):
+    """Generalized-alpha (first order) with modified Newton; ``stats`` gets
+    [steps, Newton iterations, Jacobians, RHS evaluations].  A step that needs
+    ``max_iter - 1`` iterations or more marks the Jacobian stale: it is rebuilt before the next step."""
+    N = y.shape[0]
+    am = 0.5 * (3.0 - rho_inf) / (1.0 + rho_inf)
+    af = 1.0 / (1.0 + rho_inf)
+    ga = 0.5 + am - af
+    yd = np.empty(N)
+    rhs(t0, y, yd, S, W)
+    stats[3] += 1
+    ydn = yd.copy()
+    y1 = np.empty(N)
+    ya = np.empty(N)
+    f = np.empty(N)
+    J = np.empty((N, N))
+    Minv = np.empty((N, N))
+    fresh = False
+    have = False
+    stale = False
+    for k in range(k0, n_out):
+        for j in range(n_sub):
+            t = t0 + ((k - k0) * n_sub + j) * h
+            if j == 0:
+                rhs(t, y, f, S, W)
+                stats[3] += 1
+                _record(k, t, y, W, out_t, out_sens, out_wh, out_el, out_y, state_every)
+                st, i = _check(y, nq, vmax)
+                if st != OK:
+                    return st, k, i
+                if k == k_last:
+                    break
+            ta = t + af * h
+            done = False
+            for attempt in range(3):
+                if not have or attempt > 0 or stale:
+                    rhs(t, y, f, S, W)
+                    jacobian_fd(t, y, f, S, W, groups, n_groups, pattern, scale, J)
+                    stats[2] += 1
+                    stats[3] += 1 + n_groups
+                    for a in range(N):
+                        for c in range(N):
+                            J[a, c] *= -af * ga * h
+                        J[a, a] += am
+                    Minv[:, :] = np.linalg.inv(J)
+                    have = True
+                    fresh = True
+                    stale = False
+                for i in range(N):
+                    yd[i] = ydn[i]
+                prev = 1e300
+                for it in range(max_iter):
+                    for i in range(N):
+                        y1[i] = y[i] + h * ydn[i] + ga * h * (yd[i] - ydn[i])
+                        ya[i] = y[i] + af * (y1[i] - y[i])
+                    rhs(ta, ya, f, S, W)
+                    stats[3] += 1
+                    stats[1] += 1
+                    for i in range(N):
+                        f[i] = ydn[i] + am * (yd[i] - ydn[i]) - f[i]     # residual
+                    err = 0.0
+                    for i in range(N):
+                        s = 0.0
+                        for c in range(N):
+                            s -= Minv[i, c] * f[c]
+                        yd[i] += s
+                        e = ga * h * abs(s) / (atol[i] + rtol * abs(y1[i]))
+                        if e > err:
+                            err = e
+                    if not math.isfinite(err) or (it > 1 and err > prev):
+                        break
+                    prev = err
+                    if err < 1.0:
+                        done = True
+                        stale = it >= max_iter - 2
+                        break
+                if done:
+                    break
+                if fresh and attempt > 0:
+                    break
+            if not done:
+                for i in range(N):
+                    y[i] = y1[i]
+                return NO_CONVERGENCE, k, -1
+            fresh = False
+            for i in range(N):
+                y[i] = y[i] + h * ydn[i] + ga * h * (yd[i] - ydn[i])
+                ydn[i] = yd[i]
+            _normalise(y, S[0])
+            stats[0] += 1
+    return OK, n_out, -1

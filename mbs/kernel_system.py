@@ -1,0 +1,50 @@
+"""The system right-hand side ``y' = F(t, y)`` in numba, over the packed arrays of
+:class:`mbs.system.Model`.
+
+``S`` (static arrays): ``bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f, wtab,
+wpar, trk, sens``; ``W`` (work arrays, overwritten every call): frame quantities per body,
+marker kinematics and loads, the generalised loads, element, wheel and sensor outputs.
+Order of one evaluation: frames and position rates; marker kinematics; element and wheel-rail
+forces on markers; gravity and marker loads per body; body accelerations; sensor accelerations.
+"""
+from __future__ import annotations
+
+from numba import njit
+
+from .kernel_body import BI_N, BI_VEL, body_accelerations, frame_kinematics, gravity_load, position_rates
+from .kernel_elements import element_forces
+from .kernel_markers import marker_acceleration, marker_kinematics, marker_loads
+from .kernel_wheels import wheel_forces  # noqa: E402
+
+from .kernel_wheels import G_GRAV
+
+
+@njit(cache=True)
+def rhs(t, y, dy, S, W):
+    bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f, wtab, wpar, trk, sens = S
+    Ab, rb, vb, omb, omfb, mku, mkp, mkv, mkR, mkw, mkF, mkM, gen, elout, whout, sensout = W
+    nb = bi.shape[0]
+    for b in range(nb):
+        frame_kinematics(b, y, bi, Ab[b], rb[b], vb[b], omb[b], omfb[b])
+        position_rates(b, y, bi, omfb[b], dy)
+    marker_kinematics(y, bi, mk_i, mk_f, shp, Ab, rb, vb, omfb, mku, mkp, mkv, mkR, mkw)
+    mkF[:, :] = 0.0
+    mkM[:, :] = 0.0
+    element_forces(t, el_i, el_f, mkp, mkv, mkR, mkw, mkF, mkM, elout)
+    if wh_i.shape[0] > 0:
+        wheel_forces(bi, wh_i, wh_f, wtab, wpar, trk, glob, Ab, omb, mkp, mkv, mkR, mkw,
+                     mkF, mkM, whout)
+    g = glob[G_GRAV:G_GRAV + 3]
+    for b in range(nb):
+        n = bi[b, BI_N]
+        o = goff[b]
+        gravity_load(b, bi, bf, inv, y, Ab[b], g, gen[o:o + 6 + n])
+    marker_loads(bi, mk_i, shp, Ab, mku, mkF, mkM, gen, goff)
+    for b in range(nb):
+        n = bi[b, BI_N]
+        o = goff[b]
+        iv = bi[b, BI_VEL]
+        body_accelerations(b, y, bi, bf, inv, Ab[b], omb[b], omfb[b], gen[o:o + 6 + n],
+                           dy[iv:iv + 6 + n])
+    for s in range(sens.shape[0]):
+        marker_acceleration(sens[s], y, dy, bi, mk_i, mk_f, shp, Ab, omfb, mku, sensout[s])

@@ -1,0 +1,333 @@
+"""Assemble bodies, markers, elements, wheels and sensors into a :class:`Model`: the packed
+arrays the numba kernels run on, the state layout and the initial state.
+
+    sys = System(gravity=(0, 0, -9.81), speed=13.3)
+    b = sys.add_body(flexible("ws1", rb, spin=True), r=(0, 0, 0.42), omega=(0, 13.3 / 0.42, 0))
+    m1 = sys.marker("ws1", node="journal_L_row1")
+    m2 = sys.marker("ab1L", node="bore_row1")
+    sys.add(Bushing("joint", m2, m1, k=(1e9, 5e8, 1e9, 0, 0, 0)))
+    model = sys.assemble()
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from geometry._params import ParameterError
+
+from . import ffrf_numpy as fn
+from .body import Body
+from .kernel_body import BF_GRAV, BF_JINV, BF_M, BF_MC, BF_P0, BF_WIDTH
+from .kernel_elements import EL_WIDTH
+
+
+@dataclass
+class _Init:
+    r: np.ndarray
+    p: np.ndarray          # quaternion (w, x, y, z)
+    v: np.ndarray
+    omega: np.ndarray      # body frame; omega[1] = spin rate on a spinning body
+    q: np.ndarray
+    qd: np.ndarray
+
+
+def quaternion(rotation) -> np.ndarray:
+    """Unit quaternion (w, x, y, z) of a rotation matrix (3, 3) or small angles (rx, ry, rz) rad
+    (applied as a rotation vector)."""
+    if rotation is None:
+        return np.array([1.0, 0.0, 0.0, 0.0])
+    R = np.asarray(rotation, float)
+    rot = Rotation.from_matrix(R) if R.shape == (3, 3) else Rotation.from_rotvec(R)
+    x, y, z, w = rot.as_quat()
+    return np.array([w, x, y, z])
+
+
+class System:
+    """A multibody system under construction (names are unique; ``None`` body is the ground)."""
+
+    def __init__(self, gravity=(0.0, 0.0, -9.81), speed: float = 0.0):
+        self.gravity = np.asarray(gravity, float)
+        self.speed = float(speed)
+        self.bodies: list[Body] = []
+        self.init: list[_Init] = []
+        self.markers: list[tuple[int, str | None, np.ndarray, str]] = []
+        self.elements: list = []
+        self.sensors: dict[str, int] = {}
+        self.wheels: list[tuple[str, int, int, float]] = []
+        self.wheel_tables: tuple[np.ndarray, np.ndarray] | None = None
+        self.track = None
+
+    # -- building -------------------------------------------------------------------------
+    def index(self, name: str) -> int:
+        for i, b in enumerate(self.bodies):
+            if b.name == name:
+                return i
+        raise ParameterError(f"body = {name!r} is not allowed: no such body (have "
+                             f"{[b.name for b in self.bodies]})")
+
+    def add_body(self, body: Body, *, r=(0, 0, 0), rotation=None, v=(0, 0, 0), omega=(0, 0, 0),
+                 q=None, qd=None) -> int:
+        if any(b.name == body.name for b in self.bodies):
+            raise ParameterError(f"body = {body.name!r} is not allowed: the name is taken")
+        n = body.n_modes
+        self.bodies.append(body)
+        self.init.append(_Init(np.asarray(r, float), quaternion(rotation), np.asarray(v, float),
+                               np.asarray(omega, float),
+                               np.zeros(n) if q is None else np.asarray(q, float),
+                               np.zeros(n) if qd is None else np.asarray(qd, float)))
+        return len(self.bodies) - 1
+
+    def marker(self, body: str | None, node: str | None = None, at=None, name: str = "") -> int:
+        """A marker on ``body`` at its ``node`` (flexible: follows the node's elastic motion)
+        or at the body-frame point ``at``; ``body=None``: a ground point ``at``."""
+        if body is None:
+            self.markers.append((-1, None, np.asarray(at if at is not None else (0, 0, 0), float), name))
+            return len(self.markers) - 1
+        b = self.index(body)
+        if node is not None:
+            pos, _ = self.bodies[b].node(node)
+            x0 = np.asarray(pos, float) if at is None else np.asarray(at, float)
+        else:
+            x0 = np.asarray(at if at is not None else (0, 0, 0), float)
+        if x0.shape != (3,) or not np.all(np.isfinite(x0)):
+            raise ParameterError(f"marker {name or body!r}: at = {at!r} is not allowed: expected 3 numbers (m)")
+        self.markers.append((b, node, x0, name))
+        return len(self.markers) - 1
+
+    def add(self, element):
+        for m in (element.m1, getattr(element, "m2", element.m1)):
+            if not 0 <= m < len(self.markers):
+                raise ParameterError(f"{element.name}: marker {m!r} does not exist")
+        self.elements.append(element)
+        return element
+
+    def sensor(self, name: str, marker: int) -> None:
+        self.sensors[name] = marker
+
+    def wheel(self, name: str, marker: int, side: int, r_c: float) -> None:
+        """A wheel-rail contact at the tread marker ``marker``; ``side`` 0 left, 1 right;
+        ``r_c`` the height of the wheel centre above the marker (the rolling radius)."""
+        self.wheels.append((name, marker, side, float(r_c)))
+
+    # -- packing --------------------------------------------------------------------------
+    def assemble(self) -> "Model":
+        if not self.bodies:
+            raise ParameterError("bodies = [] is not allowed: a system needs at least one body")
+        nb = len(self.bodies)
+        npos = [7 + int(b.spin) + b.n_modes for b in self.bodies]
+        nvel = [6 + b.n_modes for b in self.bodies]
+        nq = sum(npos)
+        bi = np.zeros((nb, 5), np.int64)
+        bf = np.zeros((nb, BF_WIDTH))
+        goff = np.zeros(nb, np.int64)
+        inv_parts, off = [], 0
+        y0 = np.zeros(nq + sum(nvel))
+        ip, iv = 0, nq
+        for k, (b, ini) in enumerate(zip(self.bodies, self.init)):
+            n = b.n_modes
+            bi[k] = (ip, iv, n, int(b.spin), off)
+            goff[k] = iv - nq
+            bf[k, BF_M] = b.mass
+            bf[k, BF_MC:BF_MC + 3] = b.mc
+            bf[k, BF_P0:BF_P0 + 9] = b.P0.ravel()
+            bf[k, BF_JINV:BF_JINV + 9] = np.linalg.inv(b.inertia_origin).ravel()
+            bf[k, BF_GRAV] = 1.0
+            if n:
+                part = np.concatenate([b.Ct.ravel(), b.Q.ravel(), b.R.ravel(), b.Me.ravel(),
+                                       b.K.ravel(), b.D.ravel()])
+                inv_parts.append(part)
+                off += part.size
+            s = int(b.spin)
+            y0[ip:ip + 3] = ini.r
+            y0[ip + 3:ip + 7] = ini.p
+            y0[ip + 7 + s:ip + 7 + s + n] = ini.q
+            y0[iv:iv + 3] = ini.v
+            y0[iv + 3:iv + 6] = ini.omega
+            y0[iv + 6:iv + 6 + n] = ini.qd
+            ip += npos[k]
+            iv += nvel[k]
+        inv = np.concatenate(inv_parts) if inv_parts else np.zeros(1)
+
+        mk_i = np.zeros((len(self.markers), 2), np.int64)
+        mk_f = np.zeros((max(len(self.markers), 1), 3))
+        shp_parts, so = [], 0
+        for m, (b, node, x0, _) in enumerate(self.markers):
+            mk_f[m] = x0
+            mk_i[m] = (b, -1)
+            if b >= 0 and node is not None and self.bodies[b].n_modes:
+                _, sh = self.bodies[b].node(node)
+                mk_i[m, 1] = so
+                shp_parts.append(np.ascontiguousarray(sh, float).ravel())
+                so += sh.size
+        shp = np.concatenate(shp_parts) if shp_parts else np.zeros(1)
+
+        rows = [e.pack() for e in self.elements]
+        el_i = np.array([r[0] for r in rows], np.int64).reshape(-1, 4)
+        el_f = np.array([r[1] for r in rows]).reshape(-1, EL_WIDTH)
+
+        from .kernel_wheels import G_DS, G_GRAV, G_LEN, G_S0, G_TRACK, G_V
+        glob = np.zeros(8)
+        glob[G_GRAV:G_GRAV + 3] = self.gravity
+        glob[G_V] = self.speed
+        trk = np.zeros((8, 2))
+        if self.track is not None:
+            tr = self.track
+            vals = np.vstack([tr.zL, tr.zR, tr.yL, tr.yR])
+            slopes = np.vstack([np.gradient(v, tr.s) for v in vals])
+            # the record is periodic: the end slope wraps around
+            trk = np.ascontiguousarray(np.vstack([vals, slopes]))
+            glob[G_S0], glob[G_DS], glob[G_LEN], glob[G_TRACK] = tr.s[0], tr.s[1] - tr.s[0], \
+                tr.s[-1] - tr.s[0] + (tr.s[1] - tr.s[0]), 1.0
+        wh_i = np.array([(m, side, self.markers[m][0]) for _, m, side, _ in self.wheels],
+                        np.int64).reshape(-1, 3)
+        wh_f = np.array([[rc] for *_, rc in self.wheels]).reshape(-1, 1)
+        if self.wheels and self.wheel_tables is None:
+            raise ParameterError("wheels need wheel-rail tables: call set_wheel_rail() first")
+        wtab, wpar = self.wheel_tables if self.wheel_tables is not None else (np.zeros((1, 1)), np.zeros(1))
+        sens_names = list(self.sensors)
+        sens = np.array([self.sensors[s] for s in sens_names], np.int64)
+        S = (bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f,
+             np.ascontiguousarray(wtab, float), np.ascontiguousarray(wpar, float), trk, sens)
+        return Model(self, S, y0, nq, sens_names, [w[0] for w in self.wheels])
+
+    def set_wheel_rail(self, tab: np.ndarray, par: np.ndarray) -> None:
+        self.wheel_tables = (tab, par)
+
+
+def _wheel_nout() -> int:
+    from mbs.wheelrail import element_kernel
+    return int(getattr(element_kernel, "N_OUT", 24))
+
+
+class Model:
+    """Packed arrays (``S``), work arrays (``W``), the initial state ``y0`` and helpers."""
+
+    def __init__(self, system: System, S, y0, nq, sensors, wheels):
+        self.system = system
+        self.S = S
+        self.y0 = y0
+        self.nq = nq
+        self.sensor_names = sensors
+        self.wheel_names = wheels
+        bi = S[0]
+        nb, nm, ne = bi.shape[0], S[4].shape[0], S[7].shape[0]
+        ngen = int(sum(6 + b.n_modes for b in system.bodies))
+        z = np.zeros
+        self.W = (z((nb, 3, 3)), z((nb, 3)), z((nb, 3)), z((nb, 3)), z((nb, 3)),
+                  z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3, 3)),
+                  z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3)), z(ngen),
+                  z((max(ne, 1), 6)), z((max(len(wheels), 1), _wheel_nout())),
+                  z((max(len(sensors), 1), 3)))
+
+    @property
+    def bodies(self) -> list[Body]:
+        return self.system.bodies
+
+    @property
+    def n_states(self) -> int:
+        return self.y0.size
+
+    def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
+        from .kernel_system import rhs
+        dy = np.zeros_like(y)
+        rhs(float(t), np.ascontiguousarray(y, float), dy, self.S, self.W)
+        return dy
+
+    def body_state(self, k: int, y: np.ndarray) -> dict:
+        """Unpacked state of body ``k``: r, p, A, beta, q, v, omega, qd."""
+        bi = self.S[0]
+        ip, iv, n, s = (int(x) for x in bi[k, :4])
+        p = y[ip + 3:ip + 7]
+        return {"r": y[ip:ip + 3], "p": p, "A": fn.quat_to_A(p), "beta": y[ip + 7] if s else 0.0,
+                "q": y[ip + 7 + s:ip + 7 + s + n], "v": y[iv:iv + 3], "omega": y[iv + 3:iv + 6],
+                "qd": y[iv + 6:iv + 6 + n]}
+
+    def state_owner(self, i: int) -> str:
+        """Which body (and which coordinate) state index ``i`` belongs to."""
+        bi = self.S[0]
+        for k, b in enumerate(self.bodies):
+            ip, iv, n, s = (int(x) for x in bi[k, :4])
+            if ip <= i < ip + 7 + s + n:
+                j = i - ip
+                what = ("x", "y", "z", "p0", "p1", "p2", "p3")[j] if j < 7 else \
+                    ("spin angle" if s and j == 7 else f"q{j - 7 - s + 1}")
+                return f"body {b.name!r} ({what})"
+            if iv <= i < iv + 6 + n:
+                j = i - iv
+                what = ("vx", "vy", "vz", "wx", "wy", "wz")[j] if j < 6 else f"qd{j - 5}"
+                return f"body {b.name!r} ({what})"
+        return f"state {i}"
+
+    def energy(self, y: np.ndarray) -> dict:
+        """Kinetic, elastic (modal) and gravitational potential energy of the bodies (J);
+        force elements' energy is not included."""
+        T = U = Vg = 0.0
+        for k, b in enumerate(self.bodies):
+            st = self.body_state(k, y)
+            T += fn.kinetic_energy(b, st["A"], st["q"], st["v"], st["omega"], st["qd"])
+            U += 0.5 * st["q"] @ b.K @ st["q"]
+            S = b.mc + b.Ct @ st["q"]
+            Vg -= self.system.gravity @ (b.mass * st["r"] + st["A"] @ S)
+        return {"kinetic": T, "elastic": U, "gravity": Vg, "total": T + U + Vg}
+
+    def momentum(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Total linear momentum and angular momentum about the inertial origin."""
+        P, H = np.zeros(3), np.zeros(3)
+        for k, b in enumerate(self.bodies):
+            st = self.body_state(k, y)
+            p, h = fn.momenta(b, st["r"], st["A"], st["q"], st["v"], st["omega"], st["qd"])
+            P += p
+            H += h
+        return P, H
+
+    def coupling_pattern(self) -> tuple[np.ndarray, np.ndarray, int]:
+        """Sparsity of dF/dy from which bodies the elements and wheels couple, and column groups
+        for finite differences (columns of bodies with disjoint neighbourhoods share a group)."""
+        bi = self.S[0]
+        nb = bi.shape[0]
+        adj = np.eye(nb, dtype=bool)
+        mk_body = self.S[4][:, 0]
+        for e in self.system.elements:
+            b1, b2 = mk_body[e.m1], mk_body[getattr(e, "m2", e.m1)]
+            if b1 >= 0 and b2 >= 0:
+                adj[b1, b2] = adj[b2, b1] = True
+        N = self.n_states
+        owner = np.empty(N, np.int64)
+        local = np.empty(N, np.int64)
+        for k in range(nb):
+            ip, iv, n, s = (int(x) for x in bi[k, :4])
+            owner[ip:ip + 7 + s + n] = k
+            local[ip:ip + 7 + s + n] = np.arange(7 + s + n)
+            owner[iv:iv + 6 + n] = k
+            local[iv:iv + 6 + n] = 7 + s + n + np.arange(6 + n)
+        pattern = adj[owner][:, owner]
+        # greedy colouring of bodies: two bodies share a class if no body touches both
+        reach = adj.astype(int) @ adj.astype(int) > 0
+        cls = -np.ones(nb, np.int64)
+        for k in np.argsort([-(7 + 6 + 2 * b.n_modes) for b in self.bodies], kind="stable"):
+            used = {cls[j] for j in range(nb) if reach[k, j] and cls[j] >= 0}
+            c = 0
+            while c in used:
+                c += 1
+            cls[k] = c
+        size = np.zeros(cls.max() + 1, np.int64)
+        for k in range(nb):
+            size[cls[k]] = max(size[cls[k]], int(np.sum(owner == k)))
+        base = np.concatenate([[0], np.cumsum(size)])
+        groups = base[cls[owner]] + local
+        return pattern, groups.astype(np.int64), int(base[-1])
+
+    def state_scales(self) -> tuple[np.ndarray, np.ndarray]:
+        """Finite-difference scales and Newton absolute tolerances per state."""
+        N = self.n_states
+        scale = np.ones(N)
+        atol = np.full(N, 1e-9)
+        bi = self.S[0]
+        for k in range(bi.shape[0]):
+            ip, iv, n, s = (int(x) for x in bi[k, :4])
+            scale[ip + 7 + s:ip + 7 + s + n] = 1e-3
+            scale[iv + 6:iv + 6 + n] = 1e-2
+            atol[iv:iv + 6 + n] = 1e-6
+        return scale, atol
