@@ -120,7 +120,26 @@ def flexible(name: str, rb: ReducedBody, *, n_modes: int | None = None, spin: bo
                 np.asarray(rb.frequencies_hz[:n], float), source=f"{rb.method}:{rb.name}")
 
 
-def point_mass_body(name: str, mass: float) -> Body:
-    """A small sphere-like rigid body (isotropic inertia of a 0.1 m radius ball): gearbox
-    masses and test fixtures that need a mass but whose rotation does not matter."""
-    return rigid(name, mass, np.full(3, 0.4 * mass * 0.1 ** 2))
+def add_point_masses(body: Body, masses: dict[str, float]) -> Body:
+    """Attach point masses (kg) at nodes: mounted equipment the FE model leaves out (motors,
+    brackets).  Each adds its exact share to every invariant (``m``, ``mc``, ``P0``, ``Ct``,
+    ``Q``, ``R``, ``Me``) through the node's translation shapes; its own rotary inertia is
+    neglected.  The modal mass is then no longer the identity, which the equations allow."""
+    for node, m in masses.items():
+        if not (np.isfinite(m) and m >= 0):
+            raise ParameterError(f"{body.name}.point_mass[{node!r}] = {m!r} is not allowed: expected kg >= 0")
+        x, sh = body.node(node)
+        Pt = sh[:3]
+        body.mass += m
+        body.mc = body.mc + m * x
+        body.P0 = body.P0 + m * np.outer(x, x)
+        body.Ct = body.Ct + m * Pt
+        body.Q = body.Q + m * np.einsum("a,bk->abk", x, Pt)
+        body.R = body.R + m * np.einsum("ak,bl->abkl", Pt, Pt)
+        body.Me = body.Me + m * Pt.T @ Pt
+    return body
+
+
+def mode_count(rb: ReducedBody, fmax_hz: float) -> int:
+    """How many of a reduced body's free-free modes lie below ``fmax_hz``."""
+    return int(np.sum(np.asarray(rb.frequencies_hz) <= fmax_hz))

@@ -47,9 +47,12 @@ class Bushing:
     k: tuple = (0, 0, 0, 0, 0, 0)          # N/m (x, y, z), N m/rad (rx, ry, rz)
     c: tuple = (0, 0, 0, 0, 0, 0)          # N s/m, N m s/rad
     preload: tuple = (0, 0, 0, 0, 0, 0)    # force/moment on marker 2 at zero deflection
+    offset: tuple | None = None            # unloaded relative position of m2 in m1's frame;
+    #                                        None: as placed (System.assemble fills it in)
 
     def pack(self):
         row = np.zeros(ke.EL_WIDTH)
+        row[ke.B_D0:ke.B_D0 + 3] = _vec(self.name, "offset", self.offset or (0, 0, 0), 3)
         row[ke.B_K:ke.B_K + 6] = _vec(self.name, "k", self.k, 6, nonneg=True)
         row[ke.B_C:ke.B_C + 6] = _vec(self.name, "c", self.c, 6, nonneg=True)
         row[ke.B_F0:ke.B_F0 + 6] = _vec(self.name, "preload", self.preload, 6)
@@ -63,17 +66,17 @@ class Spring:
     m2: int
     k: float = 0.0                 # N/m (ignored when a table is given)
     c: float = 0.0                 # N s/m
-    length: float = 0.0            # free length L0, m
+    length: float | None = None    # free length L0, m; None: as placed
     preload: float = 0.0           # N, > 0 pushes the markers apart
     table: tuple = field(default_factory=tuple)   # ((deflection m, force N), ...) ascending
 
     def pack(self):
         row = np.zeros(ke.EL_WIDTH)
         for what in ("k", "c", "length"):
-            v = getattr(self, what)
+            v = getattr(self, what) or 0.0
             if not (np.isfinite(v) and v >= 0):
                 raise ParameterError(f"{self.name}.{what} = {v!r} is not allowed: expected a number >= 0")
-        row[ke.S_K], row[ke.S_C], row[ke.S_L0], row[ke.S_F0] = self.k, self.c, self.length, self.preload
+        row[ke.S_K], row[ke.S_C], row[ke.S_L0], row[ke.S_F0] = self.k, self.c, self.length or 0.0, self.preload
         if self.table:
             tab = np.asarray(self.table, float)
             nmax = (ke.EL_WIDTH - ke.S_TAB) // 2

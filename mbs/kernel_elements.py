@@ -17,7 +17,7 @@ from .kernel_body import cross
 BUSHING, SPRING, BUMPSTOP, LOAD = 1, 2, 3, 4
 EL_KIND, EL_M1, EL_M2, EL_AUX = range(4)
 # parameter slots
-B_K, B_C, B_F0 = 0, 6, 12                 # bushing: k (6), c (6), preload (6)
+B_K, B_C, B_F0, B_D0 = 0, 6, 12, 18      # bushing: k (6), c (6), preload (6), offset (3)
 S_K, S_C, S_L0, S_F0, S_NPT, S_TAB = 0, 1, 2, 3, 4, 8   # spring: table (x, f) pairs from S_TAB
 P_GAP, P_K, P_EXP, P_C = 0, 1, 2, 3       # bump stop along axis aux of marker 1
 L_F0, L_A, L_OM, L_PH, L_T0, L_T1, L_M0 = 0, 3, 6, 7, 8, 9, 10   # load on marker 1
@@ -109,7 +109,7 @@ def element_forces(t, el_i, el_f, mkp, mkv, mkR, mkw, mkF, mkM, elout):
                 wr = (R1[0, a] * (mkw[m2, 0] - mkw[m1, 0]) + R1[1, a] * (mkw[m2, 1] - mkw[m1, 1])
                       + R1[2, a] * (mkw[m2, 2] - mkw[m1, 2]))
                 th = th0 if a == 0 else (th1 if a == 1 else th2)
-                f[a] = P[B_F0 + a] - P[B_K + a] * dl[a] - P[B_C + a] * vl[a]
+                f[a] = P[B_F0 + a] - P[B_K + a] * (dl[a] - P[B_D0 + a]) - P[B_C + a] * vl[a]
                 f[3 + a] = P[B_F0 + 3 + a] - P[B_K + 3 + a] * th - P[B_C + 3 + a] * wr
             for a in range(3):
                 F2[a] = R1[a, 0] * f[0] + R1[a, 1] * f[1] + R1[a, 2] * f[2]

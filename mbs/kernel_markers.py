@@ -1,12 +1,13 @@
 """Numba kernels for markers: points on bodies where force elements act and sensors read.
 
-A marker sits at ``x0`` in its body's frame; on a flexible body it may follow a node, whose shape
+A marker sits at ``x0`` in its body's frame with a constant orientation ``R0`` there (its axes,
+``mk_f[m, 3:12]`` row-major); on a flexible body it may follow a node, whose shape
 rows ``Phi (6, n)`` (translation; small rotation) are stored flat in ``shp`` at ``mk_i[m, MK_SHP]``.
 Body ``-1`` is the ground (inertial, fixed).  Marker kinematics are those of the body's
 reference frame plus the node's elastic motion:
 
     u = x0 + Phi_t q,   p = r + A u,   v = r' + A (w_f x u + Phi_t qd),
-    R = A (I + (Phi_r q)~),   w = A (w_f + Phi_r qd)
+    R = A (I + (Phi_r q)~) R0,   w = A (w_f + Phi_r qd)
 
 with ``w_f`` the frame's angular velocity (it differs from the material's only on a spinning body,
 whose markers are frame points: journals, gear seat, tread point in the non-spinning frame).
@@ -42,7 +43,7 @@ def marker_kinematics(y, bi, mk_i, mk_f, shp, Ab, rb, vb, omfb, mku, mkp, mkv, m
                 mkw[m, a] = 0.0
                 mku[m, a] = mk_f[m, a]
                 for c in range(3):
-                    mkR[m, a, c] = 1.0 if a == c else 0.0
+                    mkR[m, a, c] = mk_f[m, 3 + 3 * a + c]
             continue
         for a in range(3):
             u[a] = mk_f[m, a]
@@ -75,11 +76,13 @@ def marker_kinematics(y, bi, mk_i, mk_f, shp, Ab, rb, vb, omfb, mku, mkp, mkv, m
             mkv[m, a] = vb[b, a] + A[a, 0] * t[0] + A[a, 1] * t[1] + A[a, 2] * t[2]
             mkw[m, a] = (A[a, 0] * (w[0] + thd[0]) + A[a, 1] * (w[1] + thd[1])
                          + A[a, 2] * (w[2] + thd[2]))
-        # R = A (I + th~)
+        # R = A (I + th~) R0
         for a in range(3):
-            mkR[m, a, 0] = A[a, 0] + A[a, 1] * th[2] - A[a, 2] * th[1]
-            mkR[m, a, 1] = A[a, 1] - A[a, 0] * th[2] + A[a, 2] * th[0]
-            mkR[m, a, 2] = A[a, 2] + A[a, 0] * th[1] - A[a, 1] * th[0]
+            B0 = A[a, 0] + A[a, 1] * th[2] - A[a, 2] * th[1]
+            B1 = A[a, 1] - A[a, 0] * th[2] + A[a, 2] * th[0]
+            B2 = A[a, 2] + A[a, 0] * th[1] - A[a, 1] * th[0]
+            for c in range(3):
+                mkR[m, a, c] = B0 * mk_f[m, 3 + c] + B1 * mk_f[m, 6 + c] + B2 * mk_f[m, 9 + c]
 
 
 @njit(cache=True)

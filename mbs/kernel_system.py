@@ -32,7 +32,7 @@ def rhs(t, y, dy, S, W):
     mkM[:, :] = 0.0
     element_forces(t, el_i, el_f, mkp, mkv, mkR, mkw, mkF, mkM, elout)
     if wh_i.shape[0] > 0:
-        wheel_forces(bi, wh_i, wh_f, wtab, wpar, trk, glob, Ab, omb, mkp, mkv, mkR, mkw,
+        wheel_forces(t, bi, wh_i, wh_f, wtab, wpar, trk, glob, Ab, omb, mkp, mkv, mkR, mkw,
                      mkF, mkM, whout)
     g = glob[G_GRAV:G_GRAV + 3]
     for b in range(nb):

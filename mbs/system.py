@@ -58,6 +58,7 @@ class System:
         self.wheels: list[tuple[str, int, int, float]] = []
         self.wheel_tables: tuple[np.ndarray, np.ndarray] | None = None
         self.track = None
+        self.track_ramp = 0.5          # s, the irregularity fades in over this time
 
     # -- building -------------------------------------------------------------------------
     def index(self, name: str) -> int:
@@ -79,11 +80,14 @@ class System:
                                np.zeros(n) if qd is None else np.asarray(qd, float)))
         return len(self.bodies) - 1
 
-    def marker(self, body: str | None, node: str | None = None, at=None, name: str = "") -> int:
+    def marker(self, body: str | None, node: str | None = None, at=None, name: str = "",
+               align: bool = False) -> int:
         """A marker on ``body`` at its ``node`` (flexible: follows the node's elastic motion)
-        or at the body-frame point ``at``; ``body=None``: a ground point ``at``."""
+        or at the body-frame point ``at``; ``body=None``: a ground point ``at``.  ``align``:
+        the marker's axes are the inertial axes in the initial pose (else the body's)."""
         if body is None:
-            self.markers.append((-1, None, np.asarray(at if at is not None else (0, 0, 0), float), name))
+            self.markers.append((-1, None, np.asarray(at if at is not None else (0, 0, 0), float),
+                                 name, np.eye(3)))
             return len(self.markers) - 1
         b = self.index(body)
         if node is not None:
@@ -93,7 +97,8 @@ class System:
             x0 = np.asarray(at if at is not None else (0, 0, 0), float)
         if x0.shape != (3,) or not np.all(np.isfinite(x0)):
             raise ParameterError(f"marker {name or body!r}: at = {at!r} is not allowed: expected 3 numbers (m)")
-        self.markers.append((b, node, x0, name))
+        R0 = fn.quat_to_A(self.init[b].p).T if align else np.eye(3)
+        self.markers.append((b, node, x0, name, R0))
         return len(self.markers) - 1
 
     def add(self, element):
@@ -151,10 +156,11 @@ class System:
         inv = np.concatenate(inv_parts) if inv_parts else np.zeros(1)
 
         mk_i = np.zeros((len(self.markers), 2), np.int64)
-        mk_f = np.zeros((max(len(self.markers), 1), 3))
+        mk_f = np.zeros((max(len(self.markers), 1), 12))
         shp_parts, so = [], 0
-        for m, (b, node, x0, _) in enumerate(self.markers):
-            mk_f[m] = x0
+        for m, (b, node, x0, _, R0) in enumerate(self.markers):
+            mk_f[m, :3] = x0
+            mk_f[m, 3:] = R0.ravel()
             mk_i[m] = (b, -1)
             if b >= 0 and node is not None and self.bodies[b].n_modes:
                 _, sh = self.bodies[b].node(node)
@@ -163,12 +169,14 @@ class System:
                 so += sh.size
         shp = np.concatenate(shp_parts) if shp_parts else np.zeros(1)
 
+        self._fill_offsets()
         rows = [e.pack() for e in self.elements]
         el_i = np.array([r[0] for r in rows], np.int64).reshape(-1, 4)
         el_f = np.array([r[1] for r in rows]).reshape(-1, EL_WIDTH)
 
-        from .kernel_wheels import G_DS, G_GRAV, G_LEN, G_S0, G_TRACK, G_V
-        glob = np.zeros(8)
+        from .kernel_wheels import G_DS, G_GRAV, G_LEN, G_RAMP, G_S0, G_TRACK, G_V, N_GLOB
+        glob = np.zeros(N_GLOB)
+        glob[G_RAMP] = self.track_ramp
         glob[G_GRAV:G_GRAV + 3] = self.gravity
         glob[G_V] = self.speed
         trk = np.zeros((8, 2))
@@ -191,6 +199,27 @@ class System:
         S = (bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f,
              np.ascontiguousarray(wtab, float), np.ascontiguousarray(wpar, float), trk, sens)
         return Model(self, S, y0, nq, sens_names, [w[0] for w in self.wheels])
+
+    def initial_marker_pose(self, m: int) -> tuple[np.ndarray, np.ndarray]:
+        """Position and axes of marker ``m`` in the initial (undeformed) configuration."""
+        b, _, x0, _, R0 = self.markers[m]
+        if b < 0:
+            return x0, R0
+        A = fn.quat_to_A(self.init[b].p)
+        return self.init[b].r + A @ x0, A @ R0
+
+    def _fill_offsets(self) -> None:
+        """Elements placed without a free length or offset are unloaded as placed."""
+        from .elements import Bushing, Spring
+        for e in self.elements:
+            if isinstance(e, Bushing) and e.offset is None:
+                p1, R1 = self.initial_marker_pose(e.m1)
+                p2, _ = self.initial_marker_pose(e.m2)
+                e.offset = tuple(R1.T @ (p2 - p1))
+            elif isinstance(e, Spring) and e.length is None:
+                p1, _ = self.initial_marker_pose(e.m1)
+                p2, _ = self.initial_marker_pose(e.m2)
+                e.length = float(np.linalg.norm(p2 - p1))
 
     def set_wheel_rail(self, tab: np.ndarray, par: np.ndarray) -> None:
         self.wheel_tables = (tab, par)

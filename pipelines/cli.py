@@ -129,6 +129,13 @@ def _cmd_contact_geometry(a) -> None:
     print(f"wrote {Path(a.out) / 'contact_table.csv'}, conicity.csv, contact_table.png")
 
 
+def _cmd_simulate(a) -> None:
+    from .simulate import run
+    res = run(a.config, a.out, duration=a.duration)
+    if not res.ok:
+        raise RuntimeError(f"{res.message}; what was computed is in {a.out}")
+
+
 def parser() -> argparse.ArgumentParser:
     p = _Parser(prog="axlebox", description="Railway vehicle dynamics with flexible bodies and "
                                             "axle-box bearing faults.")
@@ -196,6 +203,14 @@ def parser() -> argparse.ArgumentParser:
     bsim.add_argument("--plot", action="store_true", help="also write <out>.png")
     bsim.add_argument("--out", required=True, help="result file (.h5)")
     bsim.set_defaults(func=_cmd_bearing_simulate)
+
+    sm = sub.add_parser("simulate", help="the metro car on tangent track from a config "
+                                         "(configs/vehicle.toml); writes an axlebox-result file")
+    sm.add_argument("config", help="vehicle config (TOML)")
+    sm.add_argument("--duration", type=float, default=None, metavar="S",
+                    help="simulated time (default: the config's run.duration)")
+    sm.add_argument("--out", required=True, help="result file (.h5)")
+    sm.set_defaults(func=_cmd_simulate)
 
     c = sub.add_parser("contact", help="wheel-rail contact")
     cs = c.add_subparsers(dest="contact_command", required=True, parser_class=_Parser)

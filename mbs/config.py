@@ -1,0 +1,150 @@
+"""The vehicle run configuration (TOML): schema, defaults, validation.
+
+Every field has a default (the values of ``configs/vehicle.toml``), a type and an allowed range;
+a user file overrides what it names.  An unknown section or field, a value of the wrong type or
+out of range is refused with :class:`~geometry._params.ParameterError` naming ``section.field``,
+the value and what is allowed (the CLI turns it into one line and exit status 2).
+"""
+from __future__ import annotations
+
+import copy
+import math
+import tomllib
+from pathlib import Path
+
+from geometry._params import ParameterError
+
+BODY_NAMES = (["carbody", "frame1", "frame2"] + [f"ws{i}" for i in range(1, 5)]
+              + [f"ab{i}{s}" for i in range(1, 5) for s in "LR"] + [f"gb{i}" for i in range(1, 5)])
+
+F, I, S, B, L = "float", "int", "str", "bool", "list"
+INF = math.inf
+# section -> field -> (kind, default, lo, hi | choices)
+SCHEMA: dict[str, dict[str, tuple]] = {
+    "run": {"duration": (F, 5.0, 1e-4, 1e4), "speed_kmh": (F, 48.0, 1.0, 200.0),
+            "seed": (I, 0, 0, 2**31 - 1)},
+    "integrator": {"method": (S, "rk4", ("rk4", "galpha")), "dt": (F, 2e-5, 1e-7, 1e-3),
+                   "output_rate_hz": (F, 1e4, 1.0, 1e6), "state_rate_hz": (F, 500.0, 0.1, 1e6),
+                   "rho_inf": (F, 0.8, 0.0, 1.0)},
+    "track": {"fra_class": (I, 5, 1, 6), "lambda_min": (F, 1.0, 0.1, 100.0),
+              "lambda_max": (F, 80.0, 1.0, 1000.0), "length": (F, 400.0, 10.0, 1e5),
+              "irregularity": (B, True)},
+    "wheelrail": {"wheel": (S, "S1002", None), "rail": (S, "UIC60", None),
+                  "gauge": (F, 1.435, 0.9, 1.7), "back_to_back": (F, 1.360, 0.9, 1.6),
+                  "cant": (F, 0.025, 0.0, 0.1), "mu": (F, 0.3, 0.0, 1.0),
+                  "law": (S, "fastsim", ("fastsim", "kalker", "she")), "fastsim_grid": (I, 8, 2, 64)},
+    "bodies": {"dir": (S, "", None), "modes": (I, 12, 1, 100),
+               "fmax_wheelset_hz": (F, 1500.0, 1.0, 1e5), "fmax_axlebox_hz": (F, 2500.0, 1.0, 1e5),
+               "fmax_frame_hz": (F, 600.0, 1.0, 1e5),
+               "flexible": (L, ["frame1", "ws1", "ws2", "ab1L", "ab1R", "ab2L", "ab2R"], BODY_NAMES)},
+    "carbody": {"mass": (F, 37400.0, 1.0, 1e6), "inertia": (L, [35.3e3, 1447e3, 1435e3], (1e-3, 1e9)),
+                "cg_height": (F, 1.45, 0.3, 5.0)},
+    "frame": {"mass": (F, 3420.0, 1.0, 1e5), "inertia": (L, [1430.0, 1850.0, 2950.0], (1e-3, 1e7)),
+              "cg_height": (F, 0.60, 0.2, 2.0)},
+    "wheelset": {"mass": (F, 1539.0, 1.0, 1e5), "inertia": (L, [801.0, 104.0, 814.0], (1e-3, 1e6)),
+                 "r0": (F, 0.42, 0.2, 0.7)},
+    "axlebox": {"mass": (F, 78.7, 0.1, 1e4), "inertia": (L, [0.75, 2.36, 2.08], (1e-5, 1e4))},
+    "gearbox": {"mass": (F, 450.0, 0.0, 1e4), "inertia": (L, [20.0, 30.0, 20.0], (1e-4, 1e5)),
+                "arm": (F, 0.35, 0.0, 1.5), "hanger_arm": (F, 0.6, 0.05, 2.0),
+                "hanger_k": (F, 5e6, 1.0, 1e10), "hanger_c": (F, 2e4, 0.0, 1e8),
+                "side": (S, "R", ("L", "R"))},
+    "geometry": {"bogie_distance": (F, 12.6, 3.0, 30.0), "wheelbase": (F, 2.2, 1.0, 4.0),
+                 "journal_y": (F, 1.0, 0.6, 1.5), "air_spring_y": (F, 1.0, 0.3, 1.5),
+                 "air_spring_height": (F, 0.85, 0.3, 2.0)},
+    "primary": {"kx": (F, 10.6e6, 0.0, 1e10), "ky": (F, 7.8e6, 0.0, 1e10), "kz": (F, 1.7e6, 1.0, 1e10),
+                "cz": (F, 1e4, 0.0, 1e8)},
+    "secondary": {"kx": (F, 0.21e6, 0.0, 1e9), "ky": (F, 0.2e6, 0.0, 1e9), "kz": (F, 0.35e6, 1.0, 1e9),
+                  "cz": (F, 3e4, 0.0, 1e8), "cy": (F, 4e4, 0.0, 1e8), "anti_roll": (F, 1e6, 0.0, 1e9),
+                  "traction_k": (F, 5e6, 0.0, 1e10), "bumpstop_clearance": (F, 0.03, 0.0, 0.2),
+                  "bumpstop_k": (F, 2e6, 0.0, 1e10)},
+    "joint": {"k_radial": (F, 1e9, 1e3, 1e12), "k_axial": (F, 5e8, 1e3, 1e12), "c": (F, 2e4, 0.0, 1e8)},
+    "sensors": {"node": (S, "sensor_pad", None)},
+}
+
+
+def defaults() -> dict:
+    return {sec: {k: copy.deepcopy(spec[1]) for k, spec in fields.items()} for sec, fields in SCHEMA.items()}
+
+
+def _check(sec: str, key: str, value, spec) -> object:
+    kind, _default, *rng = spec
+    name = f"{sec}.{key}"
+    if kind == F:
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
+                or not rng[0] <= value <= rng[1]:
+            raise ParameterError(f"{name} = {value!r} is not allowed: expected a number in "
+                                 f"[{rng[0]:g}, {rng[1]:g}]")
+        return float(value)
+    if kind == I:
+        if isinstance(value, bool) or not isinstance(value, int) or not rng[0] <= value <= rng[1]:
+            raise ParameterError(f"{name} = {value!r} is not allowed: expected an integer in "
+                                 f"[{rng[0]}, {rng[1]}]")
+        return value
+    if kind == B:
+        if not isinstance(value, bool):
+            raise ParameterError(f"{name} = {value!r} is not allowed: expected true or false")
+        return value
+    if kind == S:
+        choices = rng[0]
+        if not isinstance(value, str) or (choices is not None and value not in choices):
+            raise ParameterError(f"{name} = {value!r} is not allowed: expected "
+                                 + (f"one of {list(choices)}" if choices else "a string"))
+        return value
+    # lists: of names (choices) or of 3 positive numbers (range)
+    lim = rng[0]
+    if not isinstance(value, list):
+        raise ParameterError(f"{name} = {value!r} is not allowed: expected a list")
+    if isinstance(lim, tuple) and len(lim) == 2 and not isinstance(lim[0], str):
+        if len(value) != 3 or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                      and lim[0] <= v <= lim[1] for v in value):
+            raise ParameterError(f"{name} = {value!r} is not allowed: expected 3 numbers in "
+                                 f"[{lim[0]:g}, {lim[1]:g}]")
+        return [float(v) for v in value]
+    for v in value:
+        if v not in lim:
+            raise ParameterError(f"{name} = {value!r} is not allowed: {v!r} is not a body "
+                                 f"(bodies: {', '.join(lim)})")
+    return list(value)
+
+
+def validate(user: dict) -> dict:
+    """Defaults overridden by ``user`` (a parsed TOML dict), every value checked."""
+    cfg = defaults()
+    for sec, fields in user.items():
+        if sec not in SCHEMA:
+            raise ParameterError(f"[{sec}] is not a section of the vehicle config: expected one of "
+                                 f"{', '.join(SCHEMA)}")
+        if not isinstance(fields, dict):
+            raise ParameterError(f"{sec} = {fields!r} is not allowed: expected a [{sec}] table")
+        for key, value in fields.items():
+            if key not in SCHEMA[sec]:
+                raise ParameterError(f"{sec}.{key} is not a field of [{sec}]: expected one of "
+                                     f"{', '.join(SCHEMA[sec])}")
+            cfg[sec][key] = _check(sec, key, value, SCHEMA[sec][key])
+    t = cfg["track"]
+    if t["lambda_min"] >= t["lambda_max"]:
+        raise ParameterError(f"track.lambda_min = {t['lambda_min']:g} is not allowed: expected less "
+                             f"than track.lambda_max = {t['lambda_max']:g}")
+    run = cfg["run"]
+    need = run["speed_kmh"] / 3.6 * run["duration"] + cfg["geometry"]["bogie_distance"] + 5.0
+    if t["irregularity"] and t["length"] < need:
+        raise ParameterError(f"track.length = {t['length']:g} is not allowed: the car runs "
+                             f"{need:.0f} m (distance plus its length); expected at least that")
+    g = cfg["gearbox"]
+    if g["mass"] > 0 and g["arm"] >= g["hanger_arm"]:
+        raise ParameterError(f"gearbox.arm = {g['arm']:g} is not allowed: expected less than "
+                             f"gearbox.hanger_arm = {g['hanger_arm']:g} (the hanger carries the far end)")
+    return cfg
+
+
+def load(path) -> tuple[dict, str]:
+    """Read and validate a config file; returns the config and its text."""
+    path = Path(path)
+    if not path.is_file():
+        raise ParameterError(f"config = {str(path)!r} is not allowed: no such file")
+    text = path.read_text()
+    try:
+        user = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise ParameterError(f"config {str(path)!r} is not valid TOML: {err}") from None
+    return validate(user), text

@@ -1,0 +1,172 @@
+"""The B-type metro motor car on tangent track, built from a validated config (:mod:`mbs.config`).
+
+Bodies: carbody; two bogie frames (``frame1`` front at x = 0, ``frame2`` at ``-bogie_distance``);
+four wheelsets ``ws1..ws4`` (spinning frames, see :mod:`mbs.body`); eight axle-boxes
+``ab<i><L|R>``; four gearboxes ``gb<i>`` hung between the axle (bushing at the gear seat, free to
+turn about the axle) and the frame (a vertical hanger link).  Any of the frames, wheelsets and
+axle-boxes is flexible when named in ``bodies.flexible`` (then its reduced body's modes below
+``bodies.fmax_hz`` are kept), otherwise rigid with the same FE mass properties (or, without
+reduced bodies at all, the config's masses and inertias).
+
+Track frame: x forward, y left, z up, z = 0 at the crown of the rails.  Suspension:
+
+* wheelset-axle-box: one bushing per bearing row at the journal row centres, radial and axial
+  stiffness, spin and tilt free (two rows give the box its tilt stiffness) - the coupling issue
+  replaces it with the DTRB model;
+* primary: two coil springs per axle-box (its front and rear seats), each half the box's
+  ``kx, ky, kz`` and vertical damping;
+* secondary per bogie: two air springs (``kx, ky, kz``, vertical damper ``cz`` alongside), a
+  lateral damper, an anti-roll bar (roll bushing), a traction rod (longitudinal link) and a
+  lateral bump stop;
+* the static loads are preloads so the nominal geometry is near equilibrium;
+  :func:`mbs.statics.equilibrium` removes the rest.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from fem.bodyfile import ReducedBody
+
+from .body import Body, add_point_masses, flexible, mode_count, rigid
+from .elements import Bushing, BumpStop, Spring
+from .system import System
+from .wheelrail.element_kernel import COL_C0Z, COL_KH, COL_PZ
+
+G = 9.81
+SIDES = (("L", 1.0), ("R", -1.0))
+ROW_OFFSET = 0.04          # m, bearing row centres from the journal centre (160 mm unit / 4)
+
+
+def _rotz_pi():
+    return np.diag([-1.0, -1.0, 1.0])
+
+
+def _body(name: str, kind: str, cfg: dict, reduced: dict | None, *, spin: bool = False) -> Body:
+    """Flexible or rigid body ``name`` of reduced body ``kind`` (wheelset, axlebox, frame)."""
+    flex = name in cfg["bodies"]["flexible"]
+    rb: ReducedBody | None = (reduced or {}).get(kind)
+    if rb is None:
+        sec = cfg[kind]
+        return rigid(name, sec["mass"], sec["inertia"], spin=spin)
+    if flex:
+        return flexible(name, rb, n_modes=mode_count(rb, cfg["bodies"][f"fmax_{kind}_hz"]), spin=spin)
+    return flexible(name, rb, rigid_only=True, spin=spin)
+
+
+def _marker(s: System, body: Body, node: str, at, align: bool = False, place: bool = False) -> int:
+    """Marker following ``node`` when the body has it (its elastic motion), else at ``at``;
+    ``place``: at ``at`` even on the node (a point of the node's rigid spider)."""
+    if node in body.nodes:
+        return s.marker(body.name, node=node, at=at if place else None, align=align)
+    return s.marker(body.name, at=at, align=align)
+
+
+def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None = None) -> System:
+    """The car as a :class:`~mbs.system.System` (not yet in equilibrium: see mbs.statics)."""
+    V = cfg["run"]["speed_kmh"] / 3.6
+    geo, prim, sec, gb, jt = cfg["geometry"], cfg["primary"], cfg["secondary"], cfg["gearbox"], cfg["joint"]
+    r0 = cfg["wheelset"]["r0"]
+    s = System(gravity=(0.0, 0.0, -G), speed=V)
+    s.set_wheel_rail(tables.tab, tables.par)
+    if track is not None:
+        s.track = track
+    ic = tables.tab.shape[0] // 2
+    # wheel centre height: touching, centred, then lowered by the Hertz approach under an
+    # eighth of the weight (the statics start inside the contact, where it has stiffness)
+    W_all = G * (cfg["carbody"]["mass"] + 2 * cfg["frame"]["mass"] + 4 * cfg["wheelset"]["mass"]
+                 + 8 * cfg["axlebox"]["mass"] + 4 * cfg["gearbox"]["mass"])
+    K_H = float(tables.tab[ic, COL_KH])
+    sink = (W_all / 8 / K_H) ** (2 / 3)
+    z_ws = float(tables.tab[ic, COL_C0Z]) - sink
+    l0 = float(tables.par[4])                      # nominal wheel centre half distance (P_L0)
+    # free rolling: the spin that makes the longitudinal creepage vanish at the loaded contact
+    spin = V / (z_ws - float(tables.tab[ic, COL_PZ]))
+    xb = (0.0, -geo["bogie_distance"])
+    a = geo["wheelbase"] / 2
+
+    # carbody
+    W_cb = cfg["carbody"]["mass"] * G
+    s.add_body(rigid("carbody", cfg["carbody"]["mass"], cfg["carbody"]["inertia"]),
+               r=(xb[1] / 2, 0, cfg["carbody"]["cg_height"] - sink), v=(V, 0, 0))
+    # carbody floor sensors (1.1 m above rail, assumed) over each bogie centre and mid-car
+    for name, xs in (("carbody_b1", xb[0]), ("carbody_centre", xb[1] / 2), ("carbody_b2", xb[1])):
+        s.sensor(name, s.marker("carbody", at=(xs - xb[1] / 2, 0, 1.1 - cfg["carbody"]["cg_height"])))
+    gear_y = -1.0 if gb["side"] == "R" else 1.0
+    for j in (1, 2):
+        fr = _body(f"frame{j}", "frame", cfg, reduced)
+        if fr.nodes:                                # equipment the FE frame leaves out
+            extra = max(cfg["frame"]["mass"] - fr.mass, 0.0)
+            add_point_masses(fr, {"secondary_L": extra / 3, "secondary_R": extra / 3,
+                                  "traction_centre": extra / 3})
+        zf = cfg["frame"]["cg_height"] - sink - (fr.mc[2] / fr.mass if fr.nodes else 0.0)
+        fi = s.add_body(fr, r=(xb[j - 1], 0, zf), v=(V, 0, 0))
+        W_f = fr.mass * G
+        F_h = gb["mass"] * G * gb["arm"] / gb["hanger_arm"] if gb["mass"] > 0 else 0.0
+        P_box = (W_cb / 2 + W_f + 2 * F_h) / 4          # static load on each axle-box's springs
+        # secondary suspension
+        for side, sg in SIDES:
+            fm = _marker(s, fr, f"secondary_{side}", (0, sg * geo["air_spring_y"], 0.15), align=True)
+            cm = s.marker("carbody", at=(xb[j - 1] - xb[1] / 2, sg * geo["air_spring_y"],
+                                         geo["air_spring_height"] - cfg["carbody"]["cg_height"]))
+            s.add(Bushing(f"air_spring{j}{side}", fm, cm, k=(sec["kx"], sec["ky"], sec["kz"], 0, 0, 0),
+                          c=(0, 0, sec["cz"], 0, 0, 0), preload=(0, 0, W_cb / 4, 0, 0, 0)))
+        tc = _marker(s, fr, "traction_centre", (0, 0, -0.15), align=True)
+        p_tc, _ = s.initial_marker_pose(tc)
+        rel = p_tc - s.init[s.index("carbody")].r
+        ctc = s.marker("carbody", at=rel)
+        s.add(Bushing(f"anti_roll{j}", tc, ctc, k=(0, 0, 0, sec["anti_roll"], 0, 0)))
+        s.add(BumpStop(f"bumpstop{j}", tc, ctc, axis=1, clearance=sec["bumpstop_clearance"],
+                       k=sec["bumpstop_k"]))
+        crod = s.marker("carbody", at=rel + (0.6, 0, 0))
+        s.add(Spring(f"traction_rod{j}", tc, crod, k=sec["traction_k"]))
+        dl = s.marker("carbody", at=rel + (0, -0.5, 0))
+        df = s.marker(fr.name, at=p_tc - s.init[fi].r + (0, 0.5, 0))
+        s.add(Spring(f"lateral_damper{j}", df, dl, c=sec["cy"]))
+
+        for k, xa in ((2 * j - 1, a), (2 * j, -a)):
+            x = xb[j - 1] + xa
+            ws = _body(f"ws{k}", "wheelset", cfg, reduced, spin=True)
+            s.add_body(ws, r=(x, 0, z_ws), v=(V, 0, 0), omega=(0, spin, 0))
+            W_ab = cfg["axlebox"]["mass"] * G
+            for side, sg in SIDES:
+                ab = _body(f"ab{k}{side}", "axlebox", cfg, reduced)
+                W_ab = ab.mass * G
+                s.add_body(ab, r=(x, sg * geo["journal_y"], z_ws), v=(V, 0, 0),
+                           rotation=None if sg > 0 else _rotz_pi())
+                for row, dy in (("row1", -ROW_OFFSET), ("row2", ROW_OFFSET)):
+                    # on the row centres (the housing's bore nodes sit 10 mm outboard of them)
+                    am = _marker(s, ab, f"bore_{row}", (0, dy, 0), align=True, place=True)
+                    wm = _marker(s, ws, f"journal_{side}_{row}",
+                                 (0, sg * (geo["journal_y"] + dy), 0), place=True)
+                    s.add(Bushing(f"joint{k}{side}_{row}", am, wm,
+                                  k=(jt["k_radial"], jt["k_axial"], jt["k_radial"], 0, 0, 0),
+                                  c=(jt["c"],) * 3 + (0, 0, 0),
+                                  preload=(0, 0, -(P_box + W_ab) / 2, 0, 0, 0)))
+                for seat, sx in (("spring_front", 0.25), ("spring_rear", -0.25)):
+                    bm = _marker(s, ab, seat, (sx, 0, 0.04))
+                    p_seat = s.initial_marker_pose(bm)[0]
+                    # the spring's top on the frame's primary seat spider, above the box seat
+                    fm = _marker(s, fr, f"primary_{1 if xa > 0 else 2}_{side}",
+                                 p_seat - s.init[fi].r + (0, 0, 0.1), align=True, place=True)
+                    s.add(Bushing(f"primary{k}{side}_{seat}", fm, bm,
+                                  k=(prim["kx"] / 2, prim["ky"] / 2, prim["kz"] / 2, 0, 0, 0),
+                                  c=(0, 0, prim["cz"] / 2, 0, 0, 0), preload=(0, 0, -P_box / 2, 0, 0, 0)))
+                s.sensor(f"ws{k}_{side}", _marker(s, ab, cfg["sensors"]["node"], (0, 0, 0.175)))
+                # the tables' nominal contact line (the FE tread spider sits at the FE wheel's)
+                tread = _marker(s, ws, f"tread_{side}", (0, sg * l0, -r0), place=True)
+                s.wheel(f"ws{k}_{side}", tread, 0 if sg > 0 else 1, r0)
+            if gb["mass"] > 0:
+                toward = -1.0 if xa > 0 else 1.0            # towards the bogie centre
+                yg = gear_y * 0.42
+                gbody = rigid(f"gb{k}", gb["mass"], gb["inertia"])
+                s.add_body(gbody, r=(x + toward * gb["arm"], yg, z_ws), v=(V, 0, 0))
+                gm = _marker(s, ws, "gear", (0, yg, 0), place=True)
+                bm = s.marker(f"gb{k}", at=(-toward * gb["arm"], 0, 0))
+                s.add(Bushing(f"gear_bearing{k}", gm, bm, k=(1e8, 1e8, 1e8, 1e7, 0, 1e7),
+                              c=(1e3,) * 3 + (1e2, 0, 1e2),
+                              preload=(0, 0, gb["mass"] * G - F_h, 0, 0, 0)))
+                hm = s.marker(f"gb{k}", at=(toward * (gb["hanger_arm"] - gb["arm"]), 0, 0))
+                p_h = s.initial_marker_pose(hm)[0]
+                fh = s.marker(fr.name, at=p_h - s.init[fi].r + (0, 0, 0.3))
+                s.add(Spring(f"hanger{k}", fh, hm, k=gb["hanger_k"], c=gb["hanger_c"], preload=-F_h))
+    return s

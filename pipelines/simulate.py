@@ -1,0 +1,150 @@
+"""``axlebox simulate CONFIG.toml``: the metro car on tangent track, from config to result file.
+
+Steps: validate the config; read (or build at the coarse mesh, cached) the reduced bodies the
+config makes flexible; wheel-rail tables; track irregularity; the vehicle; static equilibrium on
+the track as it lies under the wheels at t = 0 (no settling transient); the run; the result
+file (``format = "axlebox-result"``, DESIGN.md), written through a temporary name.  A run that
+diverges still writes what it computed, with ``status`` and ``message`` attributes, and the
+command exits with status 1.
+"""
+from __future__ import annotations
+
+import os
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from bearing import resultfile
+from fem import bodyfile
+from geometry._params import ParameterError
+from mbs import config as vconfig
+from mbs import integrate, statics, track, vehicle
+from mbs.wheelrail import element_kernel as ek
+from mbs.wheelrail.element import WheelRailParams, build_tables
+from mbs.wheelrail.geometry import TrackLayout
+from mbs.wheelrail.profile import read_profile
+from mbs.wheelrail.standard import chn60, s1002, uic60
+
+KINDS = {"wheelset": "ws", "axlebox": "ab", "frame": "frame"}
+
+
+def _cache_dir() -> Path:
+    return Path(os.environ.get("AXLEBOX_CACHE", Path.home() / ".cache" / "axlebox"))
+
+
+def reduced_bodies(cfg: dict, log=print) -> dict:
+    """The reduced bodies the config needs: from ``bodies.dir`` or built (coarse mesh) into the
+    cache; none when every body is rigid and no folder is given."""
+    d = cfg["bodies"]["dir"]
+    if not d and not cfg["bodies"]["flexible"]:
+        return {}
+    out = {}
+    if d:
+        for kind in KINDS:
+            p = Path(d) / f"{kind}.h5"
+            if not p.is_file():
+                raise ParameterError(f"bodies.dir = {d!r} is not allowed: it has no {kind}.h5 "
+                                     "(axlebox bodies build --body all --out DIR)")
+            out[kind] = bodyfile.read(p, fields=False)
+        return out
+    from .bodies import BODIES, build_body
+    where = _cache_dir() / "bodies" / f"coarse-{cfg['bodies']['modes']}"
+    for kind in KINDS:
+        rb, _ = build_body(kind, mesh_size=BODIES[kind].coarse_mesh_size, n_modes=cfg["bodies"]["modes"],
+                           n_reference=0, out_dir=where, log=log)
+        out[kind] = rb
+    return out
+
+
+def _profile(name: str, kind: str):
+    builtin = {"wheel": {"S1002": s1002}, "rail": {"UIC60": uic60, "60E1": uic60, "CHN60": chn60}}[kind]
+    if name in builtin:
+        return builtin[name]()
+    if Path(name).is_file():
+        return read_profile(name, kind=kind)
+    raise ParameterError(f"wheelrail.{kind} = {name!r} is not allowed: expected "
+                         f"{' or '.join(builtin)} or a profile file")
+
+
+def tables(cfg: dict):
+    w = cfg["wheelrail"]
+    lay = TrackLayout(r0=cfg["wheelset"]["r0"], gauge=w["gauge"], back_to_back=w["back_to_back"],
+                      cant=w["cant"])
+    par = WheelRailParams(mu=w["mu"], law=w["law"], nx=w["fastsim_grid"], ny=w["fastsim_grid"])
+    return build_tables(_profile(w["wheel"], "wheel"), _profile(w["rail"], "rail"), lay, par)
+
+
+def track_record(cfg: dict):
+    t = cfg["track"]
+    if not t["irregularity"]:
+        return None
+    return track.generate(track.IrregularityParams(grade=t["fra_class"], lambda_min=t["lambda_min"],
+                                                   lambda_max=t["lambda_max"], length=t["length"],
+                                                   seed=cfg["run"]["seed"]))
+
+
+def build_model(cfg: dict, log=print):
+    """Vehicle model in static equilibrium: (model, y0)."""
+    red = reduced_bodies(cfg, log)
+    sysm = vehicle.build(cfg, tables(cfg), track_record(cfg), red)
+    model = sysm.assemble()
+    log(f"vehicle: {len(model.bodies)} bodies, {model.n_states} states, flexible: "
+        + ", ".join(f"{b.name} ({b.n_modes} modes)" for b in model.bodies if b.n_modes))
+    y0 = statics.equilibrium(model, log=log)
+    return model, y0
+
+
+def settings(cfg: dict) -> integrate.Settings:
+    i = cfg["integrator"]
+    return integrate.Settings(method=i["method"], dt=i["dt"], output_rate_hz=i["output_rate_hz"],
+                              state_rate_hz=i["state_rate_hz"], rho_inf=i["rho_inf"])
+
+
+def write(path, run: integrate.Run, model, cfg_text: str, seed: int) -> Path:
+    fs = 1.0 / np.median(np.diff(run.time)) if run.time.size > 1 else 0.0
+    signals = {name: {"acceleration": acc} for name, acc in run.sensors.items()}
+    wr = {}
+    for i, name in enumerate(model.wheel_names):
+        o = run.wheels[:, i]
+        wr[f"{name}/force"] = (o[:, ek.OUT_F:ek.OUT_F + 3], {"unit": "N", "frame": "track, on the wheel"})
+        wr[f"{name}/normal"] = (o[:, ek.OUT_N], {"unit": "N"})
+        wr[f"{name}/creepage"] = (o[:, [ek.OUT_XI, ek.OUT_ETA, ek.OUT_SPIN]],
+                                  {"unit": "1, 1, 1/m", "columns": "xi, eta, spin"})
+        wr[f"{name}/contact_point"] = (o[:, ek.OUT_P:ek.OUT_P + 3], {"unit": "m"})
+    groups = {"wheelrail": wr,
+              "states": {"time": run.state_time, "y": run.states,
+                         "y_end": (run.y_end, {"t": float(run.time[-1]) if run.time.size else 0.0})}}
+    path = resultfile.write(path, config_toml=cfg_text, seed=seed, time=run.time, fs_hz=fs,
+                            signals=signals, groups=groups)
+    import h5py
+    with h5py.File(path, "a") as f:
+        f.attrs.update(status=run.status, message=run.message, wall_s=run.wall_s,
+                       bodies=",".join(b.name for b in model.bodies))
+    return path
+
+
+def run(config_path, out, duration: float | None = None, log=print) -> integrate.Run:
+    cfg, text = vconfig.load(config_path)
+    if duration is not None:
+        text += f"\n# axlebox simulate --duration {duration}\n"
+        cfg["run"]["duration"] = vconfig._check("run", "duration", duration, vconfig.SCHEMA["run"]["duration"])
+    out = Path(out)
+    if not out.parent.is_dir():
+        raise FileNotFoundError(f"--out: folder {str(out.parent)!r} does not exist")
+    s = settings(cfg)
+    t0 = time.perf_counter()
+    model, y0 = build_model(cfg, log)
+    log(f"model ready in {time.perf_counter() - t0:.1f} s; running {cfg['run']['duration']:g} s "
+        f"({s.method}, dt {s.dt:g} s)")
+
+    def progress(t, T):
+        print(f"\rsimulating: {t:6.3f} / {T:g} s", end="", file=sys.stderr, flush=True)
+    res = integrate.simulate(model, cfg["run"]["duration"], s, y0=y0, progress=progress)
+    print(file=sys.stderr)
+    write(out, res, model, text, cfg["run"]["seed"])
+    T = res.time[-1] if res.time.size else 0.0
+    log(f"wrote {out}: {T:g} s simulated in {res.wall_s:.1f} s wall ({T / max(res.wall_s, 1e-9):.3f} "
+        f"simulated s per wall s)")
+    return res
