@@ -1,0 +1,76 @@
+"""Vehicle benchmark: wall seconds per simulated second of the metro car at 48 km/h on FRA class 5,
+rigid and flexible front bogie, for each integrator, and the step each needs for 2 % convergence
+of the axle-box vertical RMS (step halving against the finest step tried).
+
+    python3 benchmarks/vehicle.py [--duration 1.0] [--bodies DIR]
+
+Prints a table (wall s per simulated s, RHS us, peak memory) to paste into benchmarks/README.md.
+"""
+from __future__ import annotations
+
+import argparse
+import resource
+import sys
+import time
+from pathlib import Path
+
+# this folder holds bearing.py (a benchmark): keep it from shadowing the bearing package
+sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
+
+import numpy as np  # noqa: E402
+
+from mbs import config as vconfig  # noqa: E402
+from mbs import integrate  # noqa: E402
+from pipelines import simulate as psim  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def axlebox_rms(run, skip):
+    return np.array([np.sqrt(np.mean(run.sensors[f"ws{i}_{s}"][skip:, 2] ** 2))
+                     for i in range(1, 5) for s in "LR"])
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--duration", type=float, default=1.0)
+    ap.add_argument("--bodies", default="", help="reduced-body folder (default: built into the cache)")
+    a = ap.parse_args()
+    rows = []
+    for label, flex in (("rigid", []), ("flexible front", None)):
+        cfg, _ = vconfig.load(ROOT / "configs" / "vehicle.toml")
+        cfg["bodies"]["dir"] = a.bodies
+        if flex is not None:
+            cfg["bodies"]["flexible"] = flex
+        model, y0 = psim.build_model(cfg, log=lambda *_: None)
+        t0 = time.perf_counter()
+        for _ in range(200):
+            model.rhs(0.0, y0)
+        rhs_us = (time.perf_counter() - t0) / 200 * 1e6
+        skip = int(0.5 * 1e4)
+        for method, steps in (("rk4", (5e-5, 2.5e-5, 1.25e-5)), ("galpha", (1e-4, 5e-5, 2.5e-5))):
+            res = {}
+            for dt in steps:
+                s = integrate.Settings(method=method, dt=dt, output_rate_hz=1e4, state_rate_hz=100)
+                integrate.simulate(model, 0.01, s, y0=y0)          # compile outside the timing
+                run = integrate.simulate(model, a.duration, s, y0=y0)
+                res[dt] = (run, run.wall_s / a.duration)
+            ref = axlebox_rms(res[steps[-1]][0], skip) if res[steps[-1]][0].ok else None
+            for dt in steps:
+                run, wps = res[dt]
+                err = (np.abs(axlebox_rms(run, skip) / ref - 1).max() * 100
+                       if run.ok and ref is not None else float("nan"))
+                rows.append((label, model.n_states, method, dt, run.status, wps, rhs_us, err,
+                             run.stats.get("newton", 0) / max(run.stats.get("steps", 1), 1)))
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    print(f"| model | states | integrator | dt s | status | wall s per sim s | RHS us | "
+          f"axle-box RMS vs finest, max % | Newton it./step |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    for r in rows:
+        print(f"| {r[0]} | {r[1]} | {r[2]} | {r[3]:g} | {r[4]} | {r[5]:.1f} | {r[6]:.0f} | {r[7]:.2f} | {r[8]:.2f} |")
+    print(f"peak memory {peak:.0f} MB; duration {a.duration:g} s (the first 0.5 s, the track fade-in, "
+          "is left out of the RMS)")
+
+
+if __name__ == "__main__":
+    main()
