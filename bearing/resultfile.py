@@ -22,13 +22,15 @@ class ResultFileError(ValueError):
 
 
 def write(path, *, config_toml: str, seed: int, time: np.ndarray, fs_hz: float,
-          signals: dict, groups: dict | None = None) -> Path:
+          signals: dict, groups: dict | None = None, attrs: dict | None = None) -> Path:
     """Write ``signals`` (sensor -> {channel: array}) and ``groups`` (name -> {dataset: array or
-    (array, attrs)}) to ``path`` via ``path.tmp`` and an atomic rename."""
+    (array, attrs)}) to ``path`` via ``path.tmp`` and an atomic rename; ``attrs`` are further
+    file attributes (run status and the like)."""
     path = Path(path)
     tmp = path.with_name(path.name + ".tmp")
     with h5py.File(tmp, "w") as f:
         f.attrs.update(format=FORMAT, version=VERSION, config=config_toml, seed=int(seed))
+        f.attrs.update(attrs or {})
         f.create_dataset("time", data=time)
         for sensor, channels in signals.items():
             g = f.create_group(f"signals/{sensor}")

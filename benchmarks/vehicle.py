@@ -63,8 +63,8 @@ def main():
                 rows.append((label, model.n_states, method, dt, run.status, wps, rhs_us, err,
                              run.stats.get("newton", 0) / max(run.stats.get("steps", 1), 1)))
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-    print(f"| model | states | integrator | dt s | status | wall s per sim s | RHS us | "
-          f"axle-box RMS vs finest, max % | Newton it./step |")
+    print("| model | states | integrator | dt s | status | wall s per sim s | RHS us | "
+          "axle-box RMS vs finest, max % | Newton it./step |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for r in rows:
         print(f"| {r[0]} | {r[1]} | {r[2]} | {r[3]:g} | {r[4]} | {r[5]:.1f} | {r[6]:.0f} | {r[7]:.2f} | {r[8]:.2f} |")

@@ -20,7 +20,6 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")      # one core for numpy too
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("MKL_NUM_THREADS", "1")
 
-import math  # noqa: E402
 import platform  # noqa: E402
 import tempfile  # noqa: E402
 import time  # noqa: E402
@@ -32,6 +31,8 @@ from numba import njit  # noqa: E402
 from mbs.wheelrail import element as el  # noqa: E402
 from mbs.wheelrail import element_kernel as ek  # noqa: E402
 from mbs.wheelrail.standard import s1002, uic60  # noqa: E402
+
+from fastsim import rate  # noqa: E402  (benchmarks/fastsim.py: best-of-N calls per second)
 
 N_STATES = 2000
 
@@ -64,21 +65,6 @@ def states(T, n=N_STATES, seed=1):
     return C, E, VC, W, V
 
 
-def rate(fn, evaluations, min_time=0.4, repeats=3):
-    fn()
-    best = math.inf
-    for _ in range(repeats):
-        calls, t0 = 0, time.perf_counter()
-        while True:
-            fn()
-            calls += 1
-            dt = time.perf_counter() - t0
-            if dt >= min_time:
-                break
-        best = min(best, dt / calls)
-    return evaluations / best
-
-
 def main() -> None:
     print(f"machine: {platform.machine()}, {os.cpu_count()} cores (one used), Python "
           f"{platform.python_version()}, numpy {np.__version__}, numba {numba.__version__}")
@@ -102,7 +88,7 @@ def main() -> None:
              ("Shen-Hedrick-Elkins", dict(law="she")))
     for name, kw in cases:
         Tk = T.with_params(el.WheelRailParams(**kw))
-        r_loop = rate(lambda tab=Tk.tab, par=Tk.par: loop(0, C, E, VC, W, V, tab, par, out),
+        r_loop, _ = rate(lambda tab=Tk.tab, par=Tk.par: loop(0, C, E, VC, W, V, tab, par, out),
                       N_STATES)
 
         def python_calls(tab=Tk.tab, par=Tk.par):
@@ -113,8 +99,8 @@ def main() -> None:
         def reference_calls(Tk=Tk):
             for k in range(20):
                 el.wheel_force_reference(0, C[k], E[k], VC[k], W[k], V[k], 0.0, 0.0, 0.0, 0.0, Tk)
-        r_py = rate(python_calls, 200)
-        r_ref = rate(reference_calls, 20, min_time=0.2, repeats=1)
+        r_py, _ = rate(python_calls, 200)
+        r_ref, _ = rate(reference_calls, 20, min_time=0.2, repeats=1)
         print(f"| {name} | {r_loop:,.0f} | {r_py:,.0f} | {r_ref:,.0f} |")
 
 

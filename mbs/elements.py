@@ -113,7 +113,7 @@ class BumpStop:
         row = np.zeros(ke.EL_WIDTH)
         row[ke.P_GAP], row[ke.P_K], row[ke.P_EXP], row[ke.P_C] = (self.clearance, self.k,
                                                                  self.exponent, self.c)
-        return (ke.BUMPSTOP, self.m1, self.m1 if self.m2 is None else self.m2, self.axis), row
+        return (ke.BUMPSTOP, self.m1, self.m2, self.axis), row
 
 
 @dataclass

@@ -43,13 +43,15 @@ def _check(y, nq, vmax):
 
 
 @njit(cache=True)
-def _record(k, t, y, W, out_t, out_sens, out_wh, out_el, out_y, state_every):
+def _output(k, t, y, W, nq, vmax, out_t, out_sens, out_wh, out_el, out_y, state_every):
+    """Record output ``k`` from the evaluation just made at (t, y); then check the state."""
     out_t[k] = t
     out_sens[k] = W[15]
     out_wh[k] = W[14]
     out_el[k] = W[13]
     if k % state_every == 0:
         out_y[k // state_every] = y
+    return _check(y, nq, vmax)
 
 
 @njit(cache=True)
@@ -79,8 +81,8 @@ def run_rk4(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, vmax, out_t, out_sens,
             t = t0 + ((k - k0) * n_sub + j) * h
             rhs(t, y, k1, S, W)
             if j == 0:
-                _record(k, t, y, W, out_t, out_sens, out_wh, out_el, out_y, state_every)
-                st, i = _check(y, nq, vmax)
+                st, i = _output(k, t, y, W, nq, vmax, out_t, out_sens, out_wh, out_el, out_y,
+                                state_every)
                 if st != OK:
                     return st, k, i
                 if k == k_last:
@@ -152,8 +154,8 @@ def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, vmax, out_t, out_se
             if j == 0:
                 rhs(t, y, f, S, W)
                 stats[3] += 1
-                _record(k, t, y, W, out_t, out_sens, out_wh, out_el, out_y, state_every)
-                st, i = _check(y, nq, vmax)
+                st, i = _output(k, t, y, W, nq, vmax, out_t, out_sens, out_wh, out_el, out_y,
+                                state_every)
                 if st != OK:
                     return st, k, i
                 if k == k_last:

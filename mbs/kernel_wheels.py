@@ -21,8 +21,8 @@ from mbs.wheelrail.element_kernel import wheel_rail_force
 
 from .kernel_body import BI_SPIN, cross
 
-G_GRAV, G_V, G_S0, G_DS, G_LEN, G_TRACK, G_RAMP = 0, 3, 4, 5, 6, 7, 8   # glob slots
-N_GLOB = 9
+G_GRAV, G_V, G_S0, G_DS, G_TRACK, G_RAMP = 0, 3, 4, 5, 6, 7   # glob slots
+N_GLOB = 8
 WH_MARKER, WH_SIDE, WH_BODY = 0, 1, 2
 
 

@@ -13,6 +13,7 @@ track).
 from __future__ import annotations
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 from geometry._params import ParameterError
 
@@ -46,17 +47,11 @@ def _apply(model: Model, y: np.ndarray, cols, dx: np.ndarray) -> np.ndarray:
             rotv.setdefault(k, np.zeros(3))[a] += d
     for k, th in rotv.items():
         ip = int(bi[k, 0])
-        p = y[ip + 3:ip + 7]
-        # p <- p (x) exp(th / 2): a rotation about body axes
-        ang = np.linalg.norm(th)
-        if ang > 0:
-            ax = th / ang
-            dq = np.concatenate([[np.cos(ang / 2)], np.sin(ang / 2) * ax])
-            w0, x0, y0, z0 = p
-            w1, x1, y1, z1 = dq
-            p = np.array([w0 * w1 - x0 * x1 - y0 * y1 - z0 * z1, w0 * x1 + x0 * w1 + y0 * z1 - z0 * y1,
-                          w0 * y1 - x0 * z1 + y0 * w1 + z0 * x1, w0 * z1 + x0 * y1 - y0 * x1 + z0 * w1])
-            y[ip + 3:ip + 7] = p / np.linalg.norm(p)
+        # A <- A exp(th~): a rotation about body axes
+        w, x, yy, z = y[ip + 3:ip + 7]
+        rot = Rotation.from_quat([x, yy, z, w]) * Rotation.from_rotvec(th)
+        x, yy, z, w = rot.as_quat()
+        y[ip + 3:ip + 7] = (w, x, yy, z)
     return y
 
 

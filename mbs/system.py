@@ -21,6 +21,7 @@ from . import ffrf_numpy as fn
 from .body import Body
 from .kernel_body import BF_GRAV, BF_JINV, BF_M, BF_MC, BF_P0, BF_WIDTH
 from .kernel_elements import EL_WIDTH
+from .wheelrail.element_kernel import N_OUT
 
 
 @dataclass
@@ -174,7 +175,7 @@ class System:
         el_i = np.array([r[0] for r in rows], np.int64).reshape(-1, 4)
         el_f = np.array([r[1] for r in rows]).reshape(-1, EL_WIDTH)
 
-        from .kernel_wheels import G_DS, G_GRAV, G_LEN, G_RAMP, G_S0, G_TRACK, G_V, N_GLOB
+        from .kernel_wheels import G_DS, G_GRAV, G_RAMP, G_S0, G_TRACK, G_V, N_GLOB
         glob = np.zeros(N_GLOB)
         glob[G_RAMP] = self.track_ramp
         glob[G_GRAV:G_GRAV + 3] = self.gravity
@@ -182,12 +183,10 @@ class System:
         trk = np.zeros((8, 2))
         if self.track is not None:
             tr = self.track
-            vals = np.vstack([tr.zL, tr.zR, tr.yL, tr.yR])
-            slopes = np.vstack([np.gradient(v, tr.s) for v in vals])
-            # the record is periodic: the end slope wraps around
-            trk = np.ascontiguousarray(np.vstack([vals, slopes]))
-            glob[G_S0], glob[G_DS], glob[G_LEN], glob[G_TRACK] = tr.s[0], tr.s[1] - tr.s[0], \
-                tr.s[-1] - tr.s[0] + (tr.s[1] - tr.s[0]), 1.0
+            # the record's own node values and Hermite slopes (periodic): the kernel's look-up
+            # then reproduces TrackIrregularity.at
+            trk = np.ascontiguousarray(np.vstack(tr.grid() + tr.at(tr.s, derivative=True)))
+            glob[G_S0], glob[G_DS], glob[G_TRACK] = 0.0, tr.ds, 1.0
         wh_i = np.array([(m, side, self.markers[m][0]) for _, m, side, _ in self.wheels],
                         np.int64).reshape(-1, 3)
         wh_f = np.array([[rc] for *_, rc in self.wheels]).reshape(-1, 1)
@@ -225,11 +224,6 @@ class System:
         self.wheel_tables = (tab, par)
 
 
-def _wheel_nout() -> int:
-    from mbs.wheelrail import element_kernel
-    return int(getattr(element_kernel, "N_OUT", 24))
-
-
 class Model:
     """Packed arrays (``S``), work arrays (``W``), the initial state ``y0`` and helpers."""
 
@@ -247,7 +241,7 @@ class Model:
         self.W = (z((nb, 3, 3)), z((nb, 3)), z((nb, 3)), z((nb, 3)), z((nb, 3)),
                   z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3, 3)),
                   z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3)), z(ngen),
-                  z((max(ne, 1), 6)), z((max(len(wheels), 1), _wheel_nout())),
+                  z((max(ne, 1), 6)), z((max(len(wheels), 1), N_OUT)),
                   z((max(len(sensors), 1), 3)))
 
     @property

@@ -30,7 +30,7 @@ from fem.bodyfile import ReducedBody
 from .body import Body, add_point_masses, flexible, mode_count, rigid
 from .elements import Bushing, BumpStop, Spring
 from .system import System
-from .wheelrail.element_kernel import COL_C0Z, COL_KH, COL_PZ
+from .wheelrail.element_kernel import COL_C0Z, COL_KH, COL_PZ, P_L0
 
 G = 9.81
 SIDES = (("L", 1.0), ("R", -1.0))
@@ -78,7 +78,7 @@ def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None 
     K_H = float(tables.tab[ic, COL_KH])
     sink = (W_all / 8 / K_H) ** (2 / 3)
     z_ws = float(tables.tab[ic, COL_C0Z]) - sink
-    l0 = float(tables.par[4])                      # nominal wheel centre half distance (P_L0)
+    l0 = float(tables.par[P_L0])                   # nominal wheel centre half distance
     # free rolling: the spin that makes the longitudinal creepage vanish at the loaded contact
     spin = V / (z_ws - float(tables.tab[ic, COL_PZ]))
     xb = (0.0, -geo["bogie_distance"])
@@ -127,7 +127,6 @@ def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None 
             x = xb[j - 1] + xa
             ws = _body(f"ws{k}", "wheelset", cfg, reduced, spin=True)
             s.add_body(ws, r=(x, 0, z_ws), v=(V, 0, 0), omega=(0, spin, 0))
-            W_ab = cfg["axlebox"]["mass"] * G
             for side, sg in SIDES:
                 ab = _body(f"ab{k}{side}", "axlebox", cfg, reduced)
                 W_ab = ab.mass * G

@@ -27,7 +27,7 @@ from mbs.wheelrail.geometry import TrackLayout
 from mbs.wheelrail.profile import read_profile
 from mbs.wheelrail.standard import chn60, s1002, uic60
 
-KINDS = {"wheelset": "ws", "axlebox": "ab", "frame": "frame"}
+KINDS = ("wheelset", "axlebox", "frame")
 
 
 def _cache_dir() -> Path:
@@ -116,13 +116,10 @@ def write(path, run: integrate.Run, model, cfg_text: str, seed: int) -> Path:
     groups = {"wheelrail": wr,
               "states": {"time": run.state_time, "y": run.states,
                          "y_end": (run.y_end, {"t": float(run.time[-1]) if run.time.size else 0.0})}}
-    path = resultfile.write(path, config_toml=cfg_text, seed=seed, time=run.time, fs_hz=fs,
-                            signals=signals, groups=groups)
-    import h5py
-    with h5py.File(path, "a") as f:
-        f.attrs.update(status=run.status, message=run.message, wall_s=run.wall_s,
-                       bodies=",".join(b.name for b in model.bodies))
-    return path
+    return resultfile.write(path, config_toml=cfg_text, seed=seed, time=run.time, fs_hz=fs,
+                            signals=signals, groups=groups,
+                            attrs={"status": run.status, "message": run.message, "wall_s": run.wall_s,
+                                   "bodies": ",".join(b.name for b in model.bodies)})
 
 
 def run(config_path, out, duration: float | None = None, log=print) -> integrate.Run:
