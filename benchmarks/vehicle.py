@@ -55,6 +55,8 @@ def main():
                 integrate.simulate(model, 0.01, s, y0=y0)          # compile outside the timing
                 run = integrate.simulate(model, a.duration, s, y0=y0)
                 res[dt] = (run, run.wall_s / a.duration)
+                print(f"  {label} {method} dt {dt:g}: {run.status}, {run.wall_s:.1f} wall s",
+                      file=sys.stderr, flush=True)
             ref = axlebox_rms(res[steps[-1]][0], skip) if res[steps[-1]][0].ok else None
             for dt in steps:
                 run, wps = res[dt]

@@ -98,7 +98,7 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
     out_el = np.zeros((n_out, W[13].shape[0], 6))
     se = s.state_every
     out_y = np.zeros(((n_out - 1) // se + 1, y.size))
-    stats = np.zeros(4, np.int64)
+    stats = np.zeros(5, np.int64)
     if s.method == "galpha":
         pattern, groups, n_groups = model.coupling_pattern()
         scale, atol = model.state_scales()
@@ -143,4 +143,4 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
                state_time=out_t[:n_keep][::se][:ks], states=out_y[:ks], y_end=y, status=st,
                message=msg, wall_s=wall,
                stats={"steps": int(stats[0]), "newton": int(stats[1]), "jacobians": int(stats[2]),
-                      "rhs": int(stats[3]), "dt": h, "method": s.method})
+                      "rhs": int(stats[3]), "halved": int(stats[4]), "dt": h, "method": s.method})

@@ -13,7 +13,9 @@
   solved for ``yd_{n+1}`` by modified Newton with the iteration matrix
   ``alpha_m I - alpha_f gamma h dF/dy``.  The Jacobian comes from finite differences over column
   groups (columns whose rows do not overlap share one evaluation: the body coupling pattern);
-  it is refreshed only when Newton slows down.
+  it is refreshed only when Newton slows down or fails, and a step that fails with a fresh
+  Jacobian is retried in 2, 4, ... 64 sub-steps.  Newton needs a right-hand side continuous in
+  the state: hence FASTSIM's cut-back slip step in the vehicle (``wheelrail.fastsim_update``).
 
 Both write outputs every ``n_sub`` steps: sensor accelerations, wheel and element outputs, and the
 whole state every ``state_every`` outputs.  They return a status (0 done, 1 not finite,
@@ -126,27 +128,85 @@ def jacobian_fd(t, y, f0, S, W, groups, n_groups, pattern, scale, J):
 
 
 @njit(cache=True)
+def _iteration_matrix(Jf, h, am, af, ga, Minv):
+    """``Minv = (alpha_m I - alpha_f gamma h dF/dy)^-1``."""
+    N = Jf.shape[0]
+    A = np.empty((N, N))
+    for a in range(N):
+        for c in range(N):
+            A[a, c] = -af * ga * h * Jf[a, c]
+        A[a, a] += am
+    Minv[:, :] = np.linalg.inv(A)
+
+
+@njit(cache=True)
+def _ga_newton(t, y, ydn, yd, h, am, af, ga, Minv, S, W, atol, rtol, max_iter, y1, ya, f, stats):
+    """Modified Newton for ``yd_{n+1}`` of one step; 0 converged, 1 slow (converged late),
+    -1 failed.  Converged when the estimated remaining error ``theta / (1 - theta) * |dy|``
+    (theta: the observed contraction rate) is below the tolerance (Hairer and Wanner, Solving
+    ODEs II, sec. IV.8); a rate theta >= 1 after the first iteration is divergence."""
+    N = y.shape[0]
+    for i in range(N):
+        yd[i] = ydn[i]
+    prev = 0.0
+    for it in range(max_iter):
+        for i in range(N):
+            y1[i] = y[i] + h * ydn[i] + ga * h * (yd[i] - ydn[i])
+            ya[i] = y[i] + af * (y1[i] - y[i])
+        rhs(t + af * h, ya, f, S, W)
+        stats[3] += 1
+        stats[1] += 1
+        for i in range(N):
+            f[i] = ydn[i] + am * (yd[i] - ydn[i]) - f[i]     # residual
+        err = 0.0
+        for i in range(N):
+            s = 0.0
+            for c in range(N):
+                s -= Minv[i, c] * f[c]
+            yd[i] += s
+            e = ga * h * abs(s) / (atol[i] + rtol * abs(y1[i]))
+            if e > err:
+                err = e
+        if not math.isfinite(err):
+            return -1
+        if err < 1e-3:           # far below the tolerance: rate estimate not needed
+            return 1 if it >= max_iter - 2 else 0
+        if it > 0:
+            theta = err / prev
+            if theta >= 1.0:
+                return -1
+            if theta / (1.0 - theta) * err < 1.0:
+                return 1 if it >= max_iter - 2 else 0
+        prev = err
+    return -1
+
+
+@njit(cache=True)
 def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, vmax, out_t, out_sens, out_wh,
                out_el, out_y, state_every, rho_inf, groups, n_groups, pattern, scale, atol, rtol,
                max_iter, stats):
     """Generalized-alpha (first order) with modified Newton; ``stats`` gets
-    [steps, Newton iterations, Jacobians, RHS evaluations].  A step that needs
-    ``max_iter - 1`` iterations or more marks the Jacobian stale: it is rebuilt before the next step."""
+    [steps, Newton iterations, Jacobians, RHS evaluations, halved steps].  The Jacobian is kept
+    while Newton converges fast and rebuilt when it slows down or fails.  A step that fails with a
+    fresh Jacobian is retried as 2, 4, ... 64 sub-steps (contact loss and return are the usual
+    cause); only then does the run stop with NO_CONVERGENCE."""
     N = y.shape[0]
     am = 0.5 * (3.0 - rho_inf) / (1.0 + rho_inf)
     af = 1.0 / (1.0 + rho_inf)
     ga = 0.5 + am - af
-    yd = np.empty(N)
-    rhs(t0, y, yd, S, W)
+    ydn = np.empty(N)
+    rhs(t0, y, ydn, S, W)
     stats[3] += 1
-    ydn = yd.copy()
+    yd = np.empty(N)
     y1 = np.empty(N)
     ya = np.empty(N)
     f = np.empty(N)
-    J = np.empty((N, N))
+    ys = np.empty(N)
+    yds = np.empty(N)
+    Jf = np.empty((N, N))
     Minv = np.empty((N, N))
-    fresh = False
-    have = False
+    h_M = -1.0                  # the step Minv was formed for
+    have = False                # Jf exists
     stale = False
     for k in range(k0, n_out):
         for j in range(n_sub):
@@ -160,62 +220,49 @@ def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, vmax, out_t, out_se
                     return st, k, i
                 if k == k_last:
                     break
-            ta = t + af * h
-            done = False
-            for attempt in range(3):
-                if not have or attempt > 0 or stale:
-                    rhs(t, y, f, S, W)
-                    jacobian_fd(t, y, f, S, W, groups, n_groups, pattern, scale, J)
-                    stats[2] += 1
-                    stats[3] += 1 + n_groups
-                    for a in range(N):
-                        for c in range(N):
-                            J[a, c] *= -af * ga * h
-                        J[a, a] += am
-                    Minv[:, :] = np.linalg.inv(J)
-                    have = True
-                    fresh = True
-                    stale = False
-                for i in range(N):
-                    yd[i] = ydn[i]
-                prev = 1e300
-                for it in range(max_iter):
-                    for i in range(N):
-                        y1[i] = y[i] + h * ydn[i] + ga * h * (yd[i] - ydn[i])
-                        ya[i] = y[i] + af * (y1[i] - y[i])
-                    rhs(ta, ya, f, S, W)
-                    stats[3] += 1
-                    stats[1] += 1
-                    for i in range(N):
-                        f[i] = ydn[i] + am * (yd[i] - ydn[i]) - f[i]     # residual
-                    err = 0.0
-                    for i in range(N):
-                        s = 0.0
-                        for c in range(N):
-                            s -= Minv[i, c] * f[c]
-                        yd[i] += s
-                        e = ga * h * abs(s) / (atol[i] + rtol * abs(y1[i]))
-                        if e > err:
-                            err = e
-                    if not math.isfinite(err) or (it > 1 and err > prev):
+            ys[:] = y
+            yds[:] = ydn
+            m = 1
+            while True:                          # m sub-steps of h / m
+                hm = h / m
+                ok = True
+                for q in range(m):
+                    tq = t + q * hm
+                    fresh = False
+                    for attempt in range(2):
+                        if not have or stale or attempt > 0:
+                            rhs(tq, y, f, S, W)
+                            jacobian_fd(tq, y, f, S, W, groups, n_groups, pattern, scale, Jf)
+                            stats[2] += 1
+                            stats[3] += 1 + n_groups
+                            have = True
+                            stale = False
+                            fresh = True
+                            h_M = -1.0
+                        if hm != h_M:
+                            _iteration_matrix(Jf, hm, am, af, ga, Minv)
+                            h_M = hm
+                        r = _ga_newton(tq, y, ydn, yd, hm, am, af, ga, Minv, S, W, atol, rtol,
+                                       max_iter, y1, ya, f, stats)
+                        if r >= 0:
+                            stale = r == 1
+                            break
+                        if fresh:
+                            break
+                    if r < 0:
+                        ok = False
                         break
-                    prev = err
-                    if err < 1.0:
-                        done = True
-                        stale = it >= max_iter - 2
-                        break
-                if done:
+                    for i in range(N):
+                        y[i] = y[i] + hm * ydn[i] + ga * hm * (yd[i] - ydn[i])
+                        ydn[i] = yd[i]
+                    _normalise(y, S[0])
+                    stats[0] += 1
+                if ok:
                     break
-                if fresh and attempt > 0:
-                    break
-            if not done:
-                for i in range(N):
-                    y[i] = y1[i]
-                return NO_CONVERGENCE, k, -1
-            fresh = False
-            for i in range(N):
-                y[i] = y[i] + h * ydn[i] + ga * h * (yd[i] - ydn[i])
-                ydn[i] = yd[i]
-            _normalise(y, S[0])
-            stats[0] += 1
+                y[:] = ys
+                ydn[:] = yds
+                if m >= 64:
+                    return NO_CONVERGENCE, k, -1
+                m *= 2
+                stats[4] += 1
     return OK, n_out, -1

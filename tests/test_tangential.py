@@ -155,6 +155,22 @@ def test_fastsim_default_grid_is_converged_to_one_percent():
         assert np.max(np.abs(F - R)[2]) < 0.01 * MU * N_ * np.sqrt(A_ * B_)
 
 
+def test_cutback_update_is_continuous_in_the_creepage_and_rotate_is_not():
+    """Newton in the implicit integrator needs forces continuous in the state.  Sweeping xi
+    finely at fixed lateral and spin creepage (8 x 8 grid, where the trial traction turns away
+    from the previous one): Kalker's cut-back changes by at most twice the typical step between
+    neighbouring samples (it meets the bound continuously), while the rotation step jumps, by
+    0.1-0.6 % of mu N at once, where an element turns from stick to slip (its direction turns
+    by a finite angle)."""
+    s = np.linspace(-3e-3, 3e-3, 20001)
+    for eta, phi in ((2e-3, 2.0), (-5e-4, 1.0), (0.0, 3.0)):
+        for update, smooth in (("cutback", True), ("rotate", False)):
+            F = np.array(tg.fastsim(s, eta, phi, A_, B_, N_, MU, G_, NU, update=update,
+                                    nx=8, ny=8))
+            step = np.hypot(*np.diff(F[:2], axis=1))
+            assert (step.max() < 2 * np.median(step)) == smooth, (update, eta, phi)
+
+
 def test_both_slip_updates_converge_to_the_same_simplified_theory():
     # Kalker's cut-back is first order in 1/nx, the rotation second order: fine grids agree
     xi, eta, phi = _sweep(20)
