@@ -69,7 +69,8 @@ def main():
           "axle-box RMS vs finest, max % | Newton it./step |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for r in rows:
-        print(f"| {r[0]} | {r[1]} | {r[2]} | {r[3]:g} | {r[4]} | {r[5]:.1f} | {r[6]:.0f} | {r[7]:.2f} | {r[8]:.2f} |")
+        print(f"| {r[0]} | {r[1]} | {r[2]} | {r[3]:g} | {r[4]} | {r[5]:.1f} | {r[6]:.0f} | "
+              f"{r[7]:.2f} | {r[8]:.2f} |")
     print(f"peak memory {peak:.0f} MB; duration {a.duration:g} s (the first 0.5 s, the track fade-in, "
           "is left out of the RMS)")
 

@@ -76,7 +76,8 @@ class Spring:
             v = getattr(self, what) or 0.0
             if not (np.isfinite(v) and v >= 0):
                 raise ParameterError(f"{self.name}.{what} = {v!r} is not allowed: expected a number >= 0")
-        row[ke.S_K], row[ke.S_C], row[ke.S_L0], row[ke.S_F0] = self.k, self.c, self.length or 0.0, self.preload
+        row[ke.S_K], row[ke.S_C] = self.k, self.c
+        row[ke.S_L0], row[ke.S_F0] = self.length or 0.0, self.preload
         if self.table:
             tab = np.asarray(self.table, float)
             nmax = (ke.EL_WIDTH - ke.S_TAB) // 2

@@ -35,7 +35,8 @@ class Settings:
 
     def __post_init__(self):
         if self.method not in METHODS:
-            raise ParameterError(f"Settings.method = {self.method!r} is not allowed: expected one of {METHODS}")
+            raise ParameterError(f"Settings.method = {self.method!r} is not allowed: expected one "
+                                 f"of {METHODS}")
         check_ranges(self)
         ratio = 1.0 / (self.output_rate_hz * self.dt)
         if ratio < 1.0 - 1e-9:
@@ -109,8 +110,9 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
         k1 = min(n_out, k + per)
         tk = t0 + k * s.n_sub * h
         if s.method == "rk4":
-            status, k_done, bad = ki.run_rk4(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S, W, model.nq, s.vmax,
-                                             out_t, out_sens, out_wh, out_el, out_y, se)
+            status, k_done, bad = ki.run_rk4(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S, W,
+                                             model.nq, s.vmax, out_t, out_sens, out_wh, out_el,
+                                             out_y, se)
         else:
             status, k_done, bad = ki.run_galpha(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S, W, model.nq,
                                                 s.vmax, out_t, out_sens, out_wh, out_el, out_y, se,

@@ -107,5 +107,6 @@ def equilibrium(model: Model, y0=None, *, tol: float = 1e-6, accept: float = 1e-
         if log:
             log(f"statics: stalled at a residual of {err:.3g} N ({err / weight:.1e} of the weight): taken")
         return y
+    worst = model.state_owner(int(rows[np.abs(r).argmax()]))
     raise ParameterError(f"statics: no equilibrium after {max_iter} iterations (largest "
-                         f"residual {np.abs(r).max():.3e} in {model.state_owner(int(rows[np.abs(r).argmax()]))})")
+                         f"residual {np.abs(r).max():.3e} in {worst})")

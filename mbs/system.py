@@ -97,7 +97,8 @@ class System:
         else:
             x0 = np.asarray(at if at is not None else (0, 0, 0), float)
         if x0.shape != (3,) or not np.all(np.isfinite(x0)):
-            raise ParameterError(f"marker {name or body!r}: at = {at!r} is not allowed: expected 3 numbers (m)")
+            raise ParameterError(f"marker {name or body!r}: at = {at!r} is not allowed: expected "
+                                 "3 numbers (m)")
         R0 = fn.quat_to_A(self.init[b].p).T if align else np.eye(3)
         self.markers.append((b, node, x0, name, R0))
         return len(self.markers) - 1

@@ -136,6 +136,61 @@ def _cmd_simulate(a) -> None:
         raise RuntimeError(f"{res.message}; what was computed is in {a.out}")
 
 
+def _analysis_options(a) -> dict:
+    """The options ``diagnose`` and ``report`` share, as keyword arguments of
+    :func:`pipelines.diagnose.analyse_file`."""
+    from bearing.diagnostics.criterion import Criterion
+    from .diagnose import parse_pair
+    crit = Criterion(mode="relative" if a.relative else "absolute",
+                     **({"vf_range": parse_pair(a.vf_range, "--vf-range")} if a.vf_range else {}),
+                     **({"rel_range": parse_pair(a.rel_range, "--rel-range")} if a.rel_range else {}),
+                     lag_veto=a.lag_veto)
+    return dict(left=a.left, right=a.right, fs=a.fs, column=a.column, scale=a.scale,
+                shaft=a.shaft_hz, speed_kmh=a.speed_kmh, wheel_radius=a.wheel_radius, rpm=a.rpm,
+                orders_text=a.orders, bore=a.bore,
+                band=parse_pair(a.band, "--band") if a.band else None, criterion=crit,
+                nperseg=a.nperseg)
+
+
+def _cmd_diagnose(a) -> None:
+    from .diagnose import run
+    run(a.file, json_out=a.json, figures=a.figures, **_analysis_options(a))
+
+
+def _cmd_report(a) -> None:
+    from .report import report
+    report(a.source, a.out, modes_dir=a.modes, **_analysis_options(a))
+
+
+def _add_analysis_options(dg) -> None:
+    dg.add_argument("--left", help="left channel: sensor (result file; default ws2_L), variable "
+                                   "(.mat), dataset path (HDF5) or column name (CSV; default first)")
+    dg.add_argument("--right", help="right channel, likewise (default ws2_R; CSV: second column)")
+    dg.add_argument("--column", type=int, default=2, help="result files: acceleration column "
+                                                          "(default 2, vertical)")
+    dg.add_argument("--fs", type=float, help="sampling rate in Hz (required for CSV and files without one)")
+    dg.add_argument("--scale", type=float, default=1.0,
+                    help="multiply the samples (e.g. 9.80665 for data in g; default 1: m/s^2)")
+    sp = dg.add_mutually_exclusive_group()
+    sp.add_argument("--shaft-hz", type=float, help="shaft (wheelset) rotation frequency, Hz")
+    sp.add_argument("--rpm", type=float, help="shaft speed in rev/min")
+    sp.add_argument("--speed-kmh", type=float, help="vehicle speed (with --wheel-radius)")
+    dg.add_argument("--wheel-radius", type=float, default=0.42, metavar="M", help="default 0.42")
+    dg.add_argument("--orders", metavar="BPFO=..,BPFI=..,FTF=..,BSF=..",
+                    help="fault orders (multiples of the shaft speed; default: the DTRB's)")
+    dg.add_argument("--bore", type=float, metavar="M", help="bearing bore for SPM (default 0.130, "
+                                                            "the DTRB; required with --orders)")
+    dg.add_argument("--band", metavar="LO,HI", help="envelope band in Hz (default: spectral kurtosis)")
+    dg.add_argument("--nperseg", type=int, help="Welch segment for FC/VF (default about 1 s)")
+    dg.add_argument("--vf-range", metavar="LO,HI", help="VF difference range in Hz^2 meaning a "
+                                                        "pseudo-fault (default the paper's 8000,74900)")
+    dg.add_argument("--relative", action="store_true", help="compare |VF_L - VF_R| / max(VF) "
+                    "instead (machine-independent; default range 0.14,1)")
+    dg.add_argument("--rel-range", metavar="LO,HI", help="range of the relative VF difference")
+    dg.add_argument("--lag-veto", action="store_true",
+                    help="undecided when the leading side contradicts RMS and SPM")
+
+
 def parser() -> argparse.ArgumentParser:
     p = _Parser(prog="axlebox", description="Railway vehicle dynamics with flexible bodies and "
                                             "axle-box bearing faults.")
@@ -211,6 +266,29 @@ def parser() -> argparse.ArgumentParser:
                     help="simulated time (default: the config's run.duration)")
     sm.add_argument("--out", required=True, help="result file (.h5)")
     sm.set_defaults(func=_cmd_simulate)
+
+    dg = sub.add_parser("diagnose", help="real fault or coaxial pseudo-fault from the two sides' "
+                                         "signals (axlebox-result, CSV, .mat v5/v7.3, HDF5)",
+                        description="Indicators of both channels (RMS, kurtosis, envelope spectrum "
+                        "fault lines, SPM Eq. 17, FC/VF Eq. 18), their time lag, the VF difference "
+                        "and the paper's criterion; prints a summary, writes JSON and a figure.")
+    dg.add_argument("file", help="axlebox-result .h5, CSV (columns), MATLAB .mat (v5 or v7.3) or HDF5")
+    _add_analysis_options(dg)
+    dg.add_argument("--json", metavar="OUT", help="write the indicators and verdicts as JSON")
+    dg.add_argument("--figures", metavar="DIR", help="write <file>_diagnose.png into DIR")
+    dg.set_defaults(func=_cmd_diagnose)
+
+    rp = sub.add_parser("report", help="the paper's result figures (Figs. 9-14), a summary table and "
+                                       "an HTML page for a run or a sweep folder",
+                        description="Diagnoses every axlebox-result file (the file, or a folder's "
+                        "*.h5 one level deep) as diagnose does; writes fig09-fig14 PNGs, summary.csv/"
+                        ".json and index.html, with mode-shape pictures when present.")
+    rp.add_argument("source", help="a result file or a folder of them (a sweep)")
+    rp.add_argument("--out", required=True, help="report folder")
+    rp.add_argument("--modes", metavar="DIR", help="mode-shape pictures (axlebox bodies report "
+                                                   "output; default: looked for beside the input)")
+    _add_analysis_options(rp)
+    rp.set_defaults(func=_cmd_report)
 
     c = sub.add_parser("contact", help="wheel-rail contact")
     cs = c.add_subparsers(dest="contact_command", required=True, parser_class=_Parser)

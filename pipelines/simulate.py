@@ -127,7 +127,8 @@ def run(config_path, out, duration: float | None = None, log=print) -> integrate
     cfg, text = vconfig.load(config_path)
     if duration is not None:
         text += f"\n# axlebox simulate --duration {duration}\n"
-        cfg["run"]["duration"] = vconfig._check("run", "duration", duration, vconfig.SCHEMA["run"]["duration"])
+        cfg["run"]["duration"] = vconfig._check("run", "duration", duration,
+                                                vconfig.SCHEMA["run"]["duration"])
     out = Path(out)
     if not out.parent.is_dir():
         raise FileNotFoundError(f"--out: folder {str(out.parent)!r} does not exist")

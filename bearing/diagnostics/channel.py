@@ -1,0 +1,135 @@
+"""All one-channel indicators of an axle-box signal: :func:`analyse` -> :class:`ChannelResult`.
+
+* time ___domain (:mod:`.indicators`): RMS, peak, kurtosis, crest factor of the raw signal;
+* FC, VF, MSF (:mod:`.spectral`, Eq. 18) on the Welch PSD of the raw signal;
+* envelope spectrum (:mod:`.envelope`) in the user's band or the band of highest spectral
+  kurtosis, no narrower than ``2 (n_harmonics + 1)`` times the highest fault line (so the
+  envelope carries the harmonics searched);
+* fault lines (:mod:`.faultlines`): the envelope spectrum is a Welch average with a resolution of
+  a tenth of the lowest line (FTF at 48 km/h: 0.22 Hz, 4.5 s segments), or the whole record as one
+  window when it is shorter; the record must hold at least two periods of the lowest line;
+* SV and the SPM level and band (:mod:`.spm`, Eq. 17), on segments of ``spm_periods`` BPFO
+  periods (the outer-ring defect this project studies; any fixed number of periods keeps SV
+  independent of speed).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from geometry._params import ParameterError
+
+from ..frequencies import FaultOrders
+from . import faultlines, spm
+from .envelope import _signal, check_fs, envelope_spectrum, select_band
+from .indicators import time_indicators
+from .spectral import fc_vf
+
+
+def _json(v):
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    if isinstance(v, dict):
+        return {k: _json(w) for k, w in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_json(w) for w in v]
+    return v
+
+
+@dataclass(frozen=True)
+class ChannelResult:
+    """One channel's indicators (SI: m/s^2, Hz, Hz^2, dB).  ``lines``: name -> LineResult;
+    ``fault_hz``: the kinematic fault frequencies searched; ``band``: the envelope band (Hz) and
+    ``band_source`` "given" or "spectral kurtosis"; ``env_f``/``env_A``: the envelope spectrum
+    (for figures; not in :meth:`to_dict`)."""
+
+    fs: float
+    n_samples: int
+    shaft_hz: float
+    D: float
+    rms: float
+    peak: float
+    kurtosis: float
+    crest: float
+    FC: float
+    VF: float
+    MSF: float
+    SV: float
+    spm_db: float
+    spm_class: str
+    band: tuple[float, float]
+    band_source: str
+    fault_hz: dict
+    lines: dict
+    env_f: np.ndarray = field(repr=False, compare=False)
+    env_A: np.ndarray = field(repr=False, compare=False)
+
+    @property
+    def duration_s(self) -> float:
+        return self.n_samples / self.fs
+
+    @property
+    def detected(self) -> list[str]:
+        """Names of the fault lines detected."""
+        return [k for k, r in self.lines.items() if r.detected]
+
+    def to_dict(self) -> dict:
+        d = {k: getattr(self, k) for k in ("fs", "n_samples", "shaft_hz", "D", "rms", "peak",
+                                           "kurtosis", "crest", "FC", "VF", "MSF", "SV", "spm_db",
+                                           "spm_class", "band_source", "fault_hz")}
+        d["duration_s"] = self.duration_s
+        d["band"] = list(self.band)
+        d["lines"] = {k: r.to_dict() for k, r in self.lines.items()}
+        d["detected"] = self.detected
+        return _json(d)
+
+
+def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
+            band: tuple[float, float] | None = None, *, lines=("BPFO", "BPFI", "FTF"),
+            n_harmonics: int = 3, slip: float = 0.03, threshold_db: float | None = None,
+            p_fa: float = 1e-3, n_required: int = 2, nperseg: int | None = None,
+            spm_periods: float = 4.0, spm_segments: int = 16, max_imf: int = 4) -> ChannelResult:
+    """Indicators of the 1-D acceleration ``x`` (m/s^2) sampled at ``fs`` Hz, on a bearing
+    turning at ``shaft_hz`` with fault ``orders`` (multiples of the shaft frequency) and bore
+    ``D`` (m).  ``band``: envelope band (Hz), default by spectral kurtosis.  ``lines``: which of
+    the orders to search.  ``nperseg``: Welch segment of the PSD for FC/VF.  The rest go to
+    :func:`.faultlines.detect` and :func:`.spm.shock_value`."""
+    x = _signal(x)
+    fs = check_fs(fs)
+    for name, v in (("shaft_hz", shaft_hz), ("D", D)):
+        if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) \
+                or not math.isfinite(v) or not v > 0:
+            raise ParameterError(f"{name} = {v!r} is not allowed: expected a finite number > 0")
+    known = orders.at(shaft_hz)
+    unknown = [n for n in lines if n not in known]
+    if unknown or not lines:
+        raise ParameterError(f"lines = {tuple(lines)!r} is not allowed: expected names among "
+                             f"{sorted(known)}")
+    fault_hz = {n: float(known[n]) for n in lines}
+    f_lo, f_hi = min(fault_hz.values()), max(fault_hz.values())
+    if x.size / fs < 2.0 / f_lo:
+        raise ParameterError(f"x of {x.size / fs:g} s is too short: the {min(fault_hz, key=fault_hz.get)}"
+                             f" line at {f_lo:g} Hz needs at least {2.0 / f_lo:g} s")
+    if band is None:
+        band = select_band(x, fs, min_width_hz=2 * (n_harmonics + 1) * f_hi)
+        source = "spectral kurtosis"
+    else:
+        source = "given"
+    seg = min(x.size, int(round(fs / (0.1 * f_lo))))
+    f, A = envelope_spectrum(x, fs, band, nperseg=seg)
+    found = faultlines.detect(f, A, fault_hz, n_harmonics=n_harmonics, slip=slip,
+                              threshold_db=threshold_db, p_fa=p_fa, n_required=n_required,
+                              n_avg=faultlines.welch_averages(x.size, seg), shaft_hz=shaft_hz)
+    t = time_indicators(x)
+    FC, VF, MSF = fc_vf(x, fs, nperseg)
+    SV = spm.shock_value(x, fs, period_s=1.0 / (orders.BPFO * shaft_hz), n_periods=spm_periods,
+                         n_segments=spm_segments, max_imf=max_imf)
+    level = spm.spm_db(SV, shaft_hz, D)
+    return ChannelResult(fs=fs, n_samples=int(x.size), shaft_hz=float(shaft_hz), D=float(D),
+                         rms=t["rms"], peak=t["peak"], kurtosis=t["kurtosis"], crest=t["crest"],
+                         FC=FC, VF=VF, MSF=MSF, SV=SV, spm_db=level,
+                         spm_class=spm.classify(level),
+                         band=(float(band[0]), float(band[1])), band_source=source,
+                         fault_hz=fault_hz, lines=found, env_f=f, env_A=A)

@@ -1,0 +1,195 @@
+"""The paper's criterion for telling a real fault from a coaxial pseudo-fault on two channels.
+
+Paper, section "Difference analyses of vibration characteristics ...", Fig. 14 and conclusions
+(2)-(3): if the difference of the frequency variances (VF, Eq. 18) of the two axle-box signals of
+a wheelset lies in 0.8e4-7.49e4 (Hz^2), a pseudo-fault is present on one side; the side with the
+larger RMS and SPM (Eq. 17) is the real fault, the other the pseudo-fault.  Below that range the
+two spectra are alike (the paper's healthy wheelset, Fig. 14a); above it lies outside what the
+criterion was found on.
+
+:func:`verdict` applies it in this order (each side gets "real fault", "pseudo-fault",
+"healthy" or "undecided", with the reason in words):
+
+1. fault evidence (ours): a side shows a fault when one of ``Criterion.lines`` (BPFO: the paper
+   treats outer-ring faults) is detected in its envelope spectrum (:mod:`.faultlines`: the
+   fundamental and two harmonics over the noise floor).  No line on either side -> both healthy.
+   The paper's VF difference alone cannot say this: gearbox load transfer alone gives a VF
+   difference (Fig. 14a), and in relative mode the VF levels no longer tell defects from none.
+2. the VF difference ``m`` against the range (paper): below -> both undecided (lines are seen,
+   yet no pseudo-fault pattern: faults on both sides, or one not transmitted, are outside the
+   paper's criterion); above -> both undecided.
+3. in the range (paper): the side where every indicator of ``Criterion.compare`` (RMS and SPM)
+   is larger is the real fault, the other the pseudo-fault; if they disagree -> undecided.  If
+   the larger side shows no fault line while the other does -> undecided.
+4. supporting evidence, reported in the reason: the lag (the paper, Fig. 13 and conclusion 2:
+   the healthy side lags by 1.1-4.2 ms, so the real side leads) when the envelope correlation
+   reaches ``lag_min_peak``; with ``lag_veto`` a leading side that contradicts step 3 makes both
+   undecided.  And which side is more dispersed (the paper's healthy side has the larger VF).
+
+Carrying the range to another machine.  VF is in Hz^2, so the paper's range belongs to the metro
+car's frequencies: a machine whose resonances sit k times higher has VF (and VF differences) k^2
+times larger.  Two settings:
+
+* ``mode="absolute"``: ``m = |VF_L - VF_R|`` against ``vf_range`` (Hz^2; default the paper's);
+  choose the range for the machine, e.g. the paper's scaled by the ratio of the VF of a flat
+  spectrum over the band the machine's signals fill to ``VF_METRO`` below (the CWRU rig's
+  accelerometers fill 0-6 kHz: 3e6 / 5.72e4 = 52, tests/test_diagnose_cli.py).
+* ``mode="relative"``: ``m = |VF_L - VF_R| / max(VF_L, VF_R) = 1 - VF_min / VF_max``, in
+  [0, 1): the share of the more dispersed side's variance the other lacks.  It is unchanged when
+  all frequencies scale together and does not depend on the sampling rate once the band holds
+  the signal (dividing by (fs/2)^2 instead would tie the threshold to the acquisition, not the
+  machine: on the CWRU rig ``ΔVF / (fs/2)^2 = 0.023``, eight times the top of the paper's range
+  mapped that way, 3.2e-4-3.0e-3, while its relative difference, 0.82, sits inside the range
+  below).
+  Mapping the paper's range: the paper gives the VF differences, not the levels; its healthy
+  side's spectrum lies in 0-200 Hz and 300-800 Hz (Fig. 12), whose VF, for a flat PSD over those
+  bands, is ``VF_METRO = 5.72e4 Hz^2``.  So the lower bound is ``0.8e4 / 5.72e4 = 0.14``.  The
+  upper bound 7.49e4 / 5.72e4 = 1.31 exceeds what ``m`` can reach (``ΔVF <= VF_max``): it was the
+  largest difference simulated, not a limit, so the relative upper bound is 1.
+"""
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from geometry._params import ParameterError
+
+VF_RANGE_PAPER = (0.8e4, 7.49e4)        # Hz^2, paper Fig. 14 and conclusion (3)
+VF_METRO = 5.72e4                       # Hz^2, VF of a flat PSD on 0-200 and 300-800 Hz (Fig. 12)
+REL_RANGE_DEFAULT = (round(VF_RANGE_PAPER[0] / VF_METRO, 2), 1.0)
+MODES = ("absolute", "relative")
+COMPARABLE = ("rms", "spm_db", "peak", "kurtosis", "crest", "SV")
+VERDICTS = ("real fault", "pseudo-fault", "healthy", "undecided")
+SIDES = ("left", "right")
+_LABEL = {"rms": "RMS", "spm_db": "SPM", "peak": "peak", "kurtosis": "kurtosis", "crest": "crest",
+          "SV": "SV"}
+
+
+@dataclass(frozen=True)
+class Criterion:
+    """Thresholds of the criterion (module docstring).  ``vf_range``: Hz^2, used in absolute
+    mode; ``rel_range``: dimensionless, used in relative mode; ``compare``: ChannelResult fields
+    that must all be larger on the real side; ``lines``: fault lines whose detection counts as a
+    fault; ``lag_min_peak``: envelope correlation needed to quote the lag; ``lag_veto``: a lag
+    that contradicts the indicators makes the verdict undecided."""
+
+    mode: str = "absolute"
+    vf_range: tuple[float, float] = VF_RANGE_PAPER
+    rel_range: tuple[float, float] = REL_RANGE_DEFAULT
+    compare: tuple[str, ...] = ("rms", "spm_db")
+    lines: tuple[str, ...] = ("BPFO",)
+    lag_min_peak: float = 0.3
+    lag_veto: bool = False
+
+    def __post_init__(self):
+        if self.mode not in MODES:
+            raise ParameterError(f"Criterion.mode = {self.mode!r} is not allowed: expected one of "
+                                 + ", ".join(MODES))
+        for name in ("vf_range", "rel_range"):
+            r = getattr(self, name)
+            ok = len(r) == 2 and all(np.isfinite(v) for v in r) and 0 <= r[0] < r[1]
+            if not ok:
+                raise ParameterError(f"Criterion.{name} = {r!r} is not allowed: expected (lo, hi) "
+                                     "with 0 <= lo < hi")
+        bad = [c for c in self.compare if c not in COMPARABLE]
+        if bad or not self.compare:
+            raise ParameterError(f"Criterion.compare = {self.compare!r} is not allowed: expected "
+                                 "names among " + ", ".join(COMPARABLE))
+        if not self.lines:
+            raise ParameterError("Criterion.lines = () is not allowed: expected at least one line "
+                                 "name (e.g. BPFO)")
+        if not 0 <= self.lag_min_peak <= 1:
+            raise ParameterError(f"Criterion.lag_min_peak = {self.lag_min_peak!r} is not allowed: "
+                                 "expected a correlation in [0, 1]")
+
+    @property
+    def range(self) -> tuple[float, float]:
+        return self.vf_range if self.mode == "absolute" else self.rel_range
+
+    @property
+    def unit(self) -> str:
+        return "Hz^2" if self.mode == "absolute" else "(relative)"
+
+    def to_dict(self) -> dict:
+        d = asdict(self)
+        d["range"] = list(self.range)
+        return d
+
+
+PAPER = Criterion()                     # the paper's absolute range, RMS and SPM compared
+
+
+def vf_difference(vf_left: float, vf_right: float, criterion: Criterion = PAPER) -> float:
+    """The criterion's ``m``: ``|VF_L - VF_R|`` (Hz^2) or, in relative mode, that over the larger VF."""
+    d = abs(vf_left - vf_right)
+    if criterion.mode == "absolute":
+        return float(d)
+    top = max(vf_left, vf_right)
+    return float(d / top) if top > 0 else 0.0
+
+
+def _fmt(v: float) -> str:
+    return f"{v:.3g}"
+
+
+def verdict(left, right, lag=None, criterion: Criterion = PAPER) -> dict[str, tuple[str, str]]:
+    """``{"left": (verdict, reason), "right": (...)}`` from two :class:`.channel.ChannelResult`
+    (``FC``/``VF``, ``rms``, ``spm_db``, ``lines``) and an optional :class:`.lag.LagResult`
+    whose channel ``a`` is ``left``."""
+    ch = {"left": left, "right": right}
+    other = {"left": "right", "right": "left"}
+    m = vf_difference(left.VF, right.VF, criterion)
+    lo, hi = criterion.range
+    m_txt = f"VF difference {_fmt(m)} {criterion.unit}"
+    rng_txt = f"[{_fmt(lo)}, {_fmt(hi)}]"
+
+    def both(v, why):
+        return {s: (v, why) for s in SIDES}
+    seen = {s: [n for n in criterion.lines if n in ch[s].lines and ch[s].lines[n].detected]
+            for s in SIDES}
+    names = "/".join(criterion.lines)
+    if not seen["left"] and not seen["right"]:
+        return both("healthy", f"no {names} line (fundamental and harmonics over the noise floor) "
+                               f"on either side; {m_txt}")
+    where = " and ".join(f"{s} ({', '.join(seen[s])})" for s in SIDES if seen[s])
+    if m < lo:
+        return both("undecided", f"fault lines on {where}, but the {m_txt} is below the range "
+                                 f"{rng_txt}: no pseudo-fault pattern (faults on both sides, or one "
+                                 "not transmitted, are outside the paper's criterion)")
+    if m > hi:
+        return both("undecided", f"{m_txt} is above the range {rng_txt} the criterion was "
+                                 f"found on; fault lines on {where}")
+    larger = {c: ("left" if getattr(left, c) > getattr(right, c) else "right")
+              for c in criterion.compare}
+    vals = ", ".join(f"{_LABEL[c]} {_fmt(getattr(left, c))} / {_fmt(getattr(right, c))}"
+                     for c in criterion.compare)
+    if len(set(larger.values())) > 1:
+        split = "; ".join(f"{_LABEL[c]} larger on {s}" for c, s in larger.items())
+        return both("undecided", f"{m_txt} in {rng_txt} (a pseudo-fault is present), but the "
+                                 f"indicators disagree: {split} (left / right: {vals})")
+    real = next(iter(larger.values()))
+    pseudo = other[real]
+    if not seen[real]:
+        return both("undecided", f"{m_txt} in {rng_txt} and {vals} (left / right) point to {real}, "
+                                 f"but only {pseudo} shows fault lines")
+    notes = []
+    if lag is not None and lag.peak >= criterion.lag_min_peak and lag.leading in ("a", "b"):
+        lead = "left" if lag.leading == "a" else "right"
+        agree = lead == real
+        notes.append(f"{lead} leads by {lag.lag_s * 1e3:.3g} ms (envelope correlation "
+                     f"{lag.peak:.2f}; {'agrees' if agree else 'contradicts'})")
+        if not agree and criterion.lag_veto:
+            return both("undecided", f"{m_txt} in {rng_txt} and {vals} (left / right) point to "
+                                     f"{real}, but {notes[-1]}")
+    wider = "left" if left.VF > right.VF else "right"
+    notes.append(f"{wider} more dispersed (VF {_fmt(left.VF)} / {_fmt(right.VF)} Hz^2; the paper's "
+                 f"pseudo-fault side is: {'agrees' if wider == pseudo else 'contradicts'})")
+    common = f"{m_txt} in {rng_txt}: a pseudo-fault is present (paper, conclusion 3); " \
+             f"{' and '.join(_LABEL[c] for c in criterion.compare)} larger on {real} ({vals}, " \
+             f"left / right); " + "; ".join(notes)
+    own = {real: f"{', '.join(seen[real])} detected",
+           pseudo: f"{', '.join(seen[pseudo])} detected here too" if seen[pseudo]
+           else "no fault line found here"}
+    return {real: ("real fault", f"{own[real]}; {common}"),
+            pseudo: ("pseudo-fault", f"{own[pseudo]}; {common}")}

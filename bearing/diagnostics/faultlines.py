@@ -1,0 +1,198 @@
+"""Fault-frequency lines in an envelope spectrum, against the local noise floor.
+
+For each named line ``f0`` (BPFO, BPFI, FTF, ...):
+
+* fundamental: search window ``|f - f0| <= hw = max(slip f0, df)`` (rollers slip, so the lines
+  sit a few % below the kinematic values; at least one bin either side);
+* noise floor: the median of the spectrum over the ring ``hw < |f - centre| <= hw + w_floor``
+  beside a window (``w_floor = max(3 hw, 20 df)``; the median ignores the odd other line);
+* ``snr_db = 20 log10(amplitude / floor)``; a bin *passes* when ``snr_db >= threshold_db``;
+* harmonics ``k = 2..n_harmonics`` of a candidate fundamental ``f1`` (a local maximum of the
+  fundamental window that passes, or the window's highest bin when none does) are searched in
+  the narrow windows ``|f - k f1| <= k max(df, 0.005 f1)``: slip scales every harmonic alike, so
+  they sit at ``k f1`` up to the bin quantisation of ``f1`` and 0.5 % of speed drift in the
+  record.  Tying the harmonics to the fundamental keeps another family's lines, which fall
+  inside the wide +-slip windows of higher harmonics (on the CWRU drive end, 3 BPFO lies within
+  3 % of 2 BPFI, and BPFO + 2 f_shaft within 3 % of BPFI), from passing as this line's;
+* of several candidates the one with the most passing harmonics (then the largest summed SNR)
+  is kept;
+* given the shaft frequency, a detected line whose fundamental is a shaft sideband
+  ``k f_L +- m f_shaft`` of a stronger detected line ``L`` is masked (:func:`mask_sidebands`).
+
+Threshold: settable in dB.  By default it is set per window from a false-alarm probability
+``p_fa`` (the chance that noise alone passes that one window): for a Welch average of ``K``
+segments the power of a noise bin is ``s chi2(2K) / 2K`` (Rayleigh amplitude for ``K = 1``), the
+floor estimates its median, and the highest of the ``N`` bins of the window exceeds
+``t`` with probability ``1 - F(t)^N``; solving for ``t`` gives
+``threshold_db = 10 log10(chi2.ppf((1 - p_fa)^(1/N), 2K) / chi2.median(2K))``.
+A fixed dB threshold would let wide windows (high harmonics, long records: many bins) pass on
+noise far more often than narrow ones.  ``K`` is the equivalent number of independent averages of
+a Welch estimate (:func:`welch_averages`; 50 %-overlapping Hann segments are correlated).
+Measured on envelope spectra of noise (700 windows, 6 seeds): p_fa = 0.05 passes 6-7 %, 0.01
+passes 2-3 % (the median of the ring is itself an estimate, so the tail is a little heavier).
+
+A line is *detected* when its fundamental passes and at least ``n_required`` of its harmonics
+``k >= 2`` pass too (the default, 2 of 2..3, asks for the fundamental and two harmonics: the
+pattern of periodic impulses, not a lone peak).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+from scipy.stats import chi2
+
+from geometry._params import ParameterError
+
+
+@dataclass(frozen=True)
+class LineResult:
+    """One fault line.  ``harmonics``: the passing harmonics as ``(k, f_Hz, amplitude, snr_db)``;
+    ``searched``: every harmonic searched, the same tuple plus its threshold in dB;
+    ``f_found``: the fundamental's peak (Hz) when it passes, else None; ``masked_by``: the
+    stronger line whose shaft sideband this one's fundamental is (then not detected)."""
+
+    name: str
+    f_expected: float
+    f_found: float | None
+    harmonics: tuple[tuple[int, float, float, float], ...]
+    searched: tuple[tuple[int, float, float, float, float], ...]
+    detected: bool
+    masked_by: str | None = None
+
+    def to_dict(self) -> dict:
+        """Plain JSON types; an infinite SNR (a floor of exactly 0) becomes None."""
+        def fin(v):
+            return v if math.isfinite(v) else None
+        return {"name": self.name, "f_expected": self.f_expected, "f_found": self.f_found,
+                "detected": self.detected, "masked_by": self.masked_by,
+                "harmonics": [dict(k=k, f=f, amp=a, snr_db=fin(s)) for k, f, a, s in self.harmonics],
+                "searched": [dict(k=k, f=f, amp=a, snr_db=fin(s), threshold_db=t)
+                             for k, f, a, s, t in self.searched]}
+
+
+def welch_averages(n: int, nperseg: int) -> float:
+    """Equivalent independent averages of a Welch estimate from ``n`` samples in Hann segments of
+    ``nperseg`` with 50 % overlap: ``K / (1 + 2 (K-1)/K rho^2)`` with ``K`` segments and the
+    overlap correlation ``rho = 0.167`` of the Hann window at 50 % (Welch, IEEE Trans. Audio
+    Electroacoust. 15 (1967) 70, Eq. 27; F. J. Harris, Proc. IEEE 66 (1978) 51, Table 1)."""
+    K = 1 + (n - nperseg) // (nperseg - nperseg // 2) if n > nperseg else 1
+    return K / (1 + 2 * (K - 1) / K * 0.167 ** 2)
+
+
+def window_threshold_db(n_bins: int, n_avg: float = 1.0, p_fa: float = 1e-3) -> float:
+    """dB over the median floor that the highest of ``n_bins`` noise bins exceeds with
+    probability ``p_fa`` (power of a bin ~ chi2 with ``2 n_avg`` degrees of freedom)."""
+    nu = 2 * max(1.0, float(n_avg))
+    q = (1.0 - p_fa) ** (1.0 / max(1, int(n_bins)))
+    return 10.0 * math.log10(chi2.ppf(q, nu) / chi2.median(nu))
+
+
+def _snr(a, floor):
+    """20 log10(a / floor), +-inf where the floor or the amplitude is 0."""
+    with np.errstate(divide="ignore"):
+        return 20 * np.log10(np.asarray(a, float) / floor) if floor > 0 else \
+            np.where(np.asarray(a) > 0, np.inf, -np.inf)
+
+
+def _window(f, A, centre, hw, df, n_avg, p_fa, threshold_db):
+    """``(indices, floor, threshold_db)`` of the window ``|f - centre| <= hw``."""
+    dist = np.abs(f - centre)
+    win = np.flatnonzero(dist <= hw)
+    if win.size == 0:                                   # narrower than a bin: the nearest one
+        win = np.array([int(np.argmin(dist))])
+    ring = (dist > hw) & (dist <= hw + max(3 * hw, 20 * df)) & (f > 0)
+    floor = float(np.median(A[ring])) if ring.any() else 0.0
+    thr = window_threshold_db(win.size, n_avg, p_fa) if threshold_db is None else float(threshold_db)
+    return win, floor, thr
+
+
+def detect(f, A, lines: dict[str, float], n_harmonics: int = 3, slip: float = 0.03,
+           threshold_db: float | None = None, p_fa: float = 1e-3, n_required: int = 2,
+           n_avg: float = 1.0, shaft_hz: float | None = None) -> dict[str, LineResult]:
+    """Search each line of ``lines`` (name -> Hz) and its harmonics in the amplitude spectrum
+    ``(f, A)`` (equally spaced ``f`` from 0 Hz, e.g. :func:`.envelope.envelope_spectrum`).
+
+    ``slip``: relative half-width of the search window; ``threshold_db``: fixed threshold over
+    the floor, or None for the false-alarm rule with ``p_fa`` per window (module docstring);
+    ``n_avg``: independent averages in ``A`` (1 for a single periodogram; a Welch average:
+    :func:`welch_averages`); ``n_required``: harmonics ``k >= 2`` that must pass besides the
+    fundamental; ``shaft_hz``: when given, a detected line whose fundamental is a shaft
+    sideband of a stronger detected line is masked (:func:`mask_sidebands`)."""
+    f = np.asarray(f, float)
+    A = np.asarray(A, float)
+    if f.ndim != 1 or f.shape != A.shape or f.size < 16:
+        raise ParameterError(f"spectrum of shapes {f.shape}, {A.shape} is not allowed: expected "
+                             "f and A of the same 1-D shape, at least 16 bins")
+    df = f[1] - f[0]
+    if not 0 <= slip < 0.5:
+        raise ParameterError(f"slip = {slip!r} is not allowed: expected 0 <= slip < 0.5")
+    if not (isinstance(n_harmonics, int) and n_harmonics >= 1):
+        raise ParameterError(f"n_harmonics = {n_harmonics!r} is not allowed: expected an integer >= 1")
+    if not (isinstance(n_required, int) and 0 <= n_required <= n_harmonics - 1):
+        raise ParameterError(f"n_required = {n_required!r} is not allowed: expected an integer in "
+                             f"[0, n_harmonics - 1 = {n_harmonics - 1}]")
+    if not 0 < p_fa < 1:
+        raise ParameterError(f"p_fa = {p_fa!r} is not allowed: expected 0 < p_fa < 1")
+    out = {}
+    for name, f0 in lines.items():
+        if not (np.isfinite(f0) and f0 > 0):
+            raise ParameterError(f"lines[{name!r}] = {f0!r} Hz is not allowed: expected a frequency > 0")
+        if n_harmonics * f0 * (1 + slip) > f[-1]:
+            raise ParameterError(f"lines[{name!r}] = {f0:g} Hz is not allowed: its harmonic "
+                                 f"{n_harmonics} lies above the spectrum's {f[-1]:g} Hz")
+        if f0 < 2 * df:
+            raise ParameterError(f"lines[{name!r}] = {f0:g} Hz is not allowed with a resolution of "
+                                 f"{df:g} Hz: the record is too short, expected at least "
+                                 f"{2 / f0:g} s")
+        hw = max(slip * f0, df)
+        win, floor, thr = _window(f, A, f0, hw, df, n_avg, p_fa, threshold_db)
+        snr = _snr(A[win], floor)
+        local = (A[win] >= A[np.maximum(win - 1, 0)]) & (A[win] >= A[np.minimum(win + 1, A.size - 1)])
+        cands = win[(snr >= thr) & local]
+        if cands.size == 0:
+            cands = win[[int(np.argmax(A[win]))]]
+        best = None
+        for c in cands:
+            rows = [(1, float(f[c]), float(A[c]), float(_snr(A[c], floor)), thr)]
+            for k in range(2, n_harmonics + 1):
+                w, fl, t = _window(f, A, k * f[c], k * max(df, 0.005 * f[c]), df, n_avg, p_fa,
+                                   threshold_db)
+                i = w[int(np.argmax(A[w]))]
+                rows.append((k, float(f[i]), float(A[i]), float(_snr(A[i], fl)), t))
+            ok = [r for r in rows if r[3] >= r[4]]
+            score = (rows[0][3] >= thr, len(ok), sum(r[3] for r in ok))
+            if best is None or score > best[0]:
+                best = (score, rows)
+        searched = tuple(best[1])
+        passing = tuple((k, fk, a, s) for k, fk, a, s, t in searched if s >= t)
+        fund = bool(passing) and passing[0][0] == 1
+        detected = fund and sum(1 for h in passing if h[0] >= 2) >= n_required
+        out[name] = LineResult(name=name, f_expected=float(f0),
+                               f_found=passing[0][1] if fund else None, harmonics=passing,
+                               searched=searched, detected=detected)
+    return out if shaft_hz is None else mask_sidebands(out, shaft_hz, df)
+
+
+def mask_sidebands(found: dict[str, LineResult], shaft_hz: float, df: float,
+                   max_order: int = 3) -> dict[str, LineResult]:
+    """Un-detect a line whose fundamental lies within ``max(2 df, 0.5 %)`` of ``k f_L + m
+    f_shaft`` (``k = 1..3``, ``|m| <= max_order``) of a stronger detected line ``L`` (higher
+    fundamental SNR).  A localised fault's impulses are modulated by the shaft (load zone,
+    run-out), so its envelope spectrum holds ``k f_L +- m f_shaft``; with a few % of slip
+    allowed, one of those can fall in another line's window and bring its own harmonics along
+    (CWRU drive end: BPFO + 2 f_shaft = 167.2 Hz, within 3.1 % of BPFI = 162.1 Hz)."""
+    order = sorted((r for r in found.values() if r.detected), key=lambda r: -r.searched[0][3])
+    out = dict(found)
+    kept = []
+    for r in order:
+        f1 = r.f_found
+        tol = max(2 * df, 0.005 * f1)
+        hit = next((L.name for L in kept for k in (1, 2, 3) for m in range(-max_order, max_order + 1)
+                    if abs(f1 - (k * L.f_found + m * shaft_hz)) <= tol), None)
+        if hit is None:
+            kept.append(r)
+        else:
+            out[r.name] = replace(r, detected=False, masked_by=hit)
+    return out

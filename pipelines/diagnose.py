@@ -1,0 +1,161 @@
+"""``axlebox diagnose FILE``: the two axle-box channels of one wheelset (or the two bearings of
+one shaft) from a file, the one-channel indicators of each side, the time lag, the VF
+difference and the paper's criterion (bearing/diagnostics/); a JSON file and a figure.
+
+Readers: :mod:`pipelines.readers` (axlebox-result, HDF5, .mat v5 and v7.3, CSV).  Every refusal
+is a ParameterError (exit status 2) whose one line names the option, variable or value at fault.
+"""
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+
+from bearing.frequencies import FaultOrders, orders, shaft_hz
+from bearing.params import BearingParams
+from geometry._params import ParameterError
+
+from .readers import Record, read
+
+DTRB_BORE = 0.130            # m: the assumed 130 x 230 x 160 mm unit of bearing/params.py
+
+
+def parse_orders(text: str) -> FaultOrders:
+    """``"BPFO=3.5848,BPFI=5.4152,FTF=0.39828,BSF=2.357"`` (multiples of the shaft frequency)."""
+    keys = ("BPFO", "BPFI", "FTF", "BSF")
+    vals = {}
+    for item in text.split(","):
+        k, _, v = item.partition("=")
+        k = k.strip().upper()
+        try:
+            x = float(v)
+        except ValueError:
+            x = float("nan")
+        if k not in keys or not np.isfinite(x) or not x > 0:
+            raise ParameterError(f"--orders item {item.strip()!r} is not allowed: expected "
+                                 "NAME=ORDER > 0 with NAME one of " + ", ".join(keys))
+        vals[k] = x
+    missing = [k for k in keys if k not in vals]
+    if missing:
+        raise ParameterError(f"--orders lacks {', '.join(missing)}: expected all of "
+                             + ", ".join(f"{k}=.." for k in keys))
+    return FaultOrders(**vals)
+
+
+def parse_pair(text: str, option: str) -> tuple[float, float]:
+    """``"LO,HI"`` -> (lo, hi) with 0 <= lo < hi."""
+    try:
+        lo, hi = (float(v) for v in text.split(","))
+    except ValueError:
+        raise ParameterError(f"{option} {text!r} is not allowed: expected LO,HI") from None
+    if not (np.isfinite(lo) and np.isfinite(hi) and 0 <= lo < hi):
+        raise ParameterError(f"{option} {text!r} is not allowed: expected 0 <= LO < HI")
+    return lo, hi
+
+
+def shaft_speed(rec: Record, shaft=None, speed_kmh=None, wheel_radius=0.42, rpm=None) -> float:
+    """Shaft frequency (Hz): --shaft-hz, --rpm, --speed-kmh with --wheel-radius, else the file's."""
+    given = [o for o, v in (("--shaft-hz", shaft), ("--rpm", rpm), ("--speed-kmh", speed_kmh))
+             if v is not None]
+    if len(given) > 1:
+        raise ParameterError(f"{' and '.join(given)} both given: expected one shaft speed")
+    if shaft is not None:
+        if not shaft > 0:
+            raise ParameterError(f"--shaft-hz = {shaft!r} is not allowed: expected a frequency > 0 Hz")
+        return float(shaft)
+    if rpm is not None:
+        if not rpm > 0:
+            raise ParameterError(f"--rpm = {rpm!r} is not allowed: expected a speed > 0 rev/min")
+        return rpm / 60.0
+    if speed_kmh is not None:
+        return shaft_hz(speed_kmh, wheel_radius)
+    if rec.shaft_hz is None:
+        raise ParameterError("the shaft speed is missing: give --shaft-hz, --rpm or --speed-kmh "
+                             "(the file does not store one)")
+    return rec.shaft_hz
+
+
+def write_json(path, data: dict) -> Path:
+    """JSON through ``path.tmp`` and an atomic rename (a reader never sees half a file)."""
+    path = Path(path)
+    if not path.parent.is_dir():
+        raise FileNotFoundError(f"--json: folder {str(path.parent)!r} does not exist")
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(json.dumps(data, indent=2, allow_nan=False) + "\n")
+    os.replace(tmp, path)
+    return path
+
+
+def _json(v):
+    """JSON-safe: numpy scalars to Python, non-finite floats to None."""
+    if isinstance(v, dict):
+        return {str(k): _json(w) for k, w in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_json(w) for w in v]
+    if isinstance(v, (np.floating, float)):
+        return float(v) if np.isfinite(v) else None
+    if isinstance(v, np.integer):
+        return int(v)
+    if isinstance(v, np.bool_):
+        return bool(v)
+    return v
+
+
+def analyse_file(path, *, left=None, right=None, fs=None, column: int = 2, scale: float = 1.0,
+                 shaft=None, speed_kmh=None, wheel_radius: float = 0.42, rpm=None,
+                 orders_text=None, bore=None, band=None, criterion=None, nperseg=None):
+    """Read ``path`` and analyse both sides: ``(record, input info, PairResult)``.  The shaft
+    speed and the bearing come from the options, else from the file, else the DTRB."""
+    from bearing.diagnostics.criterion import Criterion
+    from bearing.diagnostics.pair import analyse_pair
+    criterion = Criterion() if criterion is None else criterion
+    if not (np.isfinite(scale) and scale > 0):
+        raise ParameterError(f"--scale = {scale!r} is not allowed: expected a factor > 0")
+    rec = read(path, left, right, fs, column)
+    f_shaft = shaft_speed(rec, shaft, speed_kmh, wheel_radius, rpm)
+    if orders_text is not None:
+        fo, o_src = parse_orders(orders_text), "--orders"
+        if bore is None:
+            raise ParameterError("--bore is missing: --orders names another bearing than the "
+                                 "DTRB; give its bore diameter in m (SPM, Eq. 17)")
+    elif rec.orders is not None:
+        fo, o_src = rec.orders, "the file's bearing"
+    else:
+        fo, o_src = orders(BearingParams()), "the DTRB (bearing/params.py)"
+    D = DTRB_BORE if bore is None else bore
+    if not (np.isfinite(D) and D > 0):
+        raise ParameterError(f"--bore = {bore!r} is not allowed: expected a diameter > 0 m")
+    res = analyse_pair(rec.left * scale, rec.right * scale, rec.fs, f_shaft, fo, D, criterion,
+                       band, names=rec.names, nperseg=nperseg)
+    info = {"file": str(path), "kind": rec.kind, "left": rec.names[0], "right": rec.names[1],
+            "fs_hz": rec.fs, "n_samples": int(rec.left.size), "scale": scale,
+            "shaft_hz": f_shaft, "orders": vars(fo), "orders_from": o_src, "bore_m": D,
+            "band": list(band) if band is not None else "spectral kurtosis", "notes": rec.notes}
+    return rec, info, res
+
+
+def run(path, *, json_out=None, figures=None, log=print, **options):
+    """The whole command: :func:`analyse_file` with ``options``, a printed summary, the JSON and
+    the figure.  Returns the :class:`bearing.diagnostics.pair.PairResult`."""
+    if json_out is not None and not Path(json_out).parent.is_dir():
+        raise FileNotFoundError(f"--json: folder {str(Path(json_out).parent)!r} does not exist")
+    rec, info, res = analyse_file(path, **options)
+    fo = info["orders"]
+    log(f"{Path(path).name} ({rec.kind}): {rec.left.size} samples at {rec.fs:g} Hz, shaft "
+        f"{info['shaft_hz']:.4g} Hz, BPFO {fo['BPFO'] * info['shaft_hz']:.4g} Hz "
+        f"({info['orders_from']})" + "".join(f"; {n}" for n in rec.notes))
+    log(res.summary())
+    for s, (v, why) in res.verdicts.items():
+        log(f"{s}: {v}: {why}")
+    if json_out is not None:
+        log(f"wrote {write_json(json_out, _json({'input': info, **res.to_dict()}))}")
+    if figures is not None:
+        out = Path(figures)
+        out.mkdir(parents=True, exist_ok=True)
+        fig = res.plot(out / f"{Path(path).stem}_diagnose.png")
+        import matplotlib.pyplot as plt
+        plt.close(fig)
+        log(f"wrote {out / (Path(path).stem + '_diagnose.png')}")
+    return res

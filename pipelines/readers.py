@@ -1,0 +1,231 @@
+"""Reading two channels for ``axlebox diagnose`` / ``axlebox report``, the reader chosen by the
+file's first bytes (not its name):
+
+* ``axlebox-result`` HDF5 (``axlebox simulate`` / ``axlebox bearing simulate``): sensors ``ws2_L``
+  and ``ws2_R`` by default, the vertical column (2) of ``signals/<sensor>/acceleration``, ``fs``
+  from its ``fs_hz`` attribute; the shaft speed from the stored config (vehicle: ``run.speed_kmh``
+  and ``wheelset.r0``; rig: ``rig.speed_kmh``, ``rig.r_wheel`` and its ``[bearing]``).
+* MATLAB ``.mat`` v5 (scipy.io.loadmat) and v7.3 (HDF5 after a 512-byte header; MATLAB stores
+  arrays column-major, so h5py sees them transposed: a column vector reads as (1, n)).
+* any other HDF5: ``--left``/``--right`` are dataset paths; ``fs`` from --fs or the datasets'
+  ``fs_hz``/``fs`` attribute.
+* CSV / text: two (or more) columns, an optional header line naming them; ``--fs`` is required.
+
+Every refusal is a ParameterError (exit status 2) whose one line names the option, variable or
+value at fault.
+"""
+from __future__ import annotations
+
+import csv
+import io
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+from bearing import resultfile
+from bearing.frequencies import FaultOrders, orders, shaft_hz
+from bearing.params import BearingParams
+from geometry._params import ParameterError
+
+HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
+DEFAULT_SENSORS = ("ws2_L", "ws2_R")
+TRACK_FADE_IN_S = 0.5        # mbs/system.py track_ramp: vehicle runs start on smooth track
+
+
+@dataclass
+class Record:
+    """Two channels read from a file, with what the file says about its machine."""
+
+    left: np.ndarray
+    right: np.ndarray
+    fs: float
+    names: tuple[str, str]
+    kind: str
+    shaft_hz: float | None = None
+    orders: FaultOrders | None = None
+    notes: list[str] = field(default_factory=list)
+
+
+def file_kind(path) -> str:
+    """``"axlebox-result"``, ``"hdf5"``, ``"mat5"``, ``"mat73"`` or ``"csv"`` from the content."""
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"input file {str(path)!r} does not exist")
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(2048 + 8)
+    except OSError as err:
+        raise ParameterError(f"input file {str(path)!r} is not readable: {err.strerror}") from None
+    if head.startswith(b"MATLAB") and len(head) >= 128:
+        # bytes 124-125: version 0x0100 (v5..v7) or 0x0200 (v7.3, an HDF5 file after 512 bytes)
+        ver = int.from_bytes(head[124:126], "little" if head[126:128] == b"IM" else "big")
+        return "mat73" if ver == 0x0200 else "mat5"
+    # HDF5 looks for its signature at 0, 512, 1024, 2048, ... (a user block may precede it)
+    if any(head[o:o + 8] == HDF5_SIGNATURE for o in (0, 512, 1024, 2048)):
+        try:
+            with h5py.File(path, "r") as f:
+                return "axlebox-result" if f.attrs.get("format") == resultfile.FORMAT else "hdf5"
+        except OSError as err:
+            raise ParameterError(f"input file {str(path)!r} is not readable as HDF5: {err}") from None
+    if b"\x00" not in head:
+        return "csv"
+    raise ParameterError(f"input file {str(path)!r} is of an unknown type: expected an "
+                         "axlebox-result or other HDF5 file, a MATLAB .mat (v5 or v7.3) or a CSV "
+                         "text file")
+
+
+def _channel(data, name: str, side: str) -> np.ndarray:
+    """A 1-D float channel (a column or row vector is flattened); NaNs refused by name."""
+    x = np.asarray(data)
+    if x.dtype.kind not in "fiu" or x.ndim > 2 or (x.ndim == 2 and min(x.shape) != 1):
+        raise ParameterError(f"--{side} {name!r} of shape {x.shape} and type {x.dtype} is not "
+                             "allowed: expected a numeric vector")
+    x = x.astype(float).ravel()
+    bad = int(np.count_nonzero(~np.isfinite(x)))
+    if bad:
+        raise ParameterError(f"--{side} {name!r} holds {bad} NaN/inf samples of {x.size}: "
+                             "expected finite samples (clean or cut the record first)")
+    return x
+
+
+def _pick(available: list[str], asked: str | None, side: str, default: str | None, where: str) -> str:
+    name = asked if asked is not None else default
+    if name is None:
+        raise ParameterError(f"--{side} is missing: name the {side} channel, one of "
+                             f"{', '.join(available) or '(none)'} in {where}")
+    if name not in available:
+        raise ParameterError(f"--{side} {name!r} is not in {where}: expected one of "
+                             f"{', '.join(available) or '(none)'}")
+    return name
+
+
+def _need_fs(fs, where: str) -> float:
+    if fs is None:
+        raise ParameterError(f"--fs is missing: {where} carries no sampling rate; give --fs HZ")
+    if not np.isfinite(fs) or not fs > 0:
+        raise ParameterError(f"--fs = {fs!r} is not allowed: expected a sampling rate > 0 Hz")
+    return float(fs)
+
+
+def _read_result(path, left, right, fs, column: int) -> Record:
+    with resultfile.open_result(path) as f:
+        sensors = sorted(f["signals"]) if "signals" in f else []
+        names = [_pick(sensors, n, s, d, "the result's signals/")
+                 for n, s, d in ((left, "left", DEFAULT_SENSORS[0]), (right, "right", DEFAULT_SENSORS[1]))]
+        chans = []
+        for n, side in zip(names, ("left", "right")):
+            ds = f[f"signals/{n}/acceleration"]
+            if not 0 <= column < ds.shape[1]:
+                raise ParameterError(f"--column {column} is not allowed: signals/{n}/acceleration "
+                                     f"has columns 0..{ds.shape[1] - 1}")
+            chans.append(_channel(ds[:, column], n, side))
+        fs_file = f[f"signals/{names[0]}/acceleration"].attrs.get("fs_hz")
+        cfg = tomllib.loads(str(f.attrs.get("config", "")))
+    rec = Record(chans[0], chans[1], _need_fs(fs if fs is not None else fs_file, "this result file"),
+                 tuple(names), "axlebox-result")
+    if "rig" in cfg:                          # standalone rig: its own bearing and wheel
+        rec.shaft_hz = shaft_hz(cfg["rig"]["speed_kmh"], cfg["rig"].get("r_wheel", 0.42))
+        rec.orders = orders(BearingParams(**cfg["bearing"])) if "bearing" in cfg else None
+    elif "run" in cfg and "speed_kmh" in cfg["run"]:
+        rec.shaft_hz = shaft_hz(cfg["run"]["speed_kmh"], cfg.get("wheelset", {}).get("r0", 0.42))
+    if "track" in cfg:                        # vehicle run: drop the irregularity's fade-in
+        n0 = int(round(TRACK_FADE_IN_S * rec.fs))
+        if rec.left.size > 2 * n0:
+            rec.left, rec.right = rec.left[n0:], rec.right[n0:]
+            rec.notes.append(f"first {TRACK_FADE_IN_S:g} s (track fade-in) left out")
+    return rec
+
+
+def _h5_datasets(f: h5py.File) -> dict[str, h5py.Dataset]:
+    out = {}
+    f.visititems(lambda n, o: out.__setitem__(n, o) if isinstance(o, h5py.Dataset) else None)
+    return out
+
+
+def _read_hdf5(path, left, right, fs, kind: str) -> Record:
+    where = Path(path).name
+    with h5py.File(path, "r") as f:
+        ds = _h5_datasets(f)
+        # MATLAB v7.3 keeps its bookkeeping under #refs#/#subsystem#: not user variables
+        avail = sorted(n for n in ds if not n.startswith("#"))
+        names = [_pick(avail, n, s, None, where) for n, s in ((left, "left"), (right, "right"))]
+        chans = [_channel(ds[n][()], n, s) for n, s in zip(names, ("left", "right"))]
+        if fs is None:                        # an fs attribute on the datasets, or a scalar fs
+            for key in ("fs_hz", "fs"):
+                if key in ds[names[0]].attrs:
+                    fs = float(np.ravel(ds[names[0]].attrs[key])[0])
+                    break
+                if key in ds and ds[key].size == 1:
+                    fs = float(np.ravel(ds[key][()])[0])
+                    break
+    return Record(chans[0], chans[1], _need_fs(fs, f"{where} (no fs_hz attribute or fs variable)"),
+                  tuple(names), kind)
+
+
+def _read_mat5(path, left, right, fs) -> Record:
+    from scipy.io import loadmat
+    try:
+        m = loadmat(path)
+    except Exception as err:  # noqa: BLE001 - scipy raises several types for a broken file
+        raise ParameterError(f"input file {str(path)!r} is not a readable MATLAB v5 file: {err}") from None
+    avail = sorted(k for k in m if not k.startswith("__"))
+    names = [_pick(avail, n, s, None, Path(path).name) for n, s in ((left, "left"), (right, "right"))]
+    chans = [_channel(m[n], n, s) for n, s in zip(names, ("left", "right"))]
+    if fs is None:
+        for key in ("fs", "Fs", "fs_hz"):
+            if key in m and np.size(m[key]) == 1:
+                fs = float(np.ravel(m[key])[0])
+                break
+    return Record(chans[0], chans[1], _need_fs(fs, f"{Path(path).name} (no fs variable)"),
+                  tuple(names), "mat5")
+
+
+def _read_csv(path, left, right, fs) -> Record:
+    text = Path(path).read_text(errors="replace")
+    sample = text[:4096]
+    try:
+        delim = csv.Sniffer().sniff(sample, delimiters=",;\t ").delimiter
+    except csv.Error:
+        delim = ","
+    rows = [r for r in csv.reader(io.StringIO(text), delimiter=delim, skipinitialspace=True) if r]
+    if not rows:
+        raise ParameterError(f"input file {str(path)!r} is empty: expected two columns of samples")
+
+    def numeric(row):
+        try:
+            [float(v) for v in row]
+            return True
+        except ValueError:
+            return False
+    header = None if numeric(rows[0]) else [h.strip() for h in rows[0]]
+    body = rows[1:] if header else rows
+    ncol = len(body[0]) if body else 0
+    cols = header or [str(i) for i in range(ncol)]
+    if ncol < 2:
+        raise ParameterError(f"input file {str(path)!r} has {ncol} column(s): expected two channels")
+    names = [_pick(cols, n, s, d, f"{Path(path).name} (columns)")
+             for n, s, d in ((left, "left", cols[0]), (right, "right", cols[1]))]
+    try:
+        data = np.array([[float(v) for v in r] for r in body], float)
+    except ValueError as err:
+        raise ParameterError(f"input file {str(path)!r}: {err}: expected numbers in every row") from None
+    chans = [_channel(data[:, cols.index(n)], n, s) for n, s in zip(names, ("left", "right"))]
+    return Record(chans[0], chans[1], _need_fs(fs, "a CSV file"), tuple(names), "csv")
+
+
+def read(path, left=None, right=None, fs=None, column: int = 2) -> Record:
+    """The two channels of ``path`` (see the module docstring for the formats)."""
+    kind = file_kind(path)
+    try:
+        if kind == "axlebox-result":
+            return _read_result(path, left, right, fs, column)
+        if kind in ("hdf5", "mat73"):
+            return _read_hdf5(path, left, right, fs, kind)
+        if kind == "mat5":
+            return _read_mat5(path, left, right, fs)
+        return _read_csv(path, left, right, fs)
+    except OSError as err:
+        raise ParameterError(f"input file {str(path)!r} is not readable as {kind}: {err}") from None

@@ -1,0 +1,223 @@
+"""``axlebox report FILE_OR_DIR --out DIR``: the paper's result figures for one run or a sweep,
+a summary table (JSON and CSV) and one HTML page, which also shows mode-shape pictures when
+there are any.
+
+A *case* is one ``axlebox-result`` file; its speed and defect width come from the config stored in
+it (``run.speed_kmh`` for the vehicle, ``rig.speed_kmh`` for the rig; the widest ``W`` among the
+top-level ``defects``, 0 without).  A folder is searched for result files one level deep (a
+sweep writes one file per case).  Each case is diagnosed exactly as ``axlebox diagnose`` does
+(:func:`pipelines.diagnose.analyse_file`), so the report and the command never disagree.
+
+Figures (paper numbering): 9 time signals and 10 envelope spectra, one figure per speed with a
+row per width; 11 RMS and SPM, 13 lag and 14 VF against speed; 12 time and frequency comparison
+per speed at the widest defect.  Mode shapes: ``*_modeNN.png`` from ``axlebox bodies report``,
+found under ``--modes DIR`` or beside the input, copied into ``DIR/modes``.
+"""
+from __future__ import annotations
+
+import csv
+import html
+import json
+import os
+import shutil
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+import h5py
+
+from bearing import resultfile
+from bearing.diagnostics.pair import PairResult
+from geometry._params import ParameterError
+
+from . import report_figures as figs
+from .diagnose import _json, analyse_file
+
+SUMMARY_FIELDS = ("rms", "peak", "kurtosis", "crest", "spm_db", "spm_class", "FC", "VF")
+
+
+@dataclass
+class Case:
+    """One result file: where it is, its case parameters and its diagnosis."""
+
+    path: Path
+    speed_kmh: float
+    width_mm: float
+    pair: PairResult
+
+    @property
+    def label(self) -> str:
+        w = "no defect" if self.width_mm == 0 else f"{self.width_mm:g} mm"
+        return f"{self.speed_kmh:g} km/h, {w}"
+
+    def row(self) -> dict:
+        """The summary table's row: case, both sides' indicators, lag, VF difference, verdicts."""
+        p = self.pair
+        r = {"file": self.path.name, "speed_kmh": self.speed_kmh, "width_mm": self.width_mm,
+             "left": p.names[0], "right": p.names[1]}
+        for side in ("left", "right"):
+            c = getattr(p, side)
+            r.update({f"{side}_{k}": getattr(c, k) for k in SUMMARY_FIELDS})
+            r[f"{side}_lines"] = " ".join(c.detected)
+            r[f"{side}_verdict"] = p.verdicts[side][0]
+        lead = {"a": "left", "b": "right"}.get(p.lag.leading, "neither")
+        r.update(lag_s=p.lag.lag_s, leading=lead, lag_correlation=p.lag.peak, vf_diff=p.vf_diff,
+                 criterion_m=p.m)
+        return r
+
+
+def case_parameters(path) -> tuple[float, float]:
+    """``(speed_kmh, width_mm)`` from the config stored in an axlebox-result file."""
+    with resultfile.open_result(path) as f:
+        cfg = tomllib.loads(str(f.attrs.get("config", "")))
+    speed = cfg.get("run", {}).get("speed_kmh", cfg.get("rig", {}).get("speed_kmh"))
+    if speed is None:
+        raise ParameterError(f"{str(path)!r}: its config has no run.speed_kmh or rig.speed_kmh: "
+                             "expected the speed of the case")
+    widths = [float(d.get("W", 0.0)) for d in cfg.get("defects", [])]
+    return float(speed), 1e3 * max(widths, default=0.0)
+
+
+def _is_result(path: Path) -> bool:
+    try:
+        with h5py.File(path, "r") as f:
+            return f.attrs.get("format") == resultfile.FORMAT
+    except OSError:
+        return False
+
+
+def find_results(source) -> list[Path]:
+    """The result files of ``source``: the file itself, or a folder's ``*.h5`` one level deep."""
+    source = Path(source)
+    if not source.exists():
+        raise ParameterError(f"report input {str(source)!r} does not exist: expected a result "
+                             "file or a folder of them")
+    if source.is_file():
+        return [source]
+    files = sorted(p for p in (*source.glob("*.h5"), *source.glob("*/*.h5")) if _is_result(p))
+    if not files:
+        raise ParameterError(f"report input {str(source)!r} holds no axlebox-result files "
+                             "(*.h5, one level deep)")
+    return files
+
+
+def mode_pictures(source, modes_dir=None) -> list[Path]:
+    """Mode-shape PNGs (``*_modeNN.png``) under ``modes_dir``, else beside ``source``."""
+    roots = [Path(modes_dir)] if modes_dir else [Path(source) if Path(source).is_dir()
+                                                 else Path(source).parent]
+    if modes_dir and not roots[0].is_dir():
+        raise ParameterError(f"--modes {str(modes_dir)!r} is not a folder: expected the output of "
+                             "axlebox bodies report")
+    found = []
+    for r in roots:
+        for pattern in ("*_mode[0-9][0-9].png", "*/*_mode[0-9][0-9].png", "*/*/*_mode[0-9][0-9].png"):
+            found += r.glob(pattern)
+    return sorted(set(found))
+
+
+def _atomic_text(path: Path, text: str) -> Path:
+    tmp = path.with_name(path.name + ".part")
+    tmp.write_text(text)
+    os.replace(tmp, path)
+    return path
+
+
+def write_tables(cases: list[Case], out: Path) -> tuple[Path, Path]:
+    rows = [_json(c.row()) for c in cases]
+    j = _atomic_text(out / "summary.json", json.dumps(
+        {"cases": rows, "diagnoses": [_json(c.pair.to_dict()) for c in cases]}, indent=1))
+    tmp = out / "summary.csv.part"
+    with tmp.open("w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    os.replace(tmp, out / "summary.csv")
+    return j, out / "summary.csv"
+
+
+def _table_html(cases: list[Case]) -> str:
+    head = ["case", "side", "sensor", "RMS m/s&sup2;", "peak m/s&sup2;", "kurtosis", "SPM dB",
+            "FC Hz", "VF Hz&sup2;", "lines", "verdict", "lag ms", "&Delta;VF Hz&sup2;"]
+    out = ["<table><tr>" + "".join(f"<th>{h}</th>" for h in head) + "</tr>"]
+    for c in cases:
+        p = c.pair
+        for i, side in enumerate(("left", "right")):
+            s = getattr(p, side)
+            verdict, why = p.verdicts[side]
+            cells = [f"{s.rms:.4g}", f"{s.peak:.4g}", f"{s.kurtosis:.3g}",
+                     f"{s.spm_db:.1f} ({s.spm_class})", f"{s.FC:.0f}", f"{s.VF:.3g}",
+                     html.escape(" ".join(s.detected) or "none"),
+                     f"<span title='{html.escape(why)}'>{html.escape(verdict)}</span>"]
+            first = (f"<td rowspan=2>{html.escape(c.label)}</td>" if i == 0 else "")
+            tail = (f"<td rowspan=2>{1e3 * p.lag.lag_s:.2f}</td><td rowspan=2>{p.vf_diff:.3g}</td>"
+                    if i == 0 else "")
+            out.append(f"<tr>{first}<td>{side}</td><td>{html.escape(p.names[i])}</td>"
+                       + "".join(f"<td>{v}</td>" for v in cells) + tail + "</tr>")
+    out.append("</table>")
+    return "\n".join(out)
+
+
+def write_html(cases, figures: list[tuple[str, Path]], modes: list[Path], out: Path) -> Path:
+    esc = html.escape
+    crit = cases[0].pair.criterion
+    parts = ["<!doctype html><html><head><meta charset='utf-8'><title>axlebox report</title>",
+             "<style>body{font-family:sans-serif;margin:2em;max-width:1300px}"
+             "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #ccc;"
+             "padding:3px 7px;text-align:right}img{max-width:100%}.modes img{width:380px}</style>",
+             "</head><body><h1>Coaxial pseudo-fault report</h1>",
+             f"<p>{len(cases)} case(s). Criterion: {esc(crit.mode)}, range "
+             f"[{crit.range[0]:.4g}, {crit.range[1]:.4g}] {esc(crit.unit)}, compared "
+             f"{esc(', '.join(crit.compare))}. Hover a verdict for its reason. Tables: "
+             "<a href='summary.csv'>summary.csv</a>, <a href='summary.json'>summary.json</a>.</p>",
+             _table_html(cases)]
+    for title, path in figures:
+        parts.append(f"<h2>{esc(title)}</h2><img src='{esc(path.name)}' alt='{esc(title)}'>")
+    if modes:
+        parts.append("<h2>Mode shapes</h2><div class='modes'>")
+        parts += [f"<img src='modes/{esc(m.name)}' alt='{esc(m.stem)}'>" for m in modes]
+        parts.append("</div>")
+    parts.append("</body></html>")
+    return _atomic_text(out / "index.html", "\n".join(parts))
+
+
+def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
+           **diagnose_kw) -> Path:
+    """Diagnose every case of ``source`` and write figures, tables and ``index.html`` into
+    ``out_dir``; ``diagnose_kw`` go to :func:`pipelines.diagnose.analyse_file` (shaft speed,
+    bearing, criterion, band ...).  Returns the page's path."""
+    files = find_results(source)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    cases = []
+    for path in files:
+        speed, width = case_parameters(path)
+        _, _, pair = analyse_file(path, left=left, right=right, **diagnose_kw)
+        cases.append(Case(path, speed, width, pair))
+        log(f"report: {path.name}: {cases[-1].label}: left {pair.verdicts['left'][0]}, "
+            f"right {pair.verdicts['right'][0]}")
+    cases.sort(key=lambda c: (c.speed_kmh, c.width_mm))
+    figures = []
+    for v in sorted({c.speed_kmh for c in cases}):
+        at = [c for c in cases if c.speed_kmh == v]
+        tag = f"{v:g}kmh"
+        figures.append((f"Fig. 9 - time signals, {v:g} km/h",
+                        figs.time_signals(at, out / f"fig09_time_{tag}.png")))
+        figures.append((f"Fig. 10 - envelope spectra, {v:g} km/h",
+                        figs.envelope_spectra(at, out / f"fig10_envelope_{tag}.png")))
+        figures.append((f"Fig. 12 - time and frequency comparison, {at[-1].label}",
+                        figs.comparison(at[-1], out / f"fig12_comparison_{tag}.png")))
+    figures.append(("Fig. 11 - RMS and SPM", figs.indicators(cases, out / "fig11_rms_spm.png")))
+    if any(c.width_mm > 0 for c in cases):
+        figures.append(("Fig. 13 - lag", figs.lags(cases, out / "fig13_lag.png")))
+    figures.append(("Fig. 14 - VF", figs.vf(cases, out / "fig14_vf.png")))
+    figures.sort(key=lambda t: t[1].name)
+    pictures = mode_pictures(source, modes_dir)
+    if pictures:
+        (out / "modes").mkdir(exist_ok=True)
+        for p in pictures:
+            shutil.copy2(p, out / "modes" / p.name)
+    write_tables(cases, out)
+    page = write_html(cases, figures, pictures, out)
+    log(f"report: {len(cases)} case(s), {len(figures)} figures, {len(pictures)} mode pictures "
+        f"-> {page}")
+    return page
