@@ -58,13 +58,54 @@ SCHEMA: dict[str, dict[str, tuple]] = {
                   "cz": (F, 3e4, 0.0, 1e8), "cy": (F, 4e4, 0.0, 1e8), "anti_roll": (F, 1e6, 0.0, 1e9),
                   "traction_k": (F, 5e6, 0.0, 1e10), "bumpstop_clearance": (F, 0.03, 0.0, 0.2),
                   "bumpstop_k": (F, 2e6, 0.0, 1e10)},
-    "joint": {"k_radial": (F, 1e9, 1e3, 1e12), "k_axial": (F, 5e8, 1e3, 1e12), "c": (F, 2e4, 0.0, 1e8)},
+    "joint": {"model": (S, "bushing", ("bushing", "dtrb")),
+              "k_radial": (F, 1e9, 1e3, 1e12), "k_axial": (F, 5e8, 1e3, 1e12), "c": (F, 2e4, 0.0, 1e8)},
     "sensors": {"node": (S, "sensor_pad", None)},
 }
 
 
+# free-form sections checked by their own classes: [bearing] (bearing.params.BearingParams
+# fields, SI) and [[defects]] (bearing.defects.Defect fields, the angle in degrees, plus where)
+DEFECT_PLACE = {"wheelset": (I, 2, 1, 4), "side": (S, "R", ("L", "R"))}
+DTRB_DT_MAX = 2.8e-5      # s: RK4's limit on the roller-raceway contact mode (DESIGN.md)
+
+
 def defaults() -> dict:
-    return {sec: {k: copy.deepcopy(spec[1]) for k, spec in fields.items()} for sec, fields in SCHEMA.items()}
+    cfg = {sec: {k: copy.deepcopy(spec[1]) for k, spec in fields.items()}
+           for sec, fields in SCHEMA.items()}
+    cfg["bearing"] = {}
+    cfg["defects"] = []
+    return cfg
+
+
+def _bearing(fields) -> dict:
+    from bearing.params import BearingParams
+    if not isinstance(fields, dict):
+        raise ParameterError(f"bearing = {fields!r} is not allowed: expected a [bearing] table")
+    BearingParams(**fields)                 # names the field and the allowed range
+    return dict(fields)
+
+
+def _defects(items) -> list[dict]:
+    """Each ``[[defects]]`` entry: ``wheelset``, ``side`` and the Defect fields, angle in deg."""
+    import dataclasses
+    from bearing.defects import Defect
+    if not isinstance(items, list) or not all(isinstance(d, dict) for d in items):
+        raise ParameterError(f"defects = {items!r} is not allowed: expected [[defects]] tables")
+    allowed = list(DEFECT_PLACE) + [f.name for f in dataclasses.fields(Defect) if f.name != "angle"] \
+        + ["angle_deg"]
+    out = []
+    for i, d in enumerate(items):
+        for key in d:
+            if key not in allowed:
+                raise ParameterError(f"defects[{i}].{key} is not a field of [[defects]]: expected "
+                                     f"one of {', '.join(allowed)}")
+        e = {k: _check(f"defects[{i}]", k, d.get(k, spec[1]), spec) for k, spec in DEFECT_PLACE.items()}
+        shape = {k: v for k, v in d.items() if k not in DEFECT_PLACE and k != "angle_deg"}
+        shape["angle"] = math.radians(d.get("angle_deg", 0.0))
+        e["defect"] = Defect(**shape)
+        out.append(e)
+    return out
 
 
 def _check(sec: str, key: str, value, spec) -> object:
@@ -112,9 +153,15 @@ def validate(user: dict) -> dict:
     """Defaults overridden by ``user`` (a parsed TOML dict), every value checked."""
     cfg = defaults()
     for sec, fields in user.items():
+        if sec == "bearing":
+            cfg[sec] = _bearing(fields)
+            continue
+        if sec == "defects":
+            cfg[sec] = _defects(fields)
+            continue
         if sec not in SCHEMA:
             raise ParameterError(f"[{sec}] is not a section of the vehicle config: expected one of "
-                                 f"{', '.join(SCHEMA)}")
+                                 f"{', '.join(SCHEMA)}, bearing, defects")
         if not isinstance(fields, dict):
             raise ParameterError(f"{sec} = {fields!r} is not allowed: expected a [{sec}] table")
         for key, value in fields.items():
@@ -131,6 +178,17 @@ def validate(user: dict) -> dict:
     if t["irregularity"] and t["length"] < need:
         raise ParameterError(f"track.length = {t['length']:g} is not allowed: the car runs "
                              f"{need:.0f} m (distance plus its length); expected at least that")
+    if cfg["joint"]["model"] == "dtrb":
+        ig = cfg["integrator"]
+        if ig["method"] != "rk4":
+            raise ParameterError(f"integrator.method = {ig['method']!r} is not allowed with "
+                                 "joint.model = 'dtrb': expected 'rk4'")
+        if ig["dt"] > DTRB_DT_MAX:
+            raise ParameterError(f"integrator.dt = {ig['dt']:g} is not allowed with joint.model = "
+                                 f"'dtrb': expected at most {DTRB_DT_MAX:g} s (the roller contacts)")
+    elif cfg["defects"]:
+        raise ParameterError("defects need joint.model = 'dtrb': with the bushing joint there is "
+                             "no bearing to hold them")
     g = cfg["gearbox"]
     if g["mass"] > 0 and g["arm"] >= g["hanger_arm"]:
         raise ParameterError(f"gearbox.arm = {g['arm']:g} is not allowed: expected less than "

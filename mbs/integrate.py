@@ -69,6 +69,7 @@ class Run:
     state_time: np.ndarray
     states: np.ndarray               # (ts, n_states)
     y_end: np.ndarray
+    bearings: np.ndarray = None      # (t, n_bearings, 3, 6): mbs/kernel_bearings.py BR_ROWS
     status: str = "done"
     message: str = ""
     wall_s: float = 0.0
@@ -100,6 +101,12 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
     se = s.state_every
     out_y = np.zeros(((n_out - 1) // se + 1, y.size))
     stats = np.zeros(5, np.int64)
+    nbr = len(model.bearing_names)
+    nend = model.n_body_states
+    if s.method == "galpha" and nbr:
+        raise ParameterError("integrator.method = 'galpha' is not allowed with DTRB bearings: "
+                             "their roller and cage states are not in the Jacobian's coupling "
+                             "pattern; use 'rk4'")
     if s.method == "galpha":
         pattern, groups, n_groups = model.coupling_pattern()
         scale, atol = model.state_scales()
@@ -111,11 +118,12 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
         tk = t0 + k * s.n_sub * h
         if s.method == "rk4":
             status, k_done, bad = ki.run_rk4(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S, W,
-                                             model.nq, s.vmax, out_t, out_sens, out_wh, out_el,
-                                             out_y, se)
+                                             model.nq, nend, s.vmax, out_t, out_sens, out_wh,
+                                             out_el, out_y, se)
         else:
-            status, k_done, bad = ki.run_galpha(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S, W, model.nq,
-                                                s.vmax, out_t, out_sens, out_wh, out_el, out_y, se,
+            status, k_done, bad = ki.run_galpha(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S, W,
+                                                model.nq, nend, s.vmax, out_t, out_sens, out_wh,
+                                                out_el, out_y, se,
                                                 s.rho_inf, groups, n_groups, pattern, scale, atol,
                                                 s.rtol, s.max_iter, stats)
         if status != ki.OK:
@@ -142,6 +150,7 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
     return Run(time=out_t[:n_keep], sensors={nm: out_sens[:n_keep, i] for i, nm in
                                             enumerate(model.sensor_names)},
                wheels=out_wh[:n_keep, :nw], elements=out_el[:n_keep, :ne],
+               bearings=out_el[:n_keep, ne:ne + 3 * nbr].reshape(n_keep, nbr, 3, 6),
                state_time=out_t[:n_keep][::se][:ks], states=out_y[:ks], y_end=y, status=st,
                message=msg, wall_s=wall,
                stats={"steps": int(stats[0]), "newton": int(stats[1]), "jacobians": int(stats[2]),

@@ -34,18 +34,19 @@ OK, NOT_FINITE, RUNAWAY, NO_CONVERGENCE = 0, 1, 2, 3
 
 
 @njit(cache=True)
-def _check(y, nq, vmax):
+def _check(y, nq, nend, vmax):
+    """Non-finite anywhere, or a body velocity (states ``nq .. nend``) beyond ``vmax``."""
     for i in range(y.shape[0]):
         if not math.isfinite(y[i]):
             return NOT_FINITE, i
-    for i in range(nq, y.shape[0]):
+    for i in range(nq, nend):
         if abs(y[i]) > vmax:
             return RUNAWAY, i
     return OK, -1
 
 
 @njit(cache=True)
-def _output(k, t, y, W, nq, vmax, out_t, out_sens, out_wh, out_el, out_y, state_every):
+def _output(k, t, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y, state_every):
     """Record output ``k`` from the evaluation just made at (t, y); then check the state."""
     out_t[k] = t
     out_sens[k] = W[15]
@@ -53,7 +54,7 @@ def _output(k, t, y, W, nq, vmax, out_t, out_sens, out_wh, out_el, out_y, state_
     out_el[k] = W[13]
     if k % state_every == 0:
         out_y[k // state_every] = y
-    return _check(y, nq, vmax)
+    return _check(y, nq, nend, vmax)
 
 
 @njit(cache=True)
@@ -66,7 +67,7 @@ def _normalise(y, bi):
 
 
 @njit(cache=True)
-def run_rk4(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, vmax, out_t, out_sens, out_wh, out_el,
+def run_rk4(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el,
             out_y, state_every):
     """Advance ``y`` in place through outputs ``k0 .. n_out - 1``; output ``k`` is at
     ``t0 + (k - k0) n_sub h`` (recorded from the first stage there); no step follows the
@@ -83,7 +84,7 @@ def run_rk4(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, vmax, out_t, out_sens,
             t = t0 + ((k - k0) * n_sub + j) * h
             rhs(t, y, k1, S, W)
             if j == 0:
-                st, i = _output(k, t, y, W, nq, vmax, out_t, out_sens, out_wh, out_el, out_y,
+                st, i = _output(k, t, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y,
                                 state_every)
                 if st != OK:
                     return st, k, i
@@ -182,7 +183,7 @@ def _ga_newton(t, y, ydn, yd, h, am, af, ga, Minv, S, W, atol, rtol, max_iter, y
 
 
 @njit(cache=True)
-def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, vmax, out_t, out_sens, out_wh,
+def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t, out_sens, out_wh,
                out_el, out_y, state_every, rho_inf, groups, n_groups, pattern, scale, atol, rtol,
                max_iter, stats):
     """Generalized-alpha (first order) with modified Newton; ``stats`` gets
@@ -214,7 +215,7 @@ def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, vmax, out_t, out_se
             if j == 0:
                 rhs(t, y, f, S, W)
                 stats[3] += 1
-                st, i = _output(k, t, y, W, nq, vmax, out_t, out_sens, out_wh, out_el, out_y,
+                st, i = _output(k, t, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y,
                                 state_every)
                 if st != OK:
                     return st, k, i

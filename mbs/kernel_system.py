@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from numba import njit
 
+from .kernel_bearings import bearing_forces
 from .kernel_body import BI_N, BI_VEL, body_accelerations, frame_kinematics, gravity_load, position_rates
 from .kernel_elements import element_forces
 from .kernel_markers import marker_acceleration, marker_kinematics, marker_loads
@@ -21,7 +22,8 @@ from .kernel_wheels import G_GRAV
 
 @njit(cache=True)
 def rhs(t, y, dy, S, W):
-    bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f, wtab, wpar, trk, sens = S
+    bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f, wtab, wpar, trk, sens, \
+        br_i, br_P, br_D = S
     Ab, rb, vb, omb, omfb, mku, mkp, mkv, mkR, mkw, mkF, mkM, gen, elout, whout, sensout = W
     nb = bi.shape[0]
     for b in range(nb):
@@ -31,6 +33,7 @@ def rhs(t, y, dy, S, W):
     mkF[:, :] = 0.0
     mkM[:, :] = 0.0
     element_forces(t, el_i, el_f, mkp, mkv, mkR, mkw, mkF, mkM, elout)
+    bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, elout)
     if wh_i.shape[0] > 0:
         wheel_forces(t, bi, wh_i, wh_f, wtab, wpar, trk, glob, Ab, omb, mkp, mkv, mkR, mkw,
                      mkF, mkM, whout)

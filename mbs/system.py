@@ -60,6 +60,7 @@ class System:
         self.wheel_tables: tuple[np.ndarray, np.ndarray] | None = None
         self.track = None
         self.track_ramp = 0.5          # s, the irregularity fades in over this time
+        self.bearings: list[tuple] = []
 
     # -- building -------------------------------------------------------------------------
     def index(self, name: str) -> int:
@@ -112,6 +113,20 @@ class System:
 
     def sensor(self, name: str, marker: int) -> None:
         self.sensors[name] = marker
+
+    def bearing(self, name: str, inner: int, outer: int, P: np.ndarray, D: np.ndarray,
+                y0: np.ndarray) -> None:
+        """A DTRB between the journal marker ``inner`` (on a spinning body) and the bore marker
+        ``outer``: kernel parameter vector ``P`` and defect table ``D`` (bearing/layout.py,
+        bearing/defects.py), its roller and cage states starting at ``y0``."""
+        b = self.markers[inner][0]
+        if b < 0 or not self.bodies[b].spin:
+            raise ParameterError(f"bearing {name!r}: inner = marker {inner} is not allowed: "
+                                 "expected a marker on a spinning body (the wheelset)")
+        if any(x[0] == name for x in self.bearings):
+            raise ParameterError(f"bearing = {name!r} is not allowed: the name is taken")
+        self.bearings.append((name, inner, outer, b, np.asarray(P, float),
+                              np.asarray(D, float).reshape(-1, 8), np.asarray(y0, float)))
 
     def wheel(self, name: str, marker: int, side: int, r_c: float) -> None:
         """A wheel-rail contact at the tread marker ``marker``; ``side`` 0 left, 1 right;
@@ -196,9 +211,28 @@ class System:
         wtab, wpar = self.wheel_tables if self.wheel_tables is not None else (np.zeros((1, 1)), np.zeros(1))
         sens_names = list(self.sensors)
         sens = np.array([self.sensors[s] for s in sens_names], np.int64)
+        br_i, br_P, br_D, y0 = self._pack_bearings(y0)
         S = (bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f,
-             np.ascontiguousarray(wtab, float), np.ascontiguousarray(wpar, float), trk, sens)
+             np.ascontiguousarray(wtab, float), np.ascontiguousarray(wpar, float), trk, sens,
+             br_i, br_P, br_D)
         return Model(self, S, y0, nq, sens_names, [w[0] for w in self.wheels])
+
+    def _pack_bearings(self, y0):
+        """Bearing rows (mbs/kernel_bearings.py) and their states appended to ``y0``."""
+        from bearing.layout import N_P
+        from .kernel_bearings import BR_WIDTH
+        br_i = np.zeros((len(self.bearings), BR_WIDTH), np.int64)
+        br_P = np.zeros((max(len(self.bearings), 1), N_P))
+        D_parts, off, d0 = [np.zeros((0, 8))], y0.size, 0
+        for k, (_, mi, mo, b, P, D, yb) in enumerate(self.bearings):
+            br_i[k] = (mi, mo, b, off, yb.size, d0, D.shape[0])
+            br_P[k] = P
+            D_parts.append(D)
+            off += yb.size
+            d0 += D.shape[0]
+        y0 = np.concatenate([y0] + [x[6] for x in self.bearings])
+        br_D = np.concatenate(D_parts) if d0 else np.zeros((1, 8))
+        return br_i, br_P, br_D, y0
 
     def initial_marker_pose(self, m: int) -> tuple[np.ndarray, np.ndarray]:
         """Position and axes of marker ``m`` in the initial (undeformed) configuration."""
@@ -238,6 +272,10 @@ class Model:
         bi = S[0]
         nb, nm, ne = bi.shape[0], S[4].shape[0], S[7].shape[0]
         ngen = int(sum(6 + b.n_modes for b in system.bodies))
+        from .kernel_bearings import BR_ROWS
+        self.bearing_names = [x[0] for x in system.bearings]
+        self.n_body_states = int(y0.size - sum(x[6].size for x in system.bearings))
+        ne = ne + BR_ROWS * len(self.bearing_names)
         z = np.zeros
         self.W = (z((nb, 3, 3)), z((nb, 3)), z((nb, 3)), z((nb, 3)), z((nb, 3)),
                   z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3, 3)),
@@ -282,6 +320,14 @@ class Model:
                 j = i - iv
                 what = ("vx", "vy", "vz", "wx", "wy", "wz")[j] if j < 6 else f"qd{j - 5}"
                 return f"body {b.name!r} ({what})"
+        for k, name in enumerate(self.bearing_names):
+            off, n = (int(x) for x in self.S[16][k, 3:5])
+            if off <= i < off + n:
+                j = i - off
+                nr = n - 24
+                what = (f"row {j // (nr // 2) + 1}, roller {(j % (nr // 2)) // 12 + 1}" if j < nr
+                        else f"row {(j - nr) // 12 + 1} cage")
+                return f"bearing {name!r} ({what})"
         return f"state {i}"
 
     def energy(self, y: np.ndarray) -> dict:

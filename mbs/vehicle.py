@@ -61,8 +61,13 @@ def _marker(s: System, body: Body, node: str, at, align: bool = False, place: bo
     return s.marker(body.name, at=at, align=align)
 
 
-def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None = None) -> System:
-    """The car as a :class:`~mbs.system.System` (not yet in equilibrium: see mbs.statics)."""
+def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None = None,
+          bearings: dict | None = None) -> System:
+    """The car as a :class:`~mbs.system.System` (not yet in equilibrium: see mbs.statics).
+
+    ``bearings``: ``(k, side) -> (P, D, y0)`` (kernel parameters, defect table, roller and cage
+    states) puts a DTRB between wheelset k's journal and its axle-box on that side instead of
+    the row bushings (:func:`pipelines.simulate.build_model` makes them)."""
     V = cfg["run"]["speed_kmh"] / 3.6
     geo, prim, sec, gb, jt = cfg["geometry"], cfg["primary"], cfg["secondary"], cfg["gearbox"], cfg["joint"]
     r0 = cfg["wheelset"]["r0"]
@@ -132,15 +137,23 @@ def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None 
                 W_ab = ab.mass * G
                 s.add_body(ab, r=(x, sg * geo["journal_y"], z_ws), v=(V, 0, 0),
                            rotation=None if sg > 0 else _rotz_pi())
-                for row, dy in (("row1", -ROW_OFFSET), ("row2", ROW_OFFSET)):
-                    # on the row centres (the housing's bore nodes sit 10 mm outboard of them)
-                    am = _marker(s, ab, f"bore_{row}", (0, dy, 0), align=True, place=True)
-                    wm = _marker(s, ws, f"journal_{side}_{row}",
-                                 (0, sg * (geo["journal_y"] + dy), 0), place=True)
-                    s.add(Bushing(f"joint{k}{side}_{row}", am, wm,
-                                  k=(jt["k_radial"], jt["k_axial"], jt["k_radial"], 0, 0, 0),
-                                  c=(jt["c"],) * 3 + (0, 0, 0),
-                                  preload=(0, 0, -(P_box + W_ab) / 2, 0, 0, 0)))
+                if bearings is not None:
+                    # one marker a ring at the bearing centre: the bore's row-1 spider and the
+                    # journal's, placed there (the bearing's rows are the kernel's own)
+                    om = _marker(s, ab, "bore_row1", (0, 0, 0), align=True, place=True)
+                    im = _marker(s, ws, f"journal_{side}_row1", (0, sg * geo["journal_y"], 0),
+                                 place=True)
+                    s.bearing(f"bearing{k}{side}", im, om, *bearings[(k, side)])
+                else:
+                    for row, dy in (("row1", -ROW_OFFSET), ("row2", ROW_OFFSET)):
+                        # on the row centres (the housing's bore nodes sit 10 mm outboard of them)
+                        am = _marker(s, ab, f"bore_{row}", (0, dy, 0), align=True, place=True)
+                        wm = _marker(s, ws, f"journal_{side}_{row}",
+                                     (0, sg * (geo["journal_y"] + dy), 0), place=True)
+                        s.add(Bushing(f"joint{k}{side}_{row}", am, wm,
+                                      k=(jt["k_radial"], jt["k_axial"], jt["k_radial"], 0, 0, 0),
+                                      c=(jt["c"],) * 3 + (0, 0, 0),
+                                      preload=(0, 0, -(P_box + W_ab) / 2, 0, 0, 0)))
                 for seat, sx in (("spring_front", 0.25), ("spring_rear", -0.25)):
                     bm = _marker(s, ab, seat, (sx, 0, 0.04))
                     p_seat = s.initial_marker_pose(bm)[0]

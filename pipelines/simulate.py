@@ -20,7 +20,7 @@ from bearing import resultfile
 from fem import bodyfile
 from geometry._params import ParameterError
 from mbs import config as vconfig
-from mbs import integrate, statics, track, vehicle
+from mbs import dtrb, integrate, statics, track, vehicle
 from mbs.wheelrail import element_kernel as ek
 from mbs.wheelrail.element import WheelRailParams, build_tables
 from mbs.wheelrail.geometry import TrackLayout
@@ -87,13 +87,22 @@ def track_record(cfg: dict):
 
 
 def build_model(cfg: dict, log=print):
-    """Vehicle model in static equilibrium: (model, y0)."""
+    """Vehicle model in static equilibrium: (model, y0).  With ``joint.model = "dtrb"`` the
+    equilibrium is found with row bushings first, then the eight bearings are put in their own
+    (mbs/dtrb.py)."""
     red = reduced_bodies(cfg, log)
-    sysm = vehicle.build(cfg, tables(cfg), track_record(cfg), red)
-    model = sysm.assemble()
+    tabs, trk = tables(cfg), track_record(cfg)
+    model = vehicle.build(cfg, tabs, trk, red).assemble()
     log(f"vehicle: {len(model.bodies)} bodies, {model.n_states} states, flexible: "
         + ", ".join(f"{b.name} ({b.n_modes} modes)" for b in model.bodies if b.n_modes))
     y0 = statics.equilibrium(model, log=log)
+    if cfg["joint"]["model"] != "dtrb":
+        return model, y0
+    ws = model.body_state(model.system.index("ws1"), y0)
+    starts = dtrb.start(cfg, dtrb.joint_loads(model, y0), float(ws["omega"][1]), log)
+    model = vehicle.build(cfg, tabs, trk, red, bearings={k: v[:3] for k, v in starts.items()}).assemble()
+    y0 = dtrb.place_axleboxes(model, y0, starts)
+    log(f"coupled: {model.n_states} states ({model.n_states - model.n_body_states} in 8 bearings)")
     return model, y0
 
 
@@ -114,7 +123,17 @@ def write(path, run: integrate.Run, model, cfg_text: str, seed: int) -> Path:
         wr[f"{name}/creepage"] = (o[:, [ek.OUT_XI, ek.OUT_ETA, ek.OUT_SPIN]],
                                   {"unit": "1, 1, 1/m", "columns": "xi, eta, spin"})
         wr[f"{name}/contact_point"] = (o[:, ek.OUT_P:ek.OUT_P + 3], {"unit": "m"})
+    br = {}
+    for i, name in enumerate(model.bearing_names):
+        o = run.bearings[:, i]                      # mbs/kernel_bearings.py BR_ROWS
+        br[f"{name}/ring_loads"] = (o[:, :2], {"unit": "N, N m", "frame": "track",
+                                               "rows": "inner ring, outer ring",
+                                               "columns": "Fx Fy Fz Mx My Mz"})
+        br[f"{name}/roller1_cup_force"] = (o[:, 2, :2], {"unit": "N", "columns": "row 1, row 2"})
+        br[f"{name}/cage"] = (o[:, 2, 2:6], {"unit": "rad, rad, rad/s, rad/s",
+                                            "columns": "angle row 1, row 2; rate row 1, row 2"})
     groups = {"wheelrail": wr,
+              **({"bearings": br} if br else {}),
               "states": {"time": run.state_time, "y": run.states,
                          "y_end": (run.y_end, {"t": float(run.time[-1]) if run.time.size else 0.0})}}
     return resultfile.write(path, config_toml=cfg_text, seed=seed, time=run.time, fs_hz=fs,

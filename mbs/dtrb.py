@@ -1,0 +1,91 @@
+"""The eight axle-box DTRBs of the car: their kernel parameters, defect tables and a start in
+equilibrium, for :func:`mbs.vehicle.build` (``joint.model = "dtrb"``).
+
+The start: the car is first put in equilibrium with stiff row bushings in place of the bearings
+(:mod:`mbs.statics`; the bearings' roller states would make that Newton solve forty times
+larger); each bushing pair's load is then the load its bearing carries, and the bearing's own
+quasi-static solution (:func:`bearing.equilibrium.static_state`) gives its roller and cage
+states and the outer ring's displacement, which the axle-box is moved to (micrometres).
+
+Rows: the kernel's row 1 lies at -y of the bearing centre, row 2 at +y (bearing/kernel.py),
+and the bearing frame here is the track frame.  A defect's ``row`` counts from the inboard row
+(1) to the outboard row (2) (bearing/defects.py): on the left (+y) bearings that is the
+kernel's numbering, on the right ones it is mirrored.
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from bearing import defects as bdefects
+from bearing.equilibrium import static_state
+from bearing.layout import pack
+from bearing.params import BearingParams
+
+from .kernel_markers import MK_BODY
+from .vehicle import SIDES
+
+
+def params(cfg: dict) -> BearingParams:
+    return BearingParams(**cfg["bearing"])
+
+
+def defect_table(cfg: dict, k: int, side: str, p: BearingParams) -> np.ndarray:
+    """Defect table of the bearing of wheelset ``k`` on ``side`` (rows mirrored on the right)."""
+    mine = [e["defect"] for e in cfg["defects"] if e["wheelset"] == k and e["side"] == side]
+    if side == "R":
+        mine = [dataclasses.replace(d, row=3 - d.row) for d in mine]
+    return bdefects.table(mine, p)
+
+
+def joint_loads(model, y) -> dict:
+    """``(k, side) -> F``: the load (N, track frame) the axle-box puts on each bearing's outer
+    ring, from the row bushings of a bushing-joint model at state ``y``."""
+    model.rhs(0.0, y)
+    out = model.W[13]
+    names = [getattr(e, "name", "") for e in model.system.elements]
+    loads = {}
+    for k in range(1, 5):
+        for side, _ in SIDES:
+            rows = [names.index(f"joint{k}{side}_{r}") for r in ("row1", "row2")]
+            loads[(k, side)] = out[rows, :3].sum(axis=0)       # on the journal marker (m2)
+    return loads
+
+
+def start(cfg: dict, loads: dict, omega_w: float, log=print) -> dict:
+    """``(k, side) -> (P, D, y0, u_o)``: each bearing's kernel arrays, its equilibrium roller and
+    cage states under ``loads`` and the outer ring's displacement from the inner ring's centre."""
+    p = params(cfg)
+    P = pack(p)
+    out = {}
+    for key, F in loads.items():
+        D = defect_table(cfg, *key, p)
+        yb, uo = static_state(p, P, D, F, omega_w, tol=1e-6)   # 0.03 N on 27 kN: far below the run
+        out[key] = (P, D, yb, np.asarray(uo, float))
+    log(f"bearings: {len(out)} DTRBs in equilibrium, outer-ring loads "
+        f"{min(-F[2] for F in loads.values()) / 1e3:.1f}-{max(-F[2] for F in loads.values()) / 1e3:.1f} kN")
+    return out
+
+
+def place_axleboxes(model, y, start_states: dict) -> np.ndarray:
+    """``y`` (body states of the bearing model) with each axle-box moved so that its bore marker
+    sits at the bearing's equilibrium displacement from the journal marker, followed by the
+    bearings' roller and cage states."""
+    nb = model.n_body_states
+    y = np.concatenate([np.asarray(y, float)[:nb]] + [start_states[_key(n)][2] for n in model.bearing_names])
+    model.rhs(0.0, y)
+    mkp = model.W[6]
+    br_i = model.S[16]
+    bi = model.S[0]
+    mk_i = model.S[4]
+    for k, name in enumerate(model.bearing_names):
+        mi, mo = int(br_i[k, 0]), int(br_i[k, 1])
+        d = start_states[_key(name)][3] - (mkp[mo] - mkp[mi])
+        b = int(mk_i[mo, MK_BODY])
+        y[bi[b, 0]:bi[b, 0] + 3] += d
+    return y
+
+
+def _key(name: str) -> tuple[int, str]:
+    return int(name[len("bearing"):-1]), name[-1]

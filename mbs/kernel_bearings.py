@@ -1,0 +1,103 @@
+"""The DTRB as a force element with its own states (numba): between the journal marker of a
+wheelset (inner ring) and the bore marker of an axle-box (outer ring).
+
+Each bearing row ``br_i = [m_in, m_out, b_in, off, n, d0, nd]``: the two markers, the wheelset
+body (for its spin angle and rate), where its roller and cage states start in ``y`` and how
+many, and its rows ``d0 .. d0 + nd`` of the stacked defect table ``br_D``; ``br_P`` holds one
+parameter vector (bearing/layout.py) a bearing.
+
+The bearing kernel (bearing/kernel.py) works in a frame that translates with the inner ring and
+does not spin.  Here that frame is the track frame (x forward, y left, z up) turned by the inner
+ring's small tilt: the outer ring's displacement and tilt are taken relative to the journal
+marker (small-angle vectors of the markers' orientations), the inner ring's angle and rate
+about y are the wheelset's spin coordinates, and the ring loads are turned back.  The roller and cage
+equations leave out the frame's own acceleration (the journal's, tens of m/s^2 on track: on a
+0.135 kg roller under 5-10 kN contact loads, 0.1 %).  The ring loads (paper Eq. 16, with
+moments) go back to the two markers as inertial forces and moments.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from bearing.kernel import dtrb_rhs
+
+from .kernel_body import BI_POS, BI_VEL
+
+BR_MIN, BR_MOUT, BR_BODY, BR_OFF, BR_N, BR_D0, BR_ND = range(7)
+BR_WIDTH = 7
+# output rows per bearing, after the elements' rows of ``elout``: force (3) and moment (3) on the
+# inner ring; on the outer ring; roller 1's cup contact force in rows 1 and 2, then both cages'
+# angle and rate
+BR_ROWS = 3
+
+
+@njit(cache=True, inline="always")
+def _small_angles(R, out, o):
+    """Small rotation vector of the orientation ``R`` (its skew part)."""
+    out[o] = 0.5 * (R[2, 1] - R[1, 2])
+    out[o + 1] = 0.5 * (R[0, 2] - R[2, 0])
+    out[o + 2] = 0.5 * (R[1, 0] - R[0, 1])
+
+
+@njit(cache=True)
+def bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, elout):
+    """State derivatives of every bearing's rollers and cages, and their ring loads on the
+    markers; bearing k's outputs fill ``BR_ROWS`` rows of ``elout`` from row
+    ``ne + BR_ROWS k`` (``ne``: the elements' rows)."""
+    nbr = br_i.shape[0]
+    if nbr == 0:
+        return
+    ring = np.zeros((2, 12))
+    F = np.zeros((2, 6))
+    Qc = np.zeros((2, int(br_P[0, 0]), 6))
+    th = np.zeros(6)
+    d = np.zeros(3)
+    for k in range(nbr):
+        mi, mo, b = br_i[k, BR_MIN], br_i[k, BR_MOUT], br_i[k, BR_BODY]
+        off, n = br_i[k, BR_OFF], br_i[k, BR_N]
+        d0, nd = br_i[k, BR_D0], br_i[k, BR_ND]
+        _small_angles(mkR[mi], th, 0)
+        _small_angles(mkR[mo], th, 3)
+        # the bearing frame follows the inner ring's tilt (the journal bends with the axle by
+        # about a milliradian, which on the rollers' 40 mm would be 20 um of misalignment):
+        # the outer ring's displacement and tilt are taken relative to it
+        for a in range(3):
+            d[a] = mkp[mo, a] - mkp[mi, a]
+        ring[:, :] = 0.0
+        ring[1, 0] = d[0] - (th[1] * d[2] - th[2] * d[1])
+        ring[1, 1] = d[1] - (th[2] * d[0] - th[0] * d[2])
+        ring[1, 2] = d[2] - (th[0] * d[1] - th[1] * d[0])
+        ring[1, 3] = th[3] - th[0]
+        ring[1, 4] = th[4]
+        ring[1, 5] = th[5] - th[2]
+        for a in range(3):
+            ring[1, 6 + a] = mkv[mo, a] - mkv[mi, a]
+            ring[0, 9 + a] = mkw[mi, a]
+            ring[1, 9 + a] = mkw[mo, a]
+        # the wheelset's spin: its own angle, and the body-frame rate about the axle
+        ring[0, 4] = y[bi[b, BI_POS] + 7]
+        ring[0, 10] = y[bi[b, BI_VEL] + 4]
+        dtrb_rhs(t, y[off:off + n], ring, br_P[k], br_D[d0:d0 + nd], dy[off:off + n], F, Qc)
+        for r in range(2):                      # back to the track frame: rotate by the tilt
+            for o in (0, 3):
+                f0, f1, f2 = F[r, o], F[r, o + 1], F[r, o + 2]
+                F[r, o] = f0 + th[1] * f2 - th[2] * f1
+                F[r, o + 1] = f1 + th[2] * f0 - th[0] * f2
+                F[r, o + 2] = f2 + th[0] * f1 - th[1] * f0
+        for a in range(3):
+            mkF[mi, a] += F[0, a]
+            mkM[mi, a] += F[0, 3 + a]
+            mkF[mo, a] += F[1, a]
+            mkM[mo, a] += F[1, 3 + a]
+        r = elout.shape[0] - BR_ROWS * (nbr - k)
+        cb = off + n - 24                      # the two cages' states close the bearing's
+        for c in range(6):
+            elout[r, c] = F[0, c]
+            elout[r + 1, c] = F[1, c]
+        elout[r + 2, 0] = Qc[0, 0, 0]
+        elout[r + 2, 1] = Qc[1, 0, 0]
+        elout[r + 2, 2] = y[cb + 5]
+        elout[r + 2, 3] = y[cb + 17]
+        elout[r + 2, 4] = y[cb + 11]
+        elout[r + 2, 5] = y[cb + 23]
