@@ -139,8 +139,11 @@ def body_accelerations(b, y, bi, bf, inv, A, om, omf, Qb, acc):
     markers).  Adds the elastic ``-K q - D qd``.  ``acc`` gets ``[v'; omega'; qdd]``."""
     n = bi[b, BI_N]
     m = bf[b, BF_M]
-    if n == 0 and bf[b, BF_MC] == 0.0 and bf[b, BF_MC + 1] == 0.0 and bf[b, BF_MC + 2] == 0.0:
-        # rigid, frame at the centre of mass: m v' = Q_r, J w' = Q_w - w_f x J w
+    if n == 0:
+        # rigid: with the frame at c = S/m from the centre of mass, in body coordinates
+        # (a_b = A^T v'),  m a_b - S x w' = f,  S x a_b + J_o w' = g,  which solve in closed form
+        # with the inertia about the centre of mass J_c = J_o - (|S|^2 I - S S^T)/m:
+        # w' = J_c^-1 (g - c x f),  a_b = f/m + c x w'
         J = np.empty((3, 3))
         for a in range(3):
             for c in range(3):
@@ -149,13 +152,31 @@ def body_accelerations(b, y, bi, bf, inv, A, om, omf, Qb, acc):
         Jw = J @ om
         g = np.empty(3)
         cross(omf, Jw, g)
+        S = np.empty(3)
         for a in range(3):
-            acc[a] = Qb[a] / m
+            S[a] = bf[b, BF_MC + a]
+            g[a] = Qb[3 + a] - g[a]
+        t1 = np.empty(3)
+        t2 = np.empty(3)
+        cross(omf, S, t1)
+        cross(omf, t1, t2)
+        f = np.empty(3)
+        for a in range(3):
+            f[a] = A[0, a] * Qb[0] + A[1, a] * Qb[1] + A[2, a] * Qb[2] - t2[a]
+            S[a] /= m                                   # now c
+        cross(S, f, t1)
+        wd = np.empty(3)
         for a in range(3):
             s = 0.0
             for c in range(3):
-                s += bf[b, BF_JINV + 3 * a + c] * (Qb[3 + c] - g[c])
-            acc[3 + a] = s
+                s += bf[b, BF_JINV + 3 * a + c] * (g[c] - t1[c])
+            wd[a] = s
+        cross(S, wd, t2)
+        for a in range(3):
+            t2[a] += f[a] / m
+        for a in range(3):
+            acc[a] = A[a, 0] * t2[0] + A[a, 1] * t2[1] + A[a, 2] * t2[2]
+            acc[3 + a] = wd[a]
         return
     Ct, Qi, R, Me, K, D = inv_views(inv, bi[b, BI_INV], n)
     q0 = bi[b, BI_POS] + 7 + bi[b, BI_SPIN]

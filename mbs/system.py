@@ -154,7 +154,9 @@ class System:
             bf[k, BF_M] = b.mass
             bf[k, BF_MC:BF_MC + 3] = b.mc
             bf[k, BF_P0:BF_P0 + 9] = b.P0.ravel()
-            bf[k, BF_JINV:BF_JINV + 9] = np.linalg.inv(b.inertia_origin).ravel()
+            c = b.mc / b.mass                # inertia about the centre of mass: the rigid path
+            J_c = b.inertia_origin - b.mass * (c @ c * np.eye(3) - np.outer(c, c))
+            bf[k, BF_JINV:BF_JINV + 9] = np.linalg.inv(J_c).ravel()
             bf[k, BF_GRAV] = 1.0
             if n:
                 part = np.concatenate([b.Ct.ravel(), b.Q.ravel(), b.R.ravel(), b.Me.ravel(),

@@ -12,9 +12,11 @@ from __future__ import annotations
 import os
 import sys
 import time
+import tomllib
 from pathlib import Path
 
 import numpy as np
+import tomli_w
 
 from bearing import resultfile
 from fem import bodyfile
@@ -142,12 +144,25 @@ def write(path, run: integrate.Run, model, cfg_text: str, seed: int) -> Path:
                                    "bodies": ",".join(b.name for b in model.bodies)})
 
 
-def run(config_path, out, duration: float | None = None, log=print) -> integrate.Run:
+def load_config(config_path, duration: float | None = None, overrides: dict | None = None):
+    """``(cfg, text)``: the validated config and the TOML text of what will run (the file's own
+    text, or, with ``duration`` or ``overrides`` (section -> {field: value}), the merged
+    config written out again, so that a result file's config is exactly its run's)."""
     cfg, text = vconfig.load(config_path)
+    if duration is None and not overrides:
+        return cfg, text
+    user = tomllib.loads(text)
+    for sec, fields in (overrides or {}).items():
+        user[sec] = fields if isinstance(fields, list) else {**user.get(sec, {}), **fields}
     if duration is not None:
-        text += f"\n# axlebox simulate --duration {duration}\n"
-        cfg["run"]["duration"] = vconfig._check("run", "duration", duration,
-                                                vconfig.SCHEMA["run"]["duration"])
+        user.setdefault("run", {})["duration"] = duration
+    cfg = vconfig.validate(user)
+    return cfg, f"# {Path(config_path).name}, as run\n" + tomli_w.dumps(user)
+
+
+def run(config_path, out, duration: float | None = None, log=print,
+        overrides: dict | None = None) -> integrate.Run:
+    cfg, text = load_config(config_path, duration, overrides)
     out = Path(out)
     if not out.parent.is_dir():
         raise FileNotFoundError(f"--out: folder {str(out.parent)!r} does not exist")
