@@ -28,10 +28,12 @@ def ring_motion(omega_w: float, uo=(0.0, 0.0, 0.0), t: float = 0.0) -> np.ndarra
     return ring
 
 
-def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9):
+def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol: float = 1e-7):
     """``(y, uo)``: the bearing state and the outer ring's displacement at which the bearing
     carries ``F_outer`` (N, the load applied to the outer ring) with no radial, axial or tilt
-    acceleration of any roller.  Raises RuntimeError when it does not converge."""
+    acceleration of any roller.  ``tol``: the ring residual and ``roller_tol`` the rollers'
+    accepted once Newton stalls, both relative to the load.  Raises RuntimeError when it does
+    not converge."""
     F_outer = np.asarray(F_outer, float)
     Fn = float(np.linalg.norm(F_outer))
     y = nominal_state(p, omega_w)
@@ -92,7 +94,7 @@ def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9):
                 if not worse.any():
                     break
                 t[worse] *= 0.5
-        if r0.max() < 1e-7 * Fs:        # a roller at the edge of the loaded zone, barely touching
+        if r0.max() < roller_tol * Fs:  # a roller at the edge of the loaded zone, barely touching
             return Fo
         raise RuntimeError(f"quasi-static start: the rollers did not settle (largest residual "
                            f"{r0.max():.1e} N)")

@@ -62,20 +62,8 @@ def _cmd_bodies_report(a) -> None:
 
 
 def _cmd_demo(a) -> None:
-    from .bodies import BODIES, build_body
-    from .render import report
-    out = Path(a.out)
-    for n, spec in BODIES.items():
-        build_body(n, mesh_size=spec.coarse_mesh_size, n_modes=12, n_reference=12,
-                   out_dir=out / "bodies")
-    report(out / "bodies", out / "report", max_modes=12)
-    from bearing.defects import Defect
-    from bearing.rig import RigConfig, simulate
-    (out / "bearing").mkdir(exist_ok=True)
-    rig = simulate(RigConfig(duration=0.3, defects=(Defect(W=2e-3),)), out=out / "bearing" / "rig_2mm.h5")
-    rig.plot(out / "bearing" / "rig_2mm.png")
-    print(f"demo: bearing rig, 2 mm outer-ring defect at 48 km/h -> {out / 'bearing' / 'rig_2mm.png'}")
-    print(f"demo: open {out / 'report' / 'index.html'}")
+    from .demo import demo
+    demo(a.out, duration=a.duration)
 
 
 def _cmd_bearing_simulate(a) -> None:
@@ -162,6 +150,40 @@ def _cmd_report(a) -> None:
     report(a.source, a.out, modes_dir=a.modes, **_analysis_options(a))
 
 
+def _cmd_sweep(a) -> None:
+    from .sweep import sweep
+    res = sweep(a.config, a.out, speeds=a.speeds, widths=a.widths, duration=a.duration,
+                scheduler=a.scheduler, workers=a.workers)
+    if res["failed"]:
+        raise RuntimeError(f"{len(res['failed'])} case(s) failed ({', '.join(res['failed'])}); the "
+                           f"finished ones are in {a.out}, a rerun retries the rest")
+
+
+def _add_sweep(sub) -> None:
+    sw = sub.add_parser("sweep", help="a study matrix (speeds x defect widths) of the bearing rig or "
+                                      "the vehicle on dask.distributed; resumable; summary table",
+                        description="Runs every case (speed x defect width) of a rig config ([rig]) "
+                        "or a vehicle config ([run] ...) as a dask.distributed task, on a local "
+                        "cluster or the scheduler named; one result file per case (DIR/v<speed>_"
+                        "w<width>.h5), written through a temporary name; a rerun skips finished "
+                        "cases. Ends with a table of indicators per case and side (DIR/summary.csv).")
+    sw.add_argument("config", help="base config (TOML): a rig config (configs/study_rig.toml) or a "
+                                   "vehicle config; an optional [sweep] gives speeds_kmh, widths_mm")
+    sw.add_argument("--speeds", type=float, nargs="+", metavar="V",
+                    help="speeds in km/h (default: sweep.speeds_kmh, else the config's speed)")
+    sw.add_argument("--widths", type=float, nargs="+", metavar="MM",
+                    help="defect widths in mm, 0: no defect; > 0 sets W of every [[defects]] entry "
+                         "(default: sweep.widths_mm, else the config's defects)")
+    sw.add_argument("--scheduler", metavar="ADDRESS",
+                    help="dask scheduler (e.g. tcp://host:8786; default: a local cluster)")
+    sw.add_argument("--workers", type=int, metavar="N",
+                    help="local worker processes, one thread each (default: the CPU count)")
+    sw.add_argument("--duration", type=float, metavar="S", help="simulated time of every case "
+                                                                "(default: the config's)")
+    sw.add_argument("--out", required=True, help="output folder (one .h5 per case, summary.csv)")
+    sw.set_defaults(func=_cmd_sweep)
+
+
 def _add_analysis_options(dg) -> None:
     dg.add_argument("--left", help="left channel: sensor (result file; default ws2_L), variable "
                                    "(.mat), dataset path (HDF5) or column name (CSV; default first)")
@@ -196,9 +218,11 @@ def parser() -> argparse.ArgumentParser:
                                             "axle-box bearing faults.")
     sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
-    d = sub.add_parser("demo", help="build the three modal bodies at a coarse mesh and report them; "
-                                    "run the bearing rig with a 2 mm defect")
+    d = sub.add_parser("demo", help="the main job: modal bodies, the paper's validation case with "
+                                    "its DTRBs, diagnosis of both sides and the HTML report")
     d.add_argument("--out", default="axlebox-demo", help="output folder (default: axlebox-demo)")
+    d.add_argument("--duration", type=float, default=1.6, metavar="S",
+                   help="simulated time of the validation case (default 1.6, at least 1.4)")
     d.set_defaults(func=_cmd_demo)
 
     b = sub.add_parser("bodies", help="modal bodies from geometry")
@@ -289,6 +313,8 @@ def parser() -> argparse.ArgumentParser:
                                                    "output; default: looked for beside the input)")
     _add_analysis_options(rp)
     rp.set_defaults(func=_cmd_report)
+
+    _add_sweep(sub)
 
     c = sub.add_parser("contact", help="wheel-rail contact")
     cs = c.add_subparsers(dest="contact_command", required=True, parser_class=_Parser)

@@ -1,0 +1,344 @@
+"""``axlebox sweep CONFIG.toml --out DIR``: speeds x outer-ring defect widths of the bearing rig
+(a config with ``[rig]``) or the vehicle (``[run]`` ..., as ``configs/vehicle.toml``), one case
+per dask.distributed task on a local cluster (``--workers`` one-thread processes, never more than
+the cases) or the scheduler at ``--scheduler`` (its workers must see DIR).
+
+Lists from the options, else ``[sweep] speeds_kmh``/``widths_mm``, else the config's own speed
+and defects; width 0 removes the ``[[defects]]``, > 0 sets their ``W`` (m).  Each case writes
+``DIR/v48_w2.h5`` (``.`` -> ``p``) with its own config inside, through a temporary name; a rerun
+skips files that open as a result of the same config and removes ``*.tmp`` left by a killed run
+(one sweep per folder at a time; the rig's ``*.partial.h5`` checkpoints are kept, it resumes from
+them).  The summary per case and side goes to ``DIR/summary.csv``: two-sensor (vehicle) results
+through :mod:`pipelines.report`, the rig's one sensor through :func:`bearing.diagnostics.channel.analyse`.
+"""
+from __future__ import annotations
+
+import contextlib
+import csv
+import dataclasses
+import io
+import logging
+import math
+import os
+import signal
+import threading
+import time
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+import tomli_w
+
+from bearing import resultfile
+from geometry._params import ParameterError
+
+SWEEP_FIELDS = ("speeds_kmh", "widths_mm")
+RIG_SECTIONS = ("rig", "bearing", "defects")
+RUN_SECTION = {"rig": "rig", "vehicle": "run"}       # where speed_kmh and duration live
+
+
+@dataclass(frozen=True)
+class Case:
+    """One point of the matrix: ``toml`` is the config its runner gets and stores in the result."""
+
+    name: str
+    kind: str
+    speed_kmh: float
+    width_mm: float
+    toml: str
+
+    def path(self, out) -> Path:
+        return Path(out) / f"{self.name}.h5"
+
+
+def load_config(path) -> tuple[str, dict]:
+    """``(kind, parsed TOML)`` of a sweep's base config, kind ``"rig"`` or ``"vehicle"``."""
+    from mbs.config import SCHEMA
+    path = Path(path)
+    if not path.is_file():
+        raise ParameterError(f"config = {str(path)!r} is not allowed: no such file")
+    try:
+        cfg = tomllib.loads(path.read_text())
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as err:
+        raise ParameterError(f"config {str(path)!r} is not valid TOML: {err}") from None
+    secs = set(cfg) - {"sweep", "defects"}
+    rig, vehicle = "rig" in secs, bool(secs & set(SCHEMA))
+    if rig == vehicle:
+        raise ParameterError(f"config {str(path)!r} is of an unknown kind (sections: "
+                             f"{', '.join(sorted(cfg)) or 'none'}): expected a bearing rig config "
+                             "([rig], [bearing], [[defects]]) or a vehicle config ([run], [track] ...)")
+    return ("rig" if rig else "vehicle"), cfg
+
+
+def _numbers(values, name: str, what: str, zero_ok: bool) -> list[float]:
+    """A non-empty list of finite numbers > 0 (>= 0 with ``zero_ok``), duplicates dropped."""
+    if not isinstance(values, (list, tuple)) or not values:
+        raise ParameterError(f"{name} = {values!r} is not allowed: expected a list of {what}")
+    for v in values:
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) \
+                or not (v >= 0 if zero_ok else v > 0):
+            raise ParameterError(f"{name} {v!r} is not allowed: expected {what} "
+                                 f"{'>= 0' if zero_ok else '> 0'}")
+    return list(dict.fromkeys(float(v) for v in values))
+
+
+def rig_config(d: dict):
+    """A :class:`bearing.rig.RigConfig` from a parsed rig TOML (the layout ``RigConfig.to_toml``
+    writes and :func:`bearing.rig.load` reads); unknown sections and fields are named."""
+    from bearing.defects import Defect
+    from bearing.params import BearingParams
+    from bearing.rig import RigConfig
+
+    def build(cls, fields, where, **objects):
+        if not isinstance(fields, dict):
+            raise ParameterError(f"{where} = {fields!r} is not allowed: expected a [{where}] table")
+        known = [f.name for f in dataclasses.fields(cls) if f.name not in objects]
+        for k in fields:
+            if k not in known:
+                raise ParameterError(f"{where}.{k} is not a field of [{where}]: expected one of "
+                                     f"{', '.join(known)}")
+        try:
+            return cls(**fields, **objects)
+        except TypeError as err:
+            raise ParameterError(f"[{where}] {fields!r} is not allowed: {err}") from None
+
+    for sec in d:
+        if sec not in RIG_SECTIONS:
+            raise ParameterError(f"[{sec}] is not a section of a rig config: expected one of "
+                                 f"{', '.join(RIG_SECTIONS)}")
+    defects = d.get("defects", [])
+    if not isinstance(defects, list):
+        raise ParameterError(f"defects = {defects!r} is not allowed: expected [[defects]] tables")
+    return build(RigConfig, d.get("rig", {}), "rig",
+                 bearing=build(BearingParams, d.get("bearing", {}), "bearing"),
+                 defects=tuple(build(Defect, e, "defects") for e in defects))
+
+
+def case_toml(kind: str, d: dict) -> str:
+    """The case's config as its runner stores it, validated here before any worker starts."""
+    if kind == "rig":
+        return rig_config(d).to_toml()
+    from mbs.config import validate
+    validate(d)
+    return tomli_w.dumps(d)
+
+
+def matrix(kind: str, cfg: dict, speeds=None, widths=None, duration=None) -> list[Case]:
+    """The cases of ``cfg`` (parsed TOML): speeds (km/h) x widths (mm); options over ``[sweep]``."""
+    sw = cfg.get("sweep", {})
+    if not isinstance(sw, dict):
+        raise ParameterError(f"sweep = {sw!r} is not allowed: expected a [sweep] table")
+    for k in sw:
+        if k not in SWEEP_FIELDS:
+            raise ParameterError(f"sweep.{k} is not a field of [sweep]: expected one of "
+                                 f"{', '.join(SWEEP_FIELDS)}")
+    sec = RUN_SECTION[kind]
+    def axis(given, key, option, what, zero_ok, default):
+        if given is not None:
+            return _numbers(given, option, what, zero_ok)
+        return _numbers(sw[key], f"sweep.{key}", what, zero_ok) if key in sw else default
+    speeds = axis(speeds, "speeds_kmh", "--speeds", "speeds in km/h", False,
+                  [cfg.get(sec, {}).get("speed_kmh", 48.0)])
+    widths = axis(widths, "widths_mm", "--widths", "defect widths in mm", True,
+                  [None])                                # None: the config's defects as they are
+    if duration is not None and not (math.isfinite(duration) and duration > 0):
+        raise ParameterError(f"--duration = {duration!r} is not allowed: expected a time > 0 s")
+    base = {k: v for k, v in cfg.items() if k != "sweep"}
+    defects = base.get("defects", [])
+    if any(widths) and not defects:
+        raise ParameterError(f"width {next(w for w in widths if w):g} mm is not allowed: the config has "
+                             "no [[defects]] entry whose defects.W to set; add one or sweep width 0 only")
+    cases = []
+    for v in speeds:
+        for w in widths:
+            d = tomllib.loads(tomli_w.dumps(base))          # a deep copy of plain TOML data
+            d.setdefault(sec, {})["speed_kmh"] = float(v)
+            if duration is not None:
+                d[sec]["duration"] = float(duration)
+            if w == 0:
+                d.pop("defects", None)
+            for e in d.get("defects", []) if w else []:
+                e["W"] = w * 1e-3
+            mm = w if w is not None else 1e3 * max((float(e.get("W", 0.0)) for e in defects), default=0.0)
+            name = f"v{v:g}_w{mm:g}".replace(".", "p")
+            cases.append(Case(name, kind, float(v), mm, case_toml(kind, d)))
+    return cases
+
+
+def run_case(kind: str, toml_text: str, out: str) -> dict:
+    """Run one case in this process (a dask worker) into ``out``, written through a temporary
+    name by the runner.  A plain top-level function of plain arguments, so dask can ship it."""
+    t0 = time.perf_counter()
+    out = Path(out)
+    if kind == "rig":
+        from bearing.rig import simulate
+        simulate(rig_config(tomllib.loads(toml_text)), out=out)      # resultfile.write: .tmp, rename
+    else:
+        from .simulate import run
+        cfg_path = out.with_suffix(".toml")          # the vehicle runner reads a file: the case's
+        tmp = cfg_path.with_name(cfg_path.name + ".tmp")
+        tmp.write_text(toml_text)
+        os.replace(tmp, cfg_path)
+        with contextlib.redirect_stderr(io.StringIO()):
+            res = run(cfg_path, out, log=lambda *a: None)
+        if not res.ok:
+            raise RuntimeError(f"{res.message}; what was computed is in {out}")
+    return {"path": str(out), "wall_s": time.perf_counter() - t0}
+
+
+def is_finished(path, toml_text: str) -> bool:
+    """``path`` opens as a complete axlebox-result of this very config that did not stop early."""
+    try:
+        with resultfile.open_result(path) as f:
+            return (f.attrs.get("config") == toml_text and f.attrs.get("status", "done") == "done"
+                    and "time" in f and "signals" in f)
+    except (OSError, ValueError):
+        return False
+
+
+def run_cases(todo: list[Case], out, scheduler=None, workers=None, log=print) -> list[str]:
+    """Run ``todo`` on dask, one line per finished case; returns the names of the failed ones."""
+    from dask.distributed import Client, LocalCluster, as_completed
+    n = max(1, min(workers or os.cpu_count() or 1, len(todo)))
+    t0 = time.perf_counter()
+    cluster = None
+    if scheduler:
+        try:
+            client = Client(scheduler, timeout="20s")
+        except (OSError, ValueError, TimeoutError) as err:
+            raise ParameterError(f"--scheduler {scheduler!r} is not reachable: {err}") from None
+    else:      # the workers start with Ctrl-C ignored: it stops this process, which closes them
+        main = threading.current_thread() is threading.main_thread()
+        old = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+        try:
+            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                                   silence_logs=logging.CRITICAL)     # a failed case is one line below
+        finally:
+            if main:
+                signal.signal(signal.SIGINT, old)
+        client = Client(cluster)
+    failed = []
+    try:
+        log(f"sweep: {len(todo)} case(s) on {scheduler or f'a local cluster of {n} worker(s)'}")
+        futs = {client.submit(run_case, c.kind, c.toml, str(c.path(out)), pure=False): c for c in todo}
+        for k, fut in enumerate(as_completed(futs), 1):
+            c, head = futs[fut], f"[{k}/{len(todo)}] {futs[fut].name}"
+            try:
+                wall = fut.result()["wall_s"]
+                log(f"{head}: done in {wall:.1f} s (elapsed {time.perf_counter() - t0:.1f} s)")
+            except Exception as err:  # noqa: BLE001 - one case's failure does not stop the others
+                failed.append(c.name)
+                log(f"{head}: failed: {type(err).__name__}: {err}")
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+    return failed
+
+
+def _row(c: Case, path: Path, side: str, sensor: str, ch, verdict: str, lag_s=None, vf_diff=None) -> dict:
+    return dict(file=path.name, speed_kmh=c.speed_kmh, width_mm=c.width_mm, side=side, sensor=sensor,
+                rms=ch.rms, spm_db=ch.spm_db, spm_class=ch.spm_class, VF=ch.VF, FC=ch.FC,
+                kurtosis=ch.kurtosis, lines=" ".join(ch.detected), verdict=verdict, lag_s=lag_s,
+                vf_diff=vf_diff)
+
+
+def rig_rows(c: Case, path: Path) -> list[dict]:
+    """The rig's one sensor: one-channel indicators, searching the fault lines the record holds
+    two periods of (``channel.analyse`` needs that; a 0.3 s run at 20 km/h holds BPFO only)."""
+    from bearing.diagnostics.channel import analyse
+    from bearing.rig import SENSOR
+    from .diagnose import DTRB_BORE
+    from .readers import read
+    rec = read(path, SENSOR, SENSOR)
+    f = rec.orders.at(rec.shaft_hz)
+    lines = tuple(n for n in ("BPFO", "BPFI", "FTF") if rec.left.size / rec.fs >= 2.0 / f[n]) or ("BPFO",)
+    ch = analyse(rec.left, rec.fs, rec.shaft_hz, rec.orders, DTRB_BORE, lines=lines)
+    verdict = f"lines {' '.join(ch.detected)}" if ch.detected else "no fault line"
+    return [_row(c, path, "-", SENSOR, ch, verdict)]
+
+
+def vehicle_rows(c: Case, path: Path):
+    """Both sides of the defect's wheelset (``wheelset`` of the first defect, else ws2) as
+    ``axlebox diagnose`` does: ``(pipelines.report.Case, rows)``."""
+    from .diagnose import analyse_file
+    from .report import Case as ReportCase
+    defects = tomllib.loads(c.toml).get("defects", [])
+    ws = defects[0].get("wheelset") if defects else None
+    _, _, p = analyse_file(path, **(dict(left=f"ws{ws}_L", right=f"ws{ws}_R") if ws else {}))
+    return ReportCase(path, c.speed_kmh, c.width_mm, p), [
+        _row(c, path, s, p.names[i], getattr(p, s), p.verdicts[s][0], p.lag.lag_s, p.vf_diff)
+        for i, s in enumerate(("left", "right"))]
+
+
+def table(rows: list[dict]) -> str:
+    """The printed summary: one line per case and side."""
+    def fmt(v, spec):
+        bad = v is None or (isinstance(v, float) and not math.isfinite(v))
+        return format("-", f">{spec.split('.')[0]}") if bad else format(v, spec)
+    out = [f"{'case':<12} {'km/h':>6} {'mm':>5} {'side':<5} {'sensor':<10} {'RMS m/s2':>9} {'SPM dB':>7} "
+           f"{'VF Hz2':>9} {'lag ms':>7} {'dVF Hz2':>9}  verdict"]
+    for r in rows:
+        lag = None if r["lag_s"] is None else 1e3 * r["lag_s"]
+        out.append(f"{Path(r['file']).stem:<12} {r['speed_kmh']:>6g} {r['width_mm']:>5g} {r['side']:<5} "
+                   f"{r['sensor']:<10} {fmt(r['rms'], '9.4g')} {fmt(r['spm_db'], '7.1f')} "
+                   f"{fmt(r['VF'], '9.4g')} {fmt(lag, '7.2f')} {fmt(r['vf_diff'], '9.3g')}  {r['verdict']}")
+    return "\n".join(out)
+
+
+def summarise(cases: list[Case], out, log=print) -> list[dict]:
+    """Diagnose every finished case, print the table, write ``out/summary.csv``."""
+    from .report import write_tables
+    rows, report_cases = [], []
+    for c in (c for c in cases if is_finished(c.path(out), c.toml)):
+        try:
+            if c.kind == "rig":
+                rows += rig_rows(c, c.path(out))
+            else:
+                rc, r = vehicle_rows(c, c.path(out))
+                report_cases.append(rc)
+                rows += r
+        except ParameterError as err:
+            log(f"summary: {c.name}: not analysed: {err}")
+    if not rows:
+        return rows
+    log(table(rows))
+    if report_cases:
+        write_tables(report_cases, Path(out))          # summary.csv and summary.json, as axlebox report
+    else:
+        tmp = Path(out) / "summary.csv.tmp"
+        with tmp.open("w", newline="") as fh:
+            w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+            w.writeheader()
+            w.writerows([{k: "" if v is None else v for k, v in r.items()} for r in rows])
+        os.replace(tmp, Path(out) / "summary.csv")
+    log(f"sweep: wrote {Path(out) / 'summary.csv'}")
+    return rows
+
+
+def sweep(config, out, *, speeds=None, widths=None, duration=None, scheduler=None, workers=None,
+          log=print) -> dict:
+    """The whole command.  Returns ``{"cases", "skipped", "ran", "failed", "rows"}``."""
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+        raise ParameterError(f"--workers = {workers!r} is not allowed: expected an integer >= 1")
+    if workers is not None and scheduler:
+        raise ParameterError(f"--workers {workers} is not allowed with --scheduler: the scheduler's "
+                             "cluster has its own workers")
+    cases = matrix(*load_config(config), speeds, widths, duration)
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    for p in sorted(out.glob("*.tmp")):
+        p.unlink()
+        log(f"sweep: removed {p.name} (left by an interrupted run)")
+    todo = [c for c in cases if not is_finished(c.path(out), c.toml)]
+    for c in cases:
+        if c not in todo:
+            log(f"sweep: {c.name}: skipped (finished)")
+        elif c.path(out).exists():
+            log(f"sweep: {c.name}: its file is not a finished run of this config: recomputing")
+    failed = run_cases(todo, out, scheduler, workers, log) if todo else []
+    log(f"sweep: {len(cases)} case(s): {len(cases) - len(todo)} skipped, {len(todo) - len(failed)} run, "
+        f"{len(failed)} failed")
+    return {"cases": cases, "skipped": [c.name for c in cases if c not in todo],
+            "ran": [c.name for c in todo if c.name not in failed], "failed": failed,
+            "rows": summarise(cases, out, log)}
