@@ -16,7 +16,7 @@ import numpy as np
 
 from . import quasistatic
 from .kernel import dtrb_rhs
-from .layout import ETA, RHO, TH_T, nominal_state, n_state, views
+from .layout import CPHI, ETA, PHI, RHO, TH_T, nominal_state, n_state, views
 
 
 def ring_motion(omega_w: float, uo=(0.0, 0.0, 0.0), t: float = 0.0) -> np.ndarray:
@@ -28,16 +28,20 @@ def ring_motion(omega_w: float, uo=(0.0, 0.0, 0.0), t: float = 0.0) -> np.ndarra
     return ring
 
 
-def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol: float = 1e-7):
+def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol: float = 1e-7,
+                 phase: float = 0.0):
     """``(y, uo)``: the bearing state and the outer ring's displacement at which the bearing
     carries ``F_outer`` (N, the load applied to the outer ring) with no radial, axial or tilt
     acceleration of any roller.  ``tol``: the ring residual and ``roller_tol`` the rollers'
-    accepted once Newton stalls, both relative to the load.  Raises RuntimeError when it does
-    not converge."""
+    accepted once Newton stalls, both relative to the load.  ``phase`` (rad) turns the roller
+    set and cages from their nominal places first.  Raises RuntimeError when it does not
+    converge."""
     F_outer = np.asarray(F_outer, float)
     Fn = float(np.linalg.norm(F_outer))
     y = nominal_state(p, omega_w)
-    rol, _ = views(y, p.Z)
+    rol, cag = views(y, p.Z)
+    rol[:, :, PHI] += phase
+    cag[:, CPHI] += phase
     n = n_state(p.Z)
     yd, F, Q = np.zeros(n), np.zeros((2, 6)), np.zeros((2, p.Z, 6))
 
@@ -62,6 +66,7 @@ def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol
         return np.sqrt(r[..., 0] ** 2 + r[..., 1] ** 2 + (r[..., 2] / p.L_b) ** 2)
 
     nominal = views(nominal_state(p, omega_w), p.Z)[0]
+    nominal[:, :, PHI] += phase
 
     def solve_rollers(uo):
         """Block Newton with backtracking: every roller is independent once the rings are placed.

@@ -113,20 +113,29 @@ def _arrays(path):
 
 
 def test_same_config_and_seed_give_identical_arrays(tmp_path):
-    """One case in a dask worker and again in this process: every dataset of signals/ and
-    bearing/ bit for bit equal (RK4 with a fixed step is deterministic); a different seed turns
-    the rollers and changes them, so the equality is not vacuous."""
+    """The same case swept twice (each time in a fresh dask worker) and run twice in this
+    process: every dataset of signals/ and bearing/ bit for bit equal within each pair (RK4 with
+    a fixed step is deterministic); a different seed turns the rollers and changes them, so the
+    equality is not vacuous.  (A worker's result against this process's is not compared: on a
+    clean checkout the two compiled the fastmath kernels separately, and once, in CI, a contact
+    force deep in the run differed in its last bits; see the closing note of issue 7.)"""
     cfg = _config(tmp_path, duration=0.05, seed=3)
-    res = sweep(cfg, tmp_path / "a", speeds=[48.0], widths=[2.0], workers=1, log=lambda *a: None)
-    assert res["ran"] == ["v48_w2"]
     case = matrix(*load_config(cfg), speeds=[48.0], widths=[2.0])[0]
-    run_case(case.kind, case.toml, str(tmp_path / "b.h5"))
-    a, cfg_a = _arrays(tmp_path / "a" / "v48_w2.h5")
-    b, cfg_b = _arrays(tmp_path / "b.h5")
-    assert cfg_a == cfg_b == case.toml and "W = 0.002" in cfg_a
-    assert sorted(a) == sorted(b) and "signals/outer_ring/acceleration" in a
-    for k in a:
-        assert np.array_equal(a[k], b[k]), k
+    for d in ("a", "a2"):
+        res = sweep(cfg, tmp_path / d, speeds=[48.0], widths=[2.0], workers=1, log=lambda *a: None)
+        assert res["ran"] == ["v48_w2"]
+    for f in ("b.h5", "b2.h5"):
+        run_case(case.kind, case.toml, str(tmp_path / f))
+    runs = {n: _arrays(p) for n, p in (("a", tmp_path / "a" / "v48_w2.h5"),
+                                       ("a2", tmp_path / "a2" / "v48_w2.h5"),
+                                       ("b", tmp_path / "b.h5"), ("b2", tmp_path / "b2.h5"))}
+    for x, y in (("a", "a2"), ("b", "b2")):
+        (a, cfg_a), (b, cfg_b) = runs[x], runs[y]
+        assert cfg_a == cfg_b == case.toml and "W = 0.002" in cfg_a
+        assert sorted(a) == sorted(b) and "signals/outer_ring/acceleration" in a
+        for k in a:
+            assert np.array_equal(a[k], b[k]), (x, y, k)
+    a = runs["a"][0]
     other = matrix(*load_config(_config(tmp_path, duration=0.05, seed=4, name="s4.toml")),
                    speeds=[48.0], widths=[2.0])[0]
     run_case(other.kind, other.toml, str(tmp_path / "c.h5"))
