@@ -4,6 +4,7 @@
 Rigid bodies here (the coupled flexible car is the validation case's, and slower): the
 bearings are what is under test.
 """
+import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -120,3 +121,22 @@ def test_simulate_writes_the_bearings(tmp_path):
             Fz = f[f"bearings/{n}/ring_loads"][:, 1, 2]
             assert 50e3 < np.median(Fz) < 60e3 and 40e3 < Fz.min() and Fz.max() < 75e3, n
             assert f[f"bearings/{n}/roller1_cup_force"].shape == (201, 2)
+
+
+def test_shipped_configs_are_the_papers_cases():
+    """configs/validation_48kmh.toml: 48 km/h, FRA class 5, DTRBs, one 50.4 x 2 x 2 mm defect in
+    row 2 of wheelset 2's gearbox-side bearing (paper, validation); configs/study.toml: widths
+    0, 1, 3, 5 mm x 20, 40, 60, 80 km/h (paper, study), every case long enough for the diagnosis
+    (two cage periods after the 0.5 s fade-in)."""
+    from pipelines.sweep import load_config, matrix
+    cfg, _ = vconfig.load(ROOT / "configs" / "validation_48kmh.toml")
+    assert (cfg["run"]["speed_kmh"], cfg["track"]["fra_class"], cfg["joint"]["model"]) == (48.0, 5, "dtrb")
+    (d,) = cfg["defects"]
+    assert (d["wheelset"], d["side"], d["defect"].row) == (2, cfg["gearbox"]["side"], 2)
+    assert (d["defect"].L, d["defect"].W, d["defect"].H) == (50.4e-3, 2e-3, 2e-3)
+    cases = matrix(*load_config(ROOT / "configs" / "study.toml"))
+    assert sorted({(c.speed_kmh, c.width_mm) for c in cases}) == sorted(
+        (v, w) for v in (20.0, 40.0, 60.0, 80.0) for w in (0.0, 1.0, 3.0, 5.0))
+    ftf = orders(BearingParams()).FTF * shaft_hz(20.0)
+    T = tomllib.loads((ROOT / "configs" / "study.toml").read_text())["run"]["duration"]
+    assert T - 0.5 >= 2 / ftf
