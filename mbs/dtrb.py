@@ -4,8 +4,12 @@ equilibrium, for :func:`mbs.vehicle.build` (``joint.model = "dtrb"``).
 The start: the car is first put in equilibrium with stiff row bushings in place of the bearings
 (:mod:`mbs.statics`; the bearings' roller states would make that Newton solve forty times
 larger); each bushing pair's load is then the load its bearing carries, and the bearing's own
-quasi-static solution (:func:`bearing.equilibrium.static_state`) gives its roller and cage
-states and the outer ring's displacement, which the axle-box is moved to (micrometres).
+quasi-static solution (:func:`bearing.equilibrium.static_state`, of the healthy bearing, with
+the roller set turned half a pitch when a roller would sit in a defect) gives its roller and
+cage states and the outer ring's displacement, which the axle-box is moved to (micrometres).
+The row bushings leave the rings free to tilt against each other; the bearings do not, so the
+front (flexible) wheelsets start with the axle's bending tilt and a load transient of about
+15 % in the first milliseconds.
 
 Rows: the kernel's row 1 lies at -y of the bearing centre, row 2 at +y (bearing/kernel.py),
 and the bearing frame here is the track frame.  A defect's ``row`` counts from the inboard row
