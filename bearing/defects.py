@@ -81,3 +81,16 @@ def table(defects, p: BearingParams) -> np.ndarray:
         spans.append((start, tau, d.row))
         rows.append([KINDS[d.kind], d.row - 1, start, tau, d.depth(p), s1, s2, 0.0])
     return np.array(rows, dtype=float).reshape(-1, 8)
+
+
+def phase_clear_of(D: np.ndarray, Z: int, phase: float = 0.0) -> float:
+    """``phase`` (rad), moved on by eighths of the roller pitch until no roller of a set at
+    ``2 pi k / Z + phase`` sits inside a defect of the table ``D``: a start in the healthy
+    bearing's equilibrium is then also the defective bearing's (defects are narrower than the
+    pitch, :func:`table`, so a clear place exists)."""
+    pitch = 2 * pi / Z
+    for k in range(8):
+        phi = pitch * np.arange(Z) + phase + k * pitch / 8
+        if not any(np.any(np.mod(phi - start, 2 * pi) < tau) for _, _, start, tau, *_ in D):
+            return phase + k * pitch / 8
+    return phase + 0.5 * pitch

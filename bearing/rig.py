@@ -197,16 +197,14 @@ def _rig_vector(c: RigConfig, u_eq) -> np.ndarray:
 
 def initial_state(c: RigConfig):
     """``(Y0, P, D, rig)``: the quasi-static start, the kernel's parameter vector, defect table
-    and rig vector.  The seed turns the roller set by a random fraction of the roller pitch."""
+    and rig vector.  The seed turns the roller set by a random fraction of the roller pitch,
+    moved on until no roller sits in a defect; the equilibrium is the healthy bearing's there
+    (a roller inside a defect has none)."""
     p = c.bearing
     P, D = pack(p), _defects.table(c.defects, p)
-    y, uo = static_state(p, P, D, (0.0, c.F_a, -c.F_r), c.omega_w)
-    if c.seed:
-        from .layout import CPHI, PHI, views
-        shift = np.random.default_rng(c.seed).uniform(0, 2 * np.pi / p.Z)
-        rol, cag = views(y, p.Z)
-        rol[:, :, PHI] += shift
-        cag[:, CPHI] += shift
+    shift = np.random.default_rng(c.seed).uniform(0, 2 * np.pi / p.Z) if c.seed else 0.0
+    y, uo = static_state(p, P, np.zeros((0, 8)), (0.0, c.F_a, -c.F_r), c.omega_w,
+                         phase=_defects.phase_clear_of(D, p.Z, shift))
     Y = np.concatenate([y, uo, np.zeros(3)])
     return Y, P, D, _rig_vector(c, uo)
 

@@ -69,22 +69,11 @@ def start(cfg: dict, loads: dict, omega_w: float, log=print) -> dict:
         # (3 and 5 mm defects at the top), and the first passes over the defect are the run's
         # (tolerances: 0.06 N on the rings, 6 N on a roller under a 56 kN load: nothing to the run)
         yb, uo = static_state(p, P, np.zeros((0, 8)), F, omega_w, tol=1e-6, roller_tol=1e-4,
-                              phase=_phase_clear_of(D, p.Z))
+                              phase=bdefects.phase_clear_of(D, p.Z))
         out[key] = (P, D, yb, np.asarray(uo, float))
     log(f"bearings: {len(out)} DTRBs in equilibrium, outer-ring loads "
         f"{min(-F[2] for F in loads.values()) / 1e3:.1f}-{max(-F[2] for F in loads.values()) / 1e3:.1f} kN")
     return out
-
-
-def _phase_clear_of(D: np.ndarray, Z: int) -> float:
-    """0, or half a roller pitch when a roller at its nominal place would start inside a defect
-    (the healthy equilibrium would have it carrying load there); defects are narrower than the
-    pitch (bearing/defects.py), so then none does."""
-    phi = 2 * np.pi * np.arange(Z) / Z
-    for _kind, _row, start, tau, *_ in D:
-        if np.any(np.mod(phi - start, 2 * np.pi) < tau):
-            return np.pi / Z
-    return 0.0
 
 
 def place_axleboxes(model, y, start_states: dict) -> np.ndarray:
