@@ -169,15 +169,44 @@ class RigResult:
         return fig
 
 
+RIG_SECTIONS = ("rig", "bearing", "defects")
+
+
+def config_from_dict(d: dict) -> RigConfig:
+    """A :class:`RigConfig` from a parsed rig TOML (the layout :meth:`RigConfig.to_toml`
+    writes); unknown sections and fields are named."""
+
+    def build(cls, fields, where, **objects):
+        if not isinstance(fields, dict):
+            raise ParameterError(f"{where} = {fields!r} is not allowed: expected a [{where}] table")
+        known = [f.name for f in dataclasses.fields(cls) if f.name not in objects]
+        for k in fields:
+            if k not in known:
+                raise ParameterError(f"{where}.{k} is not a field of [{where}]: expected one of "
+                                     f"{', '.join(known)}")
+        try:
+            return cls(**fields, **objects)
+        except TypeError as err:
+            raise ParameterError(f"[{where}] {fields!r} is not allowed: {err}") from None
+
+    for sec in d:
+        if sec not in RIG_SECTIONS:
+            raise ParameterError(f"[{sec}] is not a section of a rig config: expected one of "
+                                 f"{', '.join(RIG_SECTIONS)}")
+    defects = d.get("defects", [])
+    if not isinstance(defects, list):
+        raise ParameterError(f"defects = {defects!r} is not allowed: expected [[defects]] tables")
+    return build(RigConfig, d.get("rig", {}), "rig",
+                 bearing=build(BearingParams, d.get("bearing", {}), "bearing"),
+                 defects=tuple(build(_defects.Defect, e, "defects") for e in defects))
+
+
 def load(path) -> RigResult:
     """Read a rig result written by :meth:`RigResult.save` (the configuration is kept as TOML
     text in the file; the returned ``config`` is rebuilt from it)."""
     import tomllib
     with resultfile.open_result(path) as f:
-        cfg = tomllib.loads(f.attrs["config"])
-        bearing = BearingParams(**cfg["bearing"])
-        defs = tuple(_defects.Defect(**d) for d in cfg.get("defects", []))
-        config = RigConfig(bearing=bearing, defects=defs, **cfg["rig"])
+        config = config_from_dict(tomllib.loads(f.attrs["config"]))
         return RigResult(config=config, time=f["time"][:],
                          acceleration=f[f"signals/{SENSOR}/acceleration"][:],
                          ring_loads=f["bearing/ring_loads"][:], Q=f["bearing/Q"][:].astype(float),

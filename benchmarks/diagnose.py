@@ -27,6 +27,7 @@ sys.path = [d for d in sys.path if os.path.abspath(d or ".") != os.path.dirname(
 import numpy as np  # noqa: E402
 
 from bearing import resultfile  # noqa: E402
+from bearing.diagnostics.channel import jsonable  # noqa: E402
 from bearing.diagnostics.synthetic import coaxial_pair  # noqa: E402
 from bearing.frequencies import orders, shaft_hz  # noqa: E402
 from bearing.params import BearingParams  # noqa: E402
@@ -74,7 +75,7 @@ def main():
                             diagnose.DTRB_BORE, names=rec.names)
         t_pair = time.perf_counter() - t
         t = time.perf_counter()
-        diagnose.write_json(Path(tmp) / "again.json", diagnose._json(pair.to_dict()))
+        diagnose.write_json(Path(tmp) / "again.json", jsonable(pair.to_dict()))
         t_json = time.perf_counter() - t
 
     print(f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}, "

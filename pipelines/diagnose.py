@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
+from bearing.diagnostics.channel import jsonable
 from bearing.frequencies import FaultOrders, orders, shaft_hz
 from bearing.params import BearingParams
 from geometry._params import ParameterError
@@ -77,7 +78,7 @@ def shaft_speed(rec: Record, shaft=None, speed_kmh=None, wheel_radius=0.42, rpm=
     return rec.shaft_hz
 
 
-def write_json(path, data: dict) -> Path:
+def writejsonable(path, data: dict) -> Path:
     """JSON through ``path.tmp`` and an atomic rename (a reader never sees half a file)."""
     path = Path(path)
     if not path.parent.is_dir():
@@ -86,21 +87,6 @@ def write_json(path, data: dict) -> Path:
     tmp.write_text(json.dumps(data, indent=2, allow_nan=False) + "\n")
     os.replace(tmp, path)
     return path
-
-
-def _json(v):
-    """JSON-safe: numpy scalars to Python, non-finite floats to None."""
-    if isinstance(v, dict):
-        return {str(k): _json(w) for k, w in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [_json(w) for w in v]
-    if isinstance(v, (np.floating, float)):
-        return float(v) if np.isfinite(v) else None
-    if isinstance(v, np.integer):
-        return int(v)
-    if isinstance(v, np.bool_):
-        return bool(v)
-    return v
 
 
 def analyse_file(path, *, left=None, right=None, fs=None, column: int = 2, scale: float = 1.0,
@@ -150,7 +136,7 @@ def run(path, *, json_out=None, figures=None, log=print, **options):
     for s, (v, why) in res.verdicts.items():
         log(f"{s}: {v}: {why}")
     if json_out is not None:
-        log(f"wrote {write_json(json_out, _json({'input': info, **res.to_dict()}))}")
+        log(f"wrote {writejsonable(json_out, jsonable({'input': info, **res.to_dict()}))}")
     if figures is not None:
         out = Path(figures)
         out.mkdir(parents=True, exist_ok=True)

@@ -31,7 +31,9 @@ from bearing.diagnostics.pair import PairResult
 from geometry._params import ParameterError
 
 from . import report_figures as figs
-from .diagnose import _json, analyse_file
+from bearing.diagnostics.channel import jsonable
+
+from .diagnose import analyse_file
 
 SUMMARY_FIELDS = ("rms", "peak", "kurtosis", "crest", "spm_db", "spm_class", "FC", "VF")
 
@@ -122,17 +124,22 @@ def _atomic_text(path: Path, text: str) -> Path:
     return path
 
 
-def write_tables(cases: list[Case], out: Path) -> tuple[Path, Path]:
-    rows = [_json(c.row()) for c in cases]
-    j = _atomic_text(out / "summary.json", json.dumps(
-        {"cases": rows, "diagnoses": [_json(c.pair.to_dict()) for c in cases]}, indent=1))
-    tmp = out / "summary.csv.part"
+def write_csv(path: Path, rows: list[dict]) -> Path:
+    """``rows`` (same keys) as CSV through a temporary name; None is written empty."""
+    tmp = path.with_name(path.name + ".part")
     with tmp.open("w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
-    os.replace(tmp, out / "summary.csv")
-    return j, out / "summary.csv"
+    os.replace(tmp, path)
+    return path
+
+
+def write_tables(cases: list[Case], out: Path) -> tuple[Path, Path]:
+    rows = [jsonable(c.row()) for c in cases]
+    j = _atomic_text(out / "summary.json", json.dumps(
+        {"cases": rows, "diagnoses": [jsonable(c.pair.to_dict()) for c in cases]}, indent=1))
+    return j, write_csv(out / "summary.csv", rows)
 
 
 def _table_html(cases: list[Case]) -> str:

@@ -14,8 +14,6 @@ through :mod:`pipelines.report`, the rig's one sensor through :func:`bearing.dia
 from __future__ import annotations
 
 import contextlib
-import csv
-import dataclasses
 import io
 import logging
 import math
@@ -33,7 +31,6 @@ from bearing import resultfile
 from geometry._params import ParameterError
 
 SWEEP_FIELDS = ("speeds_kmh", "widths_mm")
-RIG_SECTIONS = ("rig", "bearing", "defects")
 RUN_SECTION = {"rig": "rig", "vehicle": "run"}       # where speed_kmh and duration live
 
 
@@ -82,42 +79,11 @@ def _numbers(values, name: str, what: str, zero_ok: bool) -> list[float]:
     return list(dict.fromkeys(float(v) for v in values))
 
 
-def rig_config(d: dict):
-    """A :class:`bearing.rig.RigConfig` from a parsed rig TOML (the layout ``RigConfig.to_toml``
-    writes and :func:`bearing.rig.load` reads); unknown sections and fields are named."""
-    from bearing.defects import Defect
-    from bearing.params import BearingParams
-    from bearing.rig import RigConfig
-
-    def build(cls, fields, where, **objects):
-        if not isinstance(fields, dict):
-            raise ParameterError(f"{where} = {fields!r} is not allowed: expected a [{where}] table")
-        known = [f.name for f in dataclasses.fields(cls) if f.name not in objects]
-        for k in fields:
-            if k not in known:
-                raise ParameterError(f"{where}.{k} is not a field of [{where}]: expected one of "
-                                     f"{', '.join(known)}")
-        try:
-            return cls(**fields, **objects)
-        except TypeError as err:
-            raise ParameterError(f"[{where}] {fields!r} is not allowed: {err}") from None
-
-    for sec in d:
-        if sec not in RIG_SECTIONS:
-            raise ParameterError(f"[{sec}] is not a section of a rig config: expected one of "
-                                 f"{', '.join(RIG_SECTIONS)}")
-    defects = d.get("defects", [])
-    if not isinstance(defects, list):
-        raise ParameterError(f"defects = {defects!r} is not allowed: expected [[defects]] tables")
-    return build(RigConfig, d.get("rig", {}), "rig",
-                 bearing=build(BearingParams, d.get("bearing", {}), "bearing"),
-                 defects=tuple(build(Defect, e, "defects") for e in defects))
-
-
 def case_toml(kind: str, d: dict) -> str:
     """The case's config as its runner stores it, validated here before any worker starts."""
     if kind == "rig":
-        return rig_config(d).to_toml()
+        from bearing.rig import config_from_dict
+        return config_from_dict(d).to_toml()
     from mbs.config import validate
     validate(d)
     return tomli_w.dumps(d)
@@ -171,8 +137,8 @@ def run_case(kind: str, toml_text: str, out: str) -> dict:
     t0 = time.perf_counter()
     out = Path(out)
     if kind == "rig":
-        from bearing.rig import simulate
-        simulate(rig_config(tomllib.loads(toml_text)), out=out)      # resultfile.write: .tmp, rename
+        from bearing.rig import config_from_dict, simulate
+        simulate(config_from_dict(tomllib.loads(toml_text)), out=out)      # resultfile.write: .tmp, rename
     else:
         from .simulate import run
         cfg_path = out.with_suffix(".toml")          # the vehicle runner reads a file: the case's
@@ -288,7 +254,7 @@ def table(rows: list[dict]) -> str:
 
 def summarise(cases: list[Case], out, log=print) -> list[dict]:
     """Diagnose every finished case, print the table, write ``out/summary.csv``."""
-    from .report import write_tables
+    from .report import write_csv, write_tables
     rows, report_cases = [], []
     for c in (c for c in cases if is_finished(c.path(out), c.toml)):
         try:
@@ -306,12 +272,7 @@ def summarise(cases: list[Case], out, log=print) -> list[dict]:
     if report_cases:
         write_tables(report_cases, Path(out))          # summary.csv and summary.json, as axlebox report
     else:
-        tmp = Path(out) / "summary.csv.tmp"
-        with tmp.open("w", newline="") as fh:
-            w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-            w.writeheader()
-            w.writerows([{k: "" if v is None else v for k, v in r.items()} for r in rows])
-        os.replace(tmp, Path(out) / "summary.csv")
+        write_csv(Path(out) / "summary.csv", rows)
     log(f"sweep: wrote {Path(out) / 'summary.csv'}")
     return rows
 

@@ -14,6 +14,7 @@ import pytest
 import scipy.io
 
 from bearing import resultfile
+from bearing.diagnostics.channel import jsonable
 from bearing.diagnostics.criterion import VF_METRO, VF_RANGE_PAPER, Criterion
 from bearing.diagnostics.pair import analyse_pair
 from bearing.frequencies import FaultOrders, orders, shaft_hz
@@ -92,7 +93,7 @@ def two_channels(n=int(1.0 * FS)):
 def reference_result():
     left, right = two_channels()
     res = analyse_pair(left, right, FS, SHAFT, orders(BearingParams()), diagnose.DTRB_BORE)
-    return left, right, json.loads(json.dumps(diagnose._json(res.to_dict())))
+    return left, right, json.loads(json.dumps(jsonable(res.to_dict())))
 
 
 def write_mat73(path, variables: dict):

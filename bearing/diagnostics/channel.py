@@ -28,13 +28,18 @@ from .indicators import time_indicators
 from .spectral import fc_vf
 
 
-def _json(v):
-    if isinstance(v, float) and not math.isfinite(v):
-        return None
+def jsonable(v):
+    """JSON-safe copy: numpy scalars to Python, non-finite floats to None, keys to str."""
     if isinstance(v, dict):
-        return {k: _json(w) for k, w in v.items()}
+        return {str(k): jsonable(w) for k, w in v.items()}
     if isinstance(v, (list, tuple)):
-        return [_json(w) for w in v]
+        return [jsonable(w) for w in v]
+    if isinstance(v, (np.floating, float)):
+        return float(v) if np.isfinite(v) else None
+    if isinstance(v, np.integer):
+        return int(v)
+    if isinstance(v, np.bool_):
+        return bool(v)
     return v
 
 
@@ -83,7 +88,7 @@ class ChannelResult:
         d["band"] = list(self.band)
         d["lines"] = {k: r.to_dict() for k, r in self.lines.items()}
         d["detected"] = self.detected
-        return _json(d)
+        return jsonable(d)
 
 
 def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
