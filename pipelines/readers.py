@@ -124,6 +124,8 @@ def _read_result(path, left, right, fs, column: int) -> Record:
             chans.append(_channel(ds[:, column], n, side))
         fs_file = f[f"signals/{names[0]}/acceleration"].attrs.get("fs_hz")
         cfg = tomllib.loads(str(f.attrs.get("config", "")))
+        # a vehicle run: its config has [run] (a rig's has [rig]) but may leave [track] out
+        vehicle = "rig" not in cfg and ("run" in cfg or "wheelrail" in f)
     rec = Record(chans[0], chans[1], _need_fs(fs if fs is not None else fs_file, "this result file"),
                  tuple(names), "axlebox-result")
     if "rig" in cfg:                          # standalone rig: its own bearing and wheel
@@ -131,7 +133,7 @@ def _read_result(path, left, right, fs, column: int) -> Record:
         rec.orders = orders(BearingParams(**cfg["bearing"])) if "bearing" in cfg else None
     elif "run" in cfg and "speed_kmh" in cfg["run"]:
         rec.shaft_hz = shaft_hz(cfg["run"]["speed_kmh"], cfg.get("wheelset", {}).get("r0", 0.42))
-    if "track" in cfg:                        # vehicle run: drop the irregularity's fade-in
+    if vehicle:                               # drop the track irregularity's fade-in
         n0 = int(round(TRACK_FADE_IN_S * rec.fs))
         if rec.left.size > 2 * n0:
             rec.left, rec.right = rec.left[n0:], rec.right[n0:]

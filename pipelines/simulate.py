@@ -75,7 +75,7 @@ def tables(cfg: dict):
     lay = TrackLayout(r0=cfg["wheelset"]["r0"], gauge=w["gauge"], back_to_back=w["back_to_back"],
                       cant=w["cant"])
     par = WheelRailParams(mu=w["mu"], law=w["law"], nx=w["fastsim_grid"], ny=w["fastsim_grid"],
-                          update=w["fastsim_update"])
+                          update=w["fastsim_update"], smooth_y=w["smooth_y"])
     return build_tables(_profile(w["wheel"], "wheel"), _profile(w["rail"], "rail"), lay, par)
 
 
