@@ -1,0 +1,96 @@
+"""The paper's validation case, as shipped (configs/validation_48kmh.toml): the B-type car at
+48 km/h on FRA class 5 track, the front bogie flexible, eight DTRBs, a 50.4 x 2 x 2 mm outer-ring
+defect in row 2 of wheelset 2's gearbox-side (right) bearing.  The paper's Fig. 8 and its text:
+impulses every 0.023 s on the defect side (43.48 Hz against a BPFO of 43.93 Hz), the same
+period on the healthy side at a lower amplitude and later, amplitudes of about 20 m/s^2, and a
+roller contact force that turns with the cage (0.456 s, 2.193 Hz against an FTF of 2.196 Hz).
+
+One run of 1.5 s (2.0 s with AXLEBOX_FULL=1): after the 0.5 s fade-in 1 s is left, 44 fault
+periods and 2.2 cage periods.
+"""
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+from conftest import full_size
+
+from bearing.diagnostics.envelope import envelope
+from bearing.diagnostics.lag import time_lag
+from bearing.frequencies import orders, shaft_hz
+from bearing.params import BearingParams
+from pipelines import readers
+from pipelines import simulate as psim
+
+ROOT = Path(__file__).parents[1]
+FADE = readers.TRACK_FADE_IN_S
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("validation") / "validation.h5"
+    psim.run(ROOT / "configs" / "validation_48kmh.toml", out, duration=2.0 if full_size() else 1.5,
+             log=lambda *_: None)
+    o = orders(BearingParams())
+    f_r = shaft_hz(48.0, 0.42)
+    return out, readers.read(out), o.BPFO * f_r, o.FTF * f_r
+
+
+def envelope_period(x, fs, f0, band=None):
+    """The impulse period: the highest envelope autocorrelation within +-30 % of 1/f0 (s), and
+    that correlation (1 at zero lag)."""
+    e = envelope(x, fs, band)
+    e = e - e.mean()
+    ac = np.correlate(e, e, "full")[e.size - 1:]
+    lag = np.arange(ac.size) / fs
+    sel = np.flatnonzero((lag > 0.7 / f0) & (lag < 1.3 / f0))
+    i = sel[np.argmax(ac[sel])]
+    return lag[i], ac[i] / ac[0]
+
+
+@pytest.mark.slow
+def test_impulses_every_bpfo_period_on_both_sides_later_and_weaker_on_the_healthy_side(run):
+    """Defect side (right): envelope period 1/BPFO within 3 % (the paper: 0.023 s, 1 % from its
+    BPFO; the rest is roller slip).  Healthy side (left): the same period, found in the
+    wheelset-bending band 300-800 Hz through which it arrives, at a lower RMS and peak.  The
+    healthy side's envelope trails the defect side's by 0.5-5 ms (the paper: 1.1-4.2 ms)."""
+    _, rec, bpfo, _ = run
+    T_d, r_d = envelope_period(rec.right, rec.fs, bpfo)
+    T_h, r_h = envelope_period(rec.left, rec.fs, bpfo, band=(300.0, 800.0))
+    assert abs(T_d * bpfo - 1.0) < 0.03 and r_d > 0.5, (T_d, r_d)
+    assert abs(T_h * bpfo - 1.0) < 0.03 and r_h > 0.5, (T_h, r_h)
+    assert rec.left.std() < rec.right.std() and np.abs(rec.left).max() < np.abs(rec.right).max()
+    lag = time_lag(rec.right, rec.left, rec.fs, max_lag_s=0.5 / bpfo)
+    assert lag.leading == "a" and 0.5e-3 < lag.lag_s < 5e-3, lag
+
+
+@pytest.mark.slow
+def test_peak_accelerations_are_of_the_papers_order(run):
+    """The paper reads about 20 m/s^2 on the defect side (Fig. 8a, measured and simulated).  Ours
+    is within a factor of 10 of it (the defect side rings the coarse axle-box's 2.7 kHz mode
+    at 1 % modal damping, so its peaks are about 5x the paper's; benchmarks/README.md), and the
+    healthy side's peaks are between a tenth and the whole of the defect side's."""
+    _, rec, _, _ = run
+    peak_d, peak_h = np.abs(rec.right).max(), np.abs(rec.left).max()
+    assert 2.0 < peak_d < 200.0, peak_d
+    assert 0.1 * peak_d < peak_h < peak_d, (peak_h, peak_d)
+
+
+@pytest.mark.slow
+def test_roller_contact_force_turns_with_the_cage(run):
+    """Roller 1's outer-race contact force in both rows of the defective bearing: loaded once per
+    cage revolution as the roller passes the load zone, so its period is 1/FTF within 3 % (the
+    paper: 0.456 s against 1/FTF = 0.455 s)."""
+    path, _, _, ftf = run
+    with h5py.File(path, "r") as f:
+        F = f["bearings/bearing2R/roller1_cup_force"][:]
+        fs = f["bearings/bearing2R/roller1_cup_force"].shape[0] / f["time"][-1]
+    F = F[int(FADE * fs):]
+    assert F.max() > 5e3                              # it does carry load
+    for row in (0, 1):
+        x = F[:, row] - F[:, row].mean()
+        ac = np.correlate(x, x, "full")[x.size - 1:]
+        lag = np.arange(ac.size) / fs
+        sel = np.flatnonzero((lag > 0.7 / ftf) & (lag < 1.3 / ftf))
+        T = lag[sel[np.argmax(ac[sel])]]
+        assert abs(T * ftf - 1.0) < 0.03, (row, T, 1 / ftf)
