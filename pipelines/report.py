@@ -30,6 +30,7 @@ from bearing import resultfile
 from bearing.diagnostics.pair import PairResult
 from geometry._params import ParameterError
 
+from . import conclusions
 from . import report_figures as figs
 from bearing.diagnostics.channel import jsonable
 
@@ -46,6 +47,7 @@ class Case:
     speed_kmh: float
     width_mm: float
     pair: PairResult
+    defect_side: str | None = None      # "left"/"right": the defective bearing's channel
 
     @property
     def label(self) -> str:
@@ -70,14 +72,21 @@ class Case:
 
 def case_parameters(path) -> tuple[float, float]:
     """``(speed_kmh, width_mm)`` from the config stored in an axlebox-result file."""
+    return _case(path)[:2]
+
+
+def _case(path) -> tuple[float, float, str | None]:
+    """``(speed_kmh, width_mm, defect_side)``: the side ("left"/"right", from ``defects[].side``
+    L/R, which the default channels ws2_L / ws2_R read) of the widest defect, None without."""
     with resultfile.open_result(path) as f:
         cfg = tomllib.loads(str(f.attrs.get("config", "")))
     speed = cfg.get("run", {}).get("speed_kmh", cfg.get("rig", {}).get("speed_kmh"))
     if speed is None:
         raise ParameterError(f"{str(path)!r}: its config has no run.speed_kmh or rig.speed_kmh: "
                              "expected the speed of the case")
-    widths = [float(d.get("W", 0.0)) for d in cfg.get("defects", [])]
-    return float(speed), 1e3 * max(widths, default=0.0)
+    defects = sorted(cfg.get("defects", []), key=lambda d: float(d.get("W", 0.0)))
+    side = {"L": "left", "R": "right"}.get(defects[-1].get("side")) if defects else None
+    return float(speed), 1e3 * float(defects[-1].get("W", 0.0)) if defects else 0.0, side
 
 
 def _is_result(path: Path) -> bool:
@@ -164,7 +173,8 @@ def _table_html(cases: list[Case]) -> str:
     return "\n".join(out)
 
 
-def write_html(cases, figures: list[tuple[str, Path]], modes: list[Path], out: Path) -> Path:
+def write_html(cases, figures: list[tuple[str, Path]], modes: list[Path], out: Path,
+               claims=()) -> Path:
     esc = html.escape
     crit = cases[0].pair.criterion
     parts = ["<!doctype html><html><head><meta charset='utf-8'><title>axlebox report</title>",
@@ -177,6 +187,11 @@ def write_html(cases, figures: list[tuple[str, Path]], modes: list[Path], out: P
              f"{esc(', '.join(crit.compare))}. Hover a verdict for its reason. Tables: "
              "<a href='summary.csv'>summary.csv</a>, <a href='summary.json'>summary.json</a>.</p>",
              _table_html(cases)]
+    if claims:
+        parts += ["<h2>The paper's conclusions beside ours</h2>",
+                  "<p>Each claim of the paper's conclusions (1)-(3) and of its Fig. 11, checked "
+                  "on these cases (<a href='conclusions.csv'>conclusions.csv</a>).</p>",
+                  conclusions.table_html(claims)]
     for title, path in figures:
         parts.append(f"<h2>{esc(title)}</h2><img src='{esc(path.name)}' alt='{esc(title)}'>")
     if modes:
@@ -197,9 +212,11 @@ def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
     out.mkdir(parents=True, exist_ok=True)
     cases = []
     for path in files:
-        speed, width = case_parameters(path)
+        speed, width, side = _case(path)
+        if left is not None or right is not None:
+            side = None                     # other channels than the default ws2_L / ws2_R
         _, _, pair = analyse_file(path, left=left, right=right, **diagnose_kw)
-        cases.append(Case(path, speed, width, pair))
+        cases.append(Case(path, speed, width, pair, side))
         log(f"report: {path.name}: {cases[-1].label}: left {pair.verdicts['left'][0]}, "
             f"right {pair.verdicts['right'][0]}")
     cases.sort(key=lambda c: (c.speed_kmh, c.width_mm))
@@ -224,7 +241,10 @@ def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
         for p in pictures:
             shutil.copy2(p, out / "modes" / p.name)
     write_tables(cases, out)
-    page = write_html(cases, figures, pictures, out)
+    claims = conclusions.claims(cases) if any(c.defect_side for c in cases) else []
+    if claims:
+        write_csv(out / "conclusions.csv", conclusions.as_rows(claims))
+    page = write_html(cases, figures, pictures, out, claims)
     log(f"report: {len(cases)} case(s), {len(figures)} figures, {len(pictures)} mode pictures "
         f"-> {page}")
     return page
