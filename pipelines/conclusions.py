@@ -125,8 +125,8 @@ def claims(cases) -> list[Claim]:
     for name, get in (("peak", lambda ch: ch.peak), ("RMS", lambda ch: ch.rms),
                       ("SPM", lambda ch: ch.spm_db)):
         ok = sum(get(_sides(c)[0]) > get(_sides(c)[1]) for c in faulty)
-        up_d = _monotone(faulty, lambda c: get(_sides(c)[0]), "width_mm")
-        up_h = _monotone(faulty, lambda c: get(_sides(c)[1]), "width_mm")
+        up_d = _monotone(faulty, lambda c, g=get: g(_sides(c)[0]), "width_mm")
+        up_h = _monotone(faulty, lambda c, g=get: g(_sides(c)[1]), "width_mm")
         n_ok, n = ok + up_d[0] + up_h[0], len(faulty) + up_d[1] + up_h[1]
         out.append(Claim("1c", f"(1) {name}: defect side above healthy side, and rising with "
                          "defect width on both.",
