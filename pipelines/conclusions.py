@@ -24,21 +24,23 @@ WHY = {
     "1b": "which width carries across best depends on where the impacts' energy lies against "
           "the wheelset's bending modes: ours (coarse mesh, S1002 wheel) are not the paper's "
           "(LM wheel, its FE wheelset)",
-    "1c": "our healthy side carries the wheelset's bending response and the wheel-rail noise "
-          "of a flexible front bogie, which do not grow with the defect in step with the "
-          "defect side",
-    "1d": "the SPM class depends on the shock value in absolute terms (Eq. 17): our axle-box "
-          "rings at 2.7 kHz (coarse mesh), which raises the healthy side's shock value too",
+    "1c": "the healthy side's peaks and shock values come through the wheelset's bending band "
+          "(300-800 Hz) and its wheel-rail noise, which need not grow in step with the defect "
+          "side's impacts; our wheelset's modes are not the paper's",
+    "1d": "the SPM class is absolute (Eq. 17: the shock value against rpm and bore); the "
+          "impulses that reach our healthy side through the wheelset's bending keep its shock "
+          "value under the 21 dB mild threshold, where the paper's reach mild or serious",
     "2a": "the lag is read from the envelopes' cross-correlation; where both sides ring the same "
           "wheelset mode the correlation peak can sit at the other side",
     "2b": "the lag depends on the wave path through our coarse wheelset and axle-box",
-    "2c": "the VF of the healthy side is raised by the wheelset's bending band; ours also by the "
-          "defect side's 2.7 kHz ring, which raises the defect side's VF",
+    "2c": "VF measures the spread about FC; our defect side's spectrum is spread between its "
+          "impacts' low harmonics and the coarse axle-box's 2.7 kHz ring, so its VF can exceed "
+          "the healthy side's",
     "3": "the VF range was fitted to the paper's model; our spectra sit elsewhere (the coarse "
          "axle-box's 2.7 kHz mode), so the absolute range does not carry over; the relative "
          "criterion (--relative) is the portable form",
-    "rms": "RMS rising with speed is the track's and the defect's excitation growing with speed; "
-           "a case where it does not is dominated by one transient",
+    "rms": "the healthy side's RMS is set by how the impacts' spectrum meets the wheelset's "
+           "bending band at each speed, which need not rise monotonically",
 }
 
 
