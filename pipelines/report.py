@@ -77,7 +77,8 @@ def case_parameters(path) -> tuple[float, float]:
 
 def _case(path) -> tuple[float, float, str | None]:
     """``(speed_kmh, width_mm, defect_side)``: the side ("left"/"right", from ``defects[].side``
-    L/R, which the default channels ws2_L / ws2_R read) of the widest defect, None without."""
+    L/R) of the widest defect when it is on wheelset 2, whose axle-boxes the default channels
+    ws2_L / ws2_R read; None otherwise."""
     with resultfile.open_result(path) as f:
         cfg = tomllib.loads(str(f.attrs.get("config", "")))
     speed = cfg.get("run", {}).get("speed_kmh", cfg.get("rig", {}).get("speed_kmh"))
@@ -85,7 +86,9 @@ def _case(path) -> tuple[float, float, str | None]:
         raise ParameterError(f"{str(path)!r}: its config has no run.speed_kmh or rig.speed_kmh: "
                              "expected the speed of the case")
     defects = sorted(cfg.get("defects", []), key=lambda d: float(d.get("W", 0.0)))
-    side = {"L": "left", "R": "right"}.get(defects[-1].get("side")) if defects else None
+    side = None
+    if defects and defects[-1].get("wheelset", 2) == 2:     # the wheelset ws2_L / ws2_R sit on
+        side = {"L": "left", "R": "right"}.get(defects[-1].get("side"))
     return float(speed), 1e3 * float(defects[-1].get("W", 0.0)) if defects else 0.0, side
 
 

@@ -54,8 +54,8 @@ Method (one contact point per wheel, elastic normal contact, table look-up):
    ``M = (p - c) x F + Mz n`` about c.
 
 Neglected: the contact point's longitudinal shift with yaw, the rail's slope in the contact frame
-(both second order on tangent track), a second contact point (the table's tread-to-flange jump
-is smeared over one grid interval).
+(both second order on tangent track), a second contact point (the table's contact jumps are
+smeared over one grid interval, or over ``smooth_y`` of lateral displacement: element.py, step 3).
 """
 from __future__ import annotations
 
