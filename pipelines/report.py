@@ -70,15 +70,10 @@ class Case:
         return r
 
 
-def case_parameters(path) -> tuple[float, float]:
-    """``(speed_kmh, width_mm)`` from the config stored in an axlebox-result file."""
-    return _case(path)[:2]
-
-
-def _case(path) -> tuple[float, float, str | None]:
-    """``(speed_kmh, width_mm, defect_side)``: the side ("left"/"right", from ``defects[].side``
-    L/R) of the widest defect when it is on wheelset 2, whose axle-boxes the default channels
-    ws2_L / ws2_R read; None otherwise."""
+def case_parameters(path) -> tuple[float, float, str | None]:
+    """``(speed_kmh, width_mm, defect_side)`` from the config stored in an axlebox-result file;
+    the side is that ("left"/"right", from ``defects[].side`` L/R) of the widest defect when it
+    is on wheelset 2, whose axle-boxes the default channels ws2_L / ws2_R read; None otherwise."""
     with resultfile.open_result(path) as f:
         cfg = tomllib.loads(str(f.attrs.get("config", "")))
     speed = cfg.get("run", {}).get("speed_kmh", cfg.get("rig", {}).get("speed_kmh"))
@@ -215,7 +210,7 @@ def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
     out.mkdir(parents=True, exist_ok=True)
     cases = []
     for path in files:
-        speed, width, side = _case(path)
+        speed, width, side = case_parameters(path)
         if left is not None or right is not None:
             side = None                     # other channels than the default ws2_L / ws2_R
         _, _, pair = analyse_file(path, left=left, right=right, **diagnose_kw)
