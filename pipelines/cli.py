@@ -137,7 +137,7 @@ def _analysis_options(a) -> dict:
                 shaft=a.shaft_hz, speed_kmh=a.speed_kmh, wheel_radius=a.wheel_radius, rpm=a.rpm,
                 orders_text=a.orders, bore=a.bore,
                 band=parse_pair(a.band, "--band") if a.band else None, criterion=crit,
-                nperseg=a.nperseg)
+                nperseg=a.nperseg, guided=not a.no_guide)
 
 
 def _cmd_diagnose(a) -> None:
@@ -203,6 +203,10 @@ def _add_analysis_options(dg) -> None:
     dg.add_argument("--bore", type=float, metavar="M", help="bearing bore for SPM (default 0.130, "
                                                             "the DTRB; required with --orders)")
     dg.add_argument("--band", metavar="LO,HI", help="envelope band in Hz (default: spectral kurtosis)")
+    dg.add_argument("--no-guide", action="store_true",
+                    help="keep each side's spectral-kurtosis band even where the other side shows "
+                         "a fault line (default: search that side again in the band where the line "
+                         "stands highest)")
     dg.add_argument("--nperseg", type=int, help="Welch segment for FC/VF (default about 1 s)")
     dg.add_argument("--vf-range", metavar="LO,HI", help="VF difference range in Hz^2 meaning a "
                                                         "pseudo-fault (default the paper's 8000,74900)")

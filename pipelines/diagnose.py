@@ -91,7 +91,8 @@ def writejsonable(path, data: dict) -> Path:
 
 def analyse_file(path, *, left=None, right=None, fs=None, column: int = 2, scale: float = 1.0,
                  shaft=None, speed_kmh=None, wheel_radius: float = 0.42, rpm=None,
-                 orders_text=None, bore=None, band=None, criterion=None, nperseg=None):
+                 orders_text=None, bore=None, band=None, criterion=None, nperseg=None,
+                 guided: bool = True):
     """Read ``path`` and analyse both sides: ``(record, input info, PairResult)``.  The shaft
     speed and the bearing come from the options, else from the file, else the DTRB."""
     from bearing.diagnostics.criterion import Criterion
@@ -114,11 +115,13 @@ def analyse_file(path, *, left=None, right=None, fs=None, column: int = 2, scale
     if not (np.isfinite(D) and D > 0):
         raise ParameterError(f"--bore = {bore!r} is not allowed: expected a diameter > 0 m")
     res = analyse_pair(rec.left * scale, rec.right * scale, rec.fs, f_shaft, fo, D, criterion,
-                       band, names=rec.names, nperseg=nperseg)
+                       band, names=rec.names, nperseg=nperseg, guided=guided)
     info = {"file": str(path), "kind": rec.kind, "left": rec.names[0], "right": rec.names[1],
             "fs_hz": rec.fs, "n_samples": int(rec.left.size), "scale": scale,
             "shaft_hz": f_shaft, "orders": vars(fo), "orders_from": o_src, "bore_m": D,
-            "band": list(band) if band is not None else "spectral kurtosis", "notes": rec.notes}
+            "band": list(band) if band is not None else
+            "spectral kurtosis" + (", guided on the side without the other's fault line" if guided else ""),
+            "notes": rec.notes}
     return rec, info, res
 
 

@@ -4,7 +4,8 @@
 * FC, VF, MSF (:mod:`.spectral`, Eq. 18) on the Welch PSD of the raw signal;
 * envelope spectrum (:mod:`.envelope`) in the user's band or the band of highest spectral
   kurtosis, no narrower than ``2 (n_harmonics + 1)`` times the highest fault line (so the
-  envelope carries the harmonics searched);
+  envelope carries the harmonics searched); or, with ``guide``, the band where that fault line
+  stands highest (:mod:`.guided`, thresholds corrected for the bands tried);
 * fault lines (:mod:`.faultlines`): the envelope spectrum is a Welch average with a resolution of
   a tenth of the lowest line (FTF at 48 km/h: 0.22 Hz, 4.5 s segments), or the whole record as one
   window when it is shorter; the record must hold at least two periods of the lowest line;
@@ -23,6 +24,7 @@ from geometry._params import ParameterError
 
 from ..frequencies import FaultOrders
 from . import faultlines, spm
+from .guided import guided_band
 from .envelope import _signal, check_fs, envelope_spectrum, select_band
 from .indicators import time_indicators
 from .spectral import fc_vf
@@ -47,7 +49,8 @@ def jsonable(v):
 class ChannelResult:
     """One channel's indicators (SI: m/s^2, Hz, Hz^2, dB).  ``lines``: name -> LineResult;
     ``fault_hz``: the kinematic fault frequencies searched; ``band``: the envelope band (Hz) and
-    ``band_source`` "given" or "spectral kurtosis"; ``env_f``/``env_A``: the envelope spectrum
+    ``band_source`` "given", "spectral kurtosis" or "guided by NAME"; ``p_fa``: the false-alarm
+    probability of each line window (divided by the bands tried when guided); ``env_f``/``env_A``: the envelope spectrum
     (for figures; not in :meth:`to_dict`)."""
 
     fs: float
@@ -66,6 +69,7 @@ class ChannelResult:
     spm_class: str
     band: tuple[float, float]
     band_source: str
+    p_fa: float
     fault_hz: dict
     lines: dict
     env_f: np.ndarray = field(repr=False, compare=False)
@@ -83,7 +87,7 @@ class ChannelResult:
     def to_dict(self) -> dict:
         d = {k: getattr(self, k) for k in ("fs", "n_samples", "shaft_hz", "D", "rms", "peak",
                                            "kurtosis", "crest", "FC", "VF", "MSF", "SV", "spm_db",
-                                           "spm_class", "band_source", "fault_hz")}
+                                           "spm_class", "band_source", "p_fa", "fault_hz")}
         d["duration_s"] = self.duration_s
         d["band"] = list(self.band)
         d["lines"] = {k: r.to_dict() for k, r in self.lines.items()}
@@ -95,11 +99,13 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
             band: tuple[float, float] | None = None, *, lines=("BPFO", "BPFI", "FTF"),
             n_harmonics: int = 3, slip: float = 0.03, threshold_db: float | None = None,
             p_fa: float = 1e-3, n_required: int = 2, nperseg: int | None = None,
-            spm_periods: float = 4.0, spm_segments: int = 16, max_imf: int = 4) -> ChannelResult:
+            spm_periods: float = 4.0, spm_segments: int = 16, max_imf: int = 4,
+            guide: str | None = None) -> ChannelResult:
     """Indicators of the 1-D acceleration ``x`` (m/s^2) sampled at ``fs`` Hz, on a bearing
     turning at ``shaft_hz`` with fault ``orders`` (multiples of the shaft frequency) and bore
-    ``D`` (m).  ``band``: envelope band (Hz), default by spectral kurtosis.  ``lines``: which of
-    the orders to search.  ``nperseg``: Welch segment of the PSD for FC/VF.  The rest go to
+    ``D`` (m).  ``band``: envelope band (Hz), default by spectral kurtosis.  ``guide``: instead,
+    the band where this line (one of ``lines``) stands highest (:mod:`.guided`).  ``lines``:
+    which of the orders to search.  ``nperseg``: Welch segment of the PSD for FC/VF.  The rest go to
     :func:`.faultlines.detect` and :func:`.spm.shock_value`."""
     x = _signal(x)
     fs = check_fs(fs)
@@ -117,12 +123,22 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
     if x.size / fs < 2.0 / f_lo:
         raise ParameterError(f"x of {x.size / fs:g} s is too short: the {min(fault_hz, key=fault_hz.get)}"
                              f" line at {f_lo:g} Hz needs at least {2.0 / f_lo:g} s")
-    if band is None:
+    seg = min(x.size, int(round(fs / (0.1 * f_lo))))
+    if guide is not None:
+        if band is not None:
+            raise ParameterError(f"guide = {guide!r} and band = {tuple(band)!r} are not allowed "
+                                 "together: a given band leaves nothing to guide")
+        if guide not in fault_hz:
+            raise ParameterError(f"guide = {guide!r} is not allowed: expected one of the lines "
+                                 f"searched, {sorted(fault_hz)}")
+        g = guided_band(x, fs, guide, fault_hz[guide], nperseg=seg, n_harmonics=n_harmonics,
+                        slip=slip, p_fa=p_fa, n_required=n_required)
+        band, source, p_fa = g.band, f"guided by {guide}", g.p_fa
+    elif band is None:
         band = select_band(x, fs, min_width_hz=2 * (n_harmonics + 1) * f_hi)
         source = "spectral kurtosis"
     else:
         source = "given"
-    seg = min(x.size, int(round(fs / (0.1 * f_lo))))
     f, A = envelope_spectrum(x, fs, band, nperseg=seg)
     found = faultlines.detect(f, A, fault_hz, n_harmonics=n_harmonics, slip=slip,
                               threshold_db=threshold_db, p_fa=p_fa, n_required=n_required,
@@ -137,4 +153,5 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
                          FC=FC, VF=VF, MSF=MSF, SV=SV, spm_db=level,
                          spm_class=spm.classify(level),
                          band=(float(band[0]), float(band[1])), band_source=source,
+                         p_fa=float(p_fa),
                          fault_hz=fault_hz, lines=found, env_f=f, env_A=A)

@@ -79,6 +79,19 @@ def spectral_kurtosis(x: np.ndarray, fs: float, nperseg: int):
     return f[1:-1], SK, m2
 
 
+def kurtogram_levels(n: int, fs: float, min_width_hz: float | None,
+                     levels: tuple[int, ...]) -> list[int]:
+    """Window lengths ``N = 2**level`` of an STFT kurtogram on ``n`` samples: at least 8 windows
+    in the record, bands ``2 fs / N`` at least ``min_width_hz`` wide."""
+    out = []
+    for lev in levels:
+        N = 2 ** int(lev)
+        if N > n // 8 or (min_width_hz is not None and 2 * fs / N < min_width_hz):
+            continue
+        out.append(N)
+    return out
+
+
 def select_band(x: np.ndarray, fs: float, min_width_hz: float | None = None,
                 fmin: float = 0.0, levels: tuple[int, ...] = (3, 4, 5, 6, 7, 8, 9),
                 max_samples: int = 2 ** 19, min_power_db: float = -60.0) -> tuple[float, float]:
@@ -98,11 +111,8 @@ def select_band(x: np.ndarray, fs: float, min_width_hz: float | None = None,
     fs = check_fs(fs)
     x = x[:max_samples]
     best = None
-    for lev in levels:
-        N = 2 ** int(lev)
+    for N in kurtogram_levels(x.size, fs, min_width_hz, levels):
         bw = fs / N
-        if N > x.size // 8 or (min_width_hz is not None and 2 * bw < min_width_hz):
-            continue
         f, SK, m2 = spectral_kurtosis(x, fs, N)
         ok = (f - bw > max(fmin, 0.0)) & (f + bw < fs / 2) & (m2 >= m2.max() * 10 ** (min_power_db / 10))
         if not ok.any():

@@ -103,12 +103,15 @@ class PairResult:
 
 def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
                  criterion: Criterion = PAPER, band=None, *, names=("left", "right"),
-                 max_lag_s: float | None = None, **channel_kw) -> PairResult:
+                 max_lag_s: float | None = None, guided: bool = True, **channel_kw) -> PairResult:
     """Analyse both channels (same rate ``fs``; ``shaft_hz``, fault ``orders``, bore ``D`` in m
     as in :func:`.channel.analyse`, ``channel_kw`` passed on), their lag and the criterion.
 
     ``band``: the envelope band of both sides, default each side's own by spectral kurtosis
-    (the pseudo-fault side rings other modes).  The lag is the best-correlated of the two sides'
+    (the pseudo-fault side rings other modes).  ``guided``: when one of the criterion's lines
+    is detected on one side only, the other side is searched again in the band where that line
+    stands highest (:mod:`.guided`, its thresholds corrected for the bands tried): the
+    transmitted impulses need not lie in the healthy side's kurtosis band.  The lag is the best-correlated of the two sides'
     envelopes in either side's band, each in its own, or broadband, within ``max_lag_s``
     (default half a BPFO period: periodic impulses make the lag ambiguous by whole periods)."""
     fs = check_fs(fs)
@@ -136,6 +139,14 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders: FaultOrder
             res[side] = analyse(x, fs, shaft_hz, orders, D, band, **channel_kw)
         except ParameterError as err:
             raise ParameterError(f"{side} channel {n!r}: {err}") from None
+    if band is None and guided:
+        for name in criterion.lines:
+            seen = {s: name in r.lines and r.lines[name].detected for s, r in res.items()}
+            if seen["left"] != seen["right"]:
+                side = "left" if seen["right"] else "right"
+                x = xs[0] if side == "left" else xs[1]
+                res[side] = analyse(x, fs, shaft_hz, orders, D, guide=name, **channel_kw)
+                break
     if max_lag_s is None:
         max_lag_s = 0.5 / (orders.BPFO * shaft_hz)
     # which band shows the transmitted impulses is not known beforehand: the pseudo-fault side's
