@@ -160,7 +160,7 @@ class System:
             bf[k, BF_GRAV] = 1.0
             if n:
                 part = np.concatenate([b.Ct.ravel(), b.Q.ravel(), b.R.ravel(), b.Me.ravel(),
-                                       b.K.ravel(), b.D.ravel()])
+                                       b.K.ravel(), b.D.ravel(), np.linalg.inv(b.Me).ravel()])
                 inv_parts.append(part)
                 off += part.size
             s = int(b.spin)
