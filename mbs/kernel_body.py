@@ -22,10 +22,11 @@ and ``Q`` the applied loads plus ``-K q - D qd`` on the modal rows.  The modal b
 constant, so ``M`` is solved by its Schur complement on the 6 frame rows,
 ``(M_rr - M_rf Me^-1 M_fr) a_r = Q_r - M_rf Me^-1 Q_f``, ``qdd = Me^-1 (Q_f - M_fr a_r)``:
 a 6 x 6 solve and products with the stored ``Me^-1`` instead of factorising the
-``(6 + n)``-square ``M`` at every call (a third of the right-hand side's time before).  For a spinning body the
-frame turns with ``w_f = (w_x, 0, w_z)``; the rigid gyroscopic term uses the material rate
-``J w`` with the frame rate ``w_f`` (Euler's equations in a Resal frame), the elastic terms use
-``w_f`` (see :mod:`mbs.body`).
+``(6 + n)``-square ``M`` at every call (a third of the right-hand side's time before).
+
+For a spinning body the frame turns with ``w_f = (w_x, 0, w_z)``; the rigid gyroscopic term
+uses the material rate ``J w`` with the frame rate ``w_f`` (Euler's equations in a Resal
+frame), the elastic terms use ``w_f`` (see :mod:`mbs.body`).
 """
 from __future__ import annotations
 

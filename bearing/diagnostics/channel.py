@@ -50,8 +50,8 @@ class ChannelResult:
     """One channel's indicators (SI: m/s^2, Hz, Hz^2, dB).  ``lines``: name -> LineResult;
     ``fault_hz``: the kinematic fault frequencies searched; ``band``: the envelope band (Hz) and
     ``band_source`` "given", "spectral kurtosis" or "guided by NAME"; ``p_fa``: the false-alarm
-    probability of each line window (divided by the bands tried when guided); ``env_f``/``env_A``: the envelope spectrum
-    (for figures; not in :meth:`to_dict`)."""
+    probability of each line window (divided by the bands tried when guided);
+    ``env_f``/``env_A``: the envelope spectrum (for figures; not in :meth:`to_dict`)."""
 
     fs: float
     n_samples: int

@@ -111,8 +111,9 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders: FaultOrder
     (the pseudo-fault side rings other modes).  ``guided``: when one of the criterion's lines
     is detected on one side only, the other side is searched again in the band where that line
     stands highest (:mod:`.guided`, its thresholds corrected for the bands tried): the
-    transmitted impulses need not lie in the healthy side's kurtosis band.  The lag is the best-correlated of the two sides'
-    envelopes in either side's band, each in its own, or broadband, within ``max_lag_s``
+    transmitted impulses need not lie in the healthy side's kurtosis band.  The lag is the
+    best-correlated of the two sides' envelopes in either side's band, each in its own, or
+    broadband, within ``max_lag_s``
     (default half a BPFO period: periodic impulses make the lag ambiguous by whole periods)."""
     fs = check_fs(fs)
     xs = []
