@@ -9,7 +9,9 @@ with Shen-Hedrick-Elkins in place of FASTSIM (the tangential contact's share).  
 run of the validation case at 2e-5 and one at 1e-5 s, each over the longer of ``--duration``
 and ``--step-duration``, give the rate and the step convergence of what the diagnosis reads
 after the 0.5 s fade-in: the defect-side (ws2_R) and healthy-side RMS and the BPFO line of the
-defect side's envelope spectrum.
+defect side's envelope spectrum.  Last, the right-hand side at the end of the 2e-5 s run taken
+apart by stage (each stage of :func:`mbs.kernel_system.rhs` called alone, in numba): at the
+start the bearings sit in their quasi-static state, with fewer contacts active than running.
 """
 from __future__ import annotations
 
@@ -30,6 +32,13 @@ from bearing.params import BearingParams  # noqa: E402
 from mbs import integrate  # noqa: E402
 from pipelines import simulate as psim  # noqa: E402
 from pipelines.readers import TRACK_FADE_IN_S  # noqa: E402
+from mbs.kernel_bearings import bearing_forces  # noqa: E402
+from mbs.kernel_body import (BI_N, BI_VEL, body_accelerations, frame_kinematics,  # noqa: E402
+                             gravity_load, position_rates)
+from mbs.kernel_elements import element_forces  # noqa: E402
+from mbs.kernel_markers import marker_acceleration, marker_kinematics, marker_loads  # noqa: E402
+from mbs.kernel_wheels import G_GRAV, wheel_forces  # noqa: E402
+from numba import njit  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 FRONT = ["frame1", "ws1", "ws2", "ab1L", "ab1R", "ab2L", "ab2R"]
@@ -45,6 +54,62 @@ def rhs_us(model, y0, n=200, repeats=5) -> float:
             model.rhs(0.0, y0)
         best = min(best, (time.perf_counter() - t0) / n * 1e6)
     return best
+
+
+@njit
+def _stage(which, nrep, t, y, dy, S, W):
+    """``nrep`` calls of one stage of :func:`mbs.kernel_system.rhs` (same order, same arrays)."""
+    bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f, wtab, wpar, trk, sens, \
+        br_i, br_P, br_D = S
+    Ab, rb, vb, omb, omfb, mku, mkp, mkv, mkR, mkw, mkF, mkM, gen, elout, whout, sensout = W
+    nb = bi.shape[0]
+    for _ in range(nrep):
+        if which == 0:
+            for b in range(nb):
+                frame_kinematics(b, y, bi, Ab[b], rb[b], vb[b], omb[b], omfb[b])
+                position_rates(b, y, bi, omfb[b], dy)
+            marker_kinematics(y, bi, mk_i, mk_f, shp, Ab, rb, vb, omfb, mku, mkp, mkv, mkR, mkw)
+        elif which == 1:
+            element_forces(t, el_i, el_f, mkp, mkv, mkR, mkw, mkF, mkM, elout)
+        elif which == 2:
+            bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, elout)
+        elif which == 3:
+            wheel_forces(t, bi, wh_i, wh_f, wtab, wpar, trk, glob, Ab, omb, mkp, mkv, mkR, mkw,
+                         mkF, mkM, whout)
+        elif which == 4:
+            for b in range(nb):
+                n, o = bi[b, BI_N], goff[b]
+                gravity_load(b, bi, bf, inv, y, Ab[b], glob[G_GRAV:G_GRAV + 3], gen[o:o + 6 + n])
+            marker_loads(bi, mk_i, shp, Ab, mku, mkF, mkM, gen, goff)
+            for s in range(sens.shape[0]):
+                marker_acceleration(sens[s], y, dy, bi, mk_i, mk_f, shp, Ab, omfb, mku, sensout[s])
+        else:
+            for b in range(nb):
+                n, o, iv = bi[b, BI_N], goff[b], bi[b, BI_VEL]
+                if (which == 5) == (n > 0):
+                    body_accelerations(b, y, bi, bf, inv, Ab[b], omb[b], omfb[b],
+                                       gen[o:o + 6 + n], dy[iv:iv + 6 + n])
+
+
+STAGES = ("frames and markers", "suspension elements", "eight DTRBs", "wheel-rail contacts",
+          "gravity, marker loads, sensors", "flexible bodies' accelerations",
+          "rigid bodies' accelerations")
+
+
+def stages_us(model, y, t, n=2000) -> dict:
+    """Best of 5 batches of ``n`` calls of each stage at state ``y`` (after a full call there)."""
+    dy = np.zeros_like(y)
+    model.rhs(t, y)
+    out = {}
+    for k, name in enumerate(STAGES):
+        _stage(k, 5, t, y, dy, model.S, model.W)
+        best = float("inf")
+        for _ in range(5):
+            t0 = time.perf_counter()
+            _stage(k, n, t, y, dy, model.S, model.W)
+            best = min(best, (time.perf_counter() - t0) / n * 1e6)
+        out[name] = best
+    return out
 
 
 def bpfo_line(x, fs: float, bpfo: float) -> float:
@@ -109,6 +174,16 @@ def main():
         R, L = (run.sensors[n][skip:, 2] for n in ("ws2_R", "ws2_L"))
         ind[dt] = (R.std(), L.std(), bpfo_line(R, fs, bpfo))
         print(f"| {dt:g} | {rate:.1f} | {ind[dt][0]:.3f} | {ind[dt][1]:.3f} | {ind[dt][2]:.4f} |")
+        if dt == 2e-5:
+            running = run.y_end.copy()
+    st = stages_us(model, running, T)
+    total = rhs_us(model, running)
+    print(f"the right-hand side at t = {T:g} s (the bearings running, more contacts active than at "
+          f"the start): {total:.0f} us a call")
+    print("| stage | us | share |")
+    print("| --- | --- | --- |")
+    for k, us in st.items():
+        print(f"| {k} | {us:.1f} | {100 * us / total:.0f} % |")
     d = [abs(x / y - 1) * 100 for x, y in zip(ind[2e-5], ind[1e-5])]
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(f"2e-5 against 1e-5 s: defect-side RMS {d[0]:.2f} %, healthy-side RMS {d[1]:.2f} %, "
