@@ -78,7 +78,7 @@ def shaft_speed(rec: Record, shaft=None, speed_kmh=None, wheel_radius=0.42, rpm=
     return rec.shaft_hz
 
 
-def writejsonable(path, data: dict) -> Path:
+def write_json(path, data: dict) -> Path:
     """JSON through ``path.tmp`` and an atomic rename (a reader never sees half a file)."""
     path = Path(path)
     if not path.parent.is_dir():
@@ -139,7 +139,7 @@ def run(path, *, json_out=None, figures=None, log=print, **options):
     for s, (v, why) in res.verdicts.items():
         log(f"{s}: {v}: {why}")
     if json_out is not None:
-        log(f"wrote {writejsonable(json_out, jsonable({'input': info, **res.to_dict()}))}")
+        log(f"wrote {write_json(json_out, jsonable({'input': info, **res.to_dict()}))}")
     if figures is not None:
         out = Path(figures)
         out.mkdir(parents=True, exist_ok=True)
