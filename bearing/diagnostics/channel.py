@@ -24,8 +24,8 @@ from geometry._params import ParameterError
 
 from ..frequencies import FaultOrders
 from . import faultlines, spm
-from .guided import guided_band
 from .envelope import _signal, check_fs, envelope_spectrum, select_band
+from .guided import guided_band
 from .indicators import time_indicators
 from .spectral import fc_vf
 
