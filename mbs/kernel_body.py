@@ -185,7 +185,7 @@ def body_accelerations(b, y, bi, bf, inv, A, om, omf, Qb, acc):
             acc[a] = A[a, 0] * t2[0] + A[a, 1] * t2[1] + A[a, 2] * t2[2]
             acc[3 + a] = wd[a]
         return
-    Ct, Qi, R, Me, K, D, Mei = inv_views(inv, bi[b, BI_INV], n)
+    Ct, Qi, R, _, K, D, Mei = inv_views(inv, bi[b, BI_INV], n)
     q0 = bi[b, BI_POS] + 7 + bi[b, BI_SPIN]
     v0 = bi[b, BI_VEL] + 6
     q = y[q0:q0 + n]

@@ -88,6 +88,7 @@ def test_the_pair_searches_the_healthy_side_again_for_the_other_sides_line():
     res = analyse_pair(a, b, FS, SHAFT, ORDERS, BORE, rel)
     assert res.left.band_source == "spectral kurtosis"
     assert res.right.band_source == "guided by BPFO" and "BPFO" in res.right.detected
+    assert res.right == analyse(b, FS, SHAFT, ORDERS, BORE, guide="BPFO")   # only the band redone
     assert res.verdicts["left"][0] == "real fault" and res.verdicts["right"][0] == "pseudo-fault"
     assert res.verdicts["right"][1].startswith("BPFO detected here too")
     assert res.lag.leading == "a"

@@ -16,7 +16,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -119,10 +119,42 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
         raise ParameterError(f"lines = {tuple(lines)!r} is not allowed: expected names among "
                              f"{sorted(known)}")
     fault_hz = {n: float(known[n]) for n in lines}
-    f_lo, f_hi = min(fault_hz.values()), max(fault_hz.values())
+    f_lo = min(fault_hz.values())
     if x.size / fs < 2.0 / f_lo:
         raise ParameterError(f"x of {x.size / fs:g} s is too short: the {min(fault_hz, key=fault_hz.get)}"
                              f" line at {f_lo:g} Hz needs at least {2.0 / f_lo:g} s")
+    env = _band_and_lines(x, fs, shaft_hz, fault_hz, band, guide, n_harmonics, slip,
+                          threshold_db, p_fa, n_required)
+    t = time_indicators(x)
+    FC, VF, MSF = fc_vf(x, fs, nperseg)
+    SV = spm.shock_value(x, fs, period_s=1.0 / (orders.BPFO * shaft_hz), n_periods=spm_periods,
+                         n_segments=spm_segments, max_imf=max_imf)
+    level = spm.spm_db(SV, shaft_hz, D)
+    return ChannelResult(fs=fs, n_samples=int(x.size), shaft_hz=float(shaft_hz), D=float(D),
+                         rms=t["rms"], peak=t["peak"], kurtosis=t["kurtosis"], crest=t["crest"],
+                         FC=FC, VF=VF, MSF=MSF, SV=SV, spm_db=level,
+                         spm_class=spm.classify(level), fault_hz=fault_hz, **env)
+
+
+LINE_OPTIONS = ("n_harmonics", "slip", "threshold_db", "p_fa", "n_required")   # of reguide
+
+
+def reguide(res: ChannelResult, x, guide: str, *, n_harmonics: int = 3, slip: float = 0.03,
+            threshold_db: float | None = None, p_fa: float = 1e-3,
+            n_required: int = 2) -> ChannelResult:
+    """``res`` (of :func:`analyse` on ``x``) with its envelope band, spectrum and lines redone in
+    the band guided by line ``guide``: the same as ``analyse(x, ..., guide=guide)`` without
+    computing again what does not depend on the band (time indicators, FC/VF, SPM)."""
+    env = _band_and_lines(_signal(x), res.fs, res.shaft_hz, res.fault_hz, None, guide,
+                          n_harmonics, slip, threshold_db, p_fa, n_required)
+    return replace(res, **env)
+
+
+def _band_and_lines(x, fs, shaft_hz, fault_hz, band, guide, n_harmonics, slip, threshold_db,
+                    p_fa, n_required) -> dict:
+    """The band-dependent fields of a :class:`ChannelResult`: the envelope band (given, by
+    spectral kurtosis, or guided by line ``guide``), its spectrum and the fault lines in it."""
+    f_lo, f_hi = min(fault_hz.values()), max(fault_hz.values())
     seg = min(x.size, int(round(fs / (0.1 * f_lo))))
     if guide is not None:
         if band is not None:
@@ -143,15 +175,5 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
     found = faultlines.detect(f, A, fault_hz, n_harmonics=n_harmonics, slip=slip,
                               threshold_db=threshold_db, p_fa=p_fa, n_required=n_required,
                               n_avg=faultlines.welch_averages(x.size, seg), shaft_hz=shaft_hz)
-    t = time_indicators(x)
-    FC, VF, MSF = fc_vf(x, fs, nperseg)
-    SV = spm.shock_value(x, fs, period_s=1.0 / (orders.BPFO * shaft_hz), n_periods=spm_periods,
-                         n_segments=spm_segments, max_imf=max_imf)
-    level = spm.spm_db(SV, shaft_hz, D)
-    return ChannelResult(fs=fs, n_samples=int(x.size), shaft_hz=float(shaft_hz), D=float(D),
-                         rms=t["rms"], peak=t["peak"], kurtosis=t["kurtosis"], crest=t["crest"],
-                         FC=FC, VF=VF, MSF=MSF, SV=SV, spm_db=level,
-                         spm_class=spm.classify(level),
-                         band=(float(band[0]), float(band[1])), band_source=source,
-                         p_fa=float(p_fa),
-                         fault_hz=fault_hz, lines=found, env_f=f, env_A=A)
+    return dict(band=(float(band[0]), float(band[1])), band_source=source, p_fa=float(p_fa),
+                lines=found, env_f=f, env_A=A)

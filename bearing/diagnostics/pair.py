@@ -12,7 +12,7 @@ import numpy as np
 from geometry._params import ParameterError
 
 from ..frequencies import FaultOrders
-from .channel import ChannelResult, analyse
+from .channel import LINE_OPTIONS, ChannelResult, analyse, reguide
 from .criterion import PAPER, Criterion, verdict, vf_difference
 from .envelope import _signal, check_fs
 from .lag import LagResult, time_lag
@@ -146,7 +146,8 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders: FaultOrder
             if seen["left"] != seen["right"]:
                 side = "left" if seen["right"] else "right"
                 x = xs[0] if side == "left" else xs[1]
-                res[side] = analyse(x, fs, shaft_hz, orders, D, guide=name, **channel_kw)
+                line_kw = {k: v for k, v in channel_kw.items() if k in LINE_OPTIONS}
+                res[side] = reguide(res[side], x, name, **line_kw)
                 break
     if max_lag_s is None:
         max_lag_s = 0.5 / (orders.BPFO * shaft_hz)
