@@ -5,13 +5,15 @@
 
 The profile is by subtraction over model variants with the same bodies: the right-hand side of
 the car with row bushings (no bearings), with the DTRBs, rigid and flexible front bogie, and
-with Shen-Hedrick-Elkins in place of FASTSIM (the tangential contact's share).  Then one RK4
-run of the validation case at 2e-5 and one at 1e-5 s, each over the longer of ``--duration``
-and ``--step-duration``, give the rate and the step convergence of what the diagnosis reads
-after the 0.5 s fade-in: the defect-side (ws2_R) and healthy-side RMS and the BPFO line of the
-defect side's envelope spectrum.  Last, the right-hand side at the end of the 2e-5 s run taken
-apart by stage (each stage of :func:`mbs.kernel_system.rhs` called alone, in numba): at the
-start the bearings sit in their quasi-static state, with fewer contacts active than running.
+with Shen-Hedrick-Elkins in place of FASTSIM (the tangential contact's share).  Then runs of
+the validation case, each over the longer of ``--duration`` and ``--step-duration``: the
+configs' leapfrog at 1e-5 s on all numba threads and on one (same numbers expected), at 5e-6 s
+(the step halved), and RK4 at 2e-5 s (another method); they give the rate and the convergence
+of what the diagnosis reads after the 0.5 s fade-in: the defect-side (ws2_R) and healthy-side
+RMS and the BPFO line of the defect side's envelope spectrum.  Last, the right-hand side at the
+end of the first run taken apart by stage (each stage of :func:`mbs.kernel_system.rhs` called
+alone, in numba): at the start the bearings sit in their quasi-static state, with fewer
+contacts active than running.
 """
 from __future__ import annotations
 
@@ -24,6 +26,7 @@ from pathlib import Path
 # this folder holds bearing.py (a benchmark): keep it from shadowing the bearing package
 sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
 
+import numba  # noqa: E402
 import numpy as np  # noqa: E402
 
 from bearing.diagnostics.envelope import envelope_spectrum  # noqa: E402
@@ -33,9 +36,9 @@ from mbs import integrate  # noqa: E402
 from pipelines import simulate as psim  # noqa: E402
 from pipelines.readers import TRACK_FADE_IN_S  # noqa: E402
 from mbs.kernel_bearings import bearing_forces  # noqa: E402
-from mbs.kernel_body import (BI_N, BI_VEL, body_accelerations, frame_kinematics,  # noqa: E402
-                             gravity_load, position_rates)
+from mbs.kernel_body import BI_N, frame_kinematics, gravity_load, position_rates  # noqa: E402
 from mbs.kernel_elements import element_forces  # noqa: E402
+from mbs.kernel_system import _accelerations  # noqa: E402
 from mbs.kernel_markers import marker_acceleration, marker_kinematics, marker_loads  # noqa: E402
 from mbs.kernel_wheels import G_GRAV, wheel_forces  # noqa: E402
 from numba import njit  # noqa: E402
@@ -84,16 +87,11 @@ def _stage(which, nrep, t, y, dy, S, W):
             for s in range(sens.shape[0]):
                 marker_acceleration(sens[s], y, dy, bi, mk_i, mk_f, shp, Ab, omfb, mku, sensout[s])
         else:
-            for b in range(nb):
-                n, o, iv = bi[b, BI_N], goff[b], bi[b, BI_VEL]
-                if (which == 5) == (n > 0):
-                    body_accelerations(b, y, bi, bf, inv, Ab[b], omb[b], omfb[b],
-                                       gen[o:o + 6 + n], dy[iv:iv + 6 + n])
+            _accelerations(y, dy, bi, bf, inv, goff, Ab, omb, omfb, gen)
 
 
-STAGES = ("frames and markers", "suspension elements", "eight DTRBs", "wheel-rail contacts",
-          "gravity, marker loads, sensors", "flexible bodies' accelerations",
-          "rigid bodies' accelerations")
+STAGES = ("frames and markers", "suspension elements", "eight DTRBs (parallel)",
+          "wheel-rail contacts", "gravity, marker loads, sensors", "bodies' accelerations (parallel)")
 
 
 def stages_us(model, y, t, n=2000) -> dict:
@@ -163,32 +161,46 @@ def main():
     skip = int(TRACK_FADE_IN_S * fs)
     bpfo = orders(BearingParams()).BPFO * shaft_hz(48.0, 0.42)
     ind = {}
-    print("| dt s | wall s per simulated s | ws2_R RMS m/s^2 | ws2_L RMS m/s^2 | ws2_R BPFO "
-          "envelope line m/s^2 |")
-    print("| --- | --- | --- | --- | --- |")
-    for dt in (2e-5, 1e-5):
-        s = integrate.Settings(method="rk4", dt=dt, output_rate_hz=fs, state_rate_hz=100)
+    print(f"numba threading layer and threads: see the rows ({numba.config.NUMBA_NUM_THREADS} "
+          "threads available)")
+    print("| method | dt s | threads | wall s per simulated s | ws2_R RMS m/s^2 | ws2_L RMS m/s^2 | "
+          "ws2_R BPFO envelope line m/s^2 |")
+    print("| --- | --- | --- | --- | --- | --- | --- |")
+    n_all = numba.config.NUMBA_NUM_THREADS
+    for method, dt, threads in (("leapfrog", 1e-5, n_all), ("leapfrog", 1e-5, 1),
+                                ("leapfrog", 5e-6, n_all), ("rk4", 2e-5, n_all)):
+        numba.set_num_threads(threads)
+        s = integrate.Settings(method=method, dt=dt, output_rate_hz=fs, state_rate_hz=100)
         integrate.simulate(model, 0.001, s, y0=y0)                  # compile outside the timing
         run = integrate.simulate(model, T, s, y0=y0)
         rate = run.wall_s / T
         R, L = (run.sensors[n][skip:, 2] for n in ("ws2_R", "ws2_L"))
-        ind[dt] = (R.std(), L.std(), bpfo_line(R, fs, bpfo))
-        print(f"| {dt:g} | {rate:.1f} | {ind[dt][0]:.3f} | {ind[dt][1]:.3f} | {ind[dt][2]:.4f} |")
-        if dt == 2e-5:
+        ind[method, dt, threads] = (R.std(), L.std(), bpfo_line(R, fs, bpfo))
+        x = ind[method, dt, threads]
+        print(f"| {method} | {dt:g} | {threads} ({numba.threading_layer()}) | {rate:.1f} | "
+              f"{x[0]:.3f} | {x[1]:.3f} | {x[2]:.3f} |", flush=True)
+        if (method, dt, threads) == ("leapfrog", 1e-5, n_all):
             running = run.y_end.copy()
+    numba.set_num_threads(n_all)
     st = stages_us(model, running, T)
     total = rhs_us(model, running)
     print(f"the right-hand side at t = {T:g} s (the bearings running, more contacts active than at "
-          f"the start): {total:.0f} us a call")
+          f"the start), {n_all} threads: {total:.0f} us a call")
     print("| stage | us | share |")
     print("| --- | --- | --- |")
     for k, us in st.items():
         print(f"| {k} | {us:.1f} | {100 * us / total:.0f} % |")
-    d = [abs(x / y - 1) * 100 for x, y in zip(ind[2e-5], ind[1e-5])]
+
+    def change(a, b):
+        return ", ".join(f"{nm} {abs(x / y - 1) * 100:.2f} %" for nm, x, y in
+                         zip(("defect-side RMS", "healthy-side RMS", "BPFO line"), ind[a], ind[b]))
+    ref = ("leapfrog", 5e-6, n_all)
+    print(f"leapfrog 1e-5 against 5e-6 s: {change(('leapfrog', 1e-5, n_all), ref)}")
+    print(f"RK4 2e-5 against leapfrog 5e-6 s: {change(('rk4', 2e-5, n_all), ref)}")
+    print(f"leapfrog 1e-5 s, 1 thread against {n_all}: identical = "
+          f"{ind['leapfrog', 1e-5, 1] == ind['leapfrog', 1e-5, n_all]}")
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-    print(f"2e-5 against 1e-5 s: defect-side RMS {d[0]:.2f} %, healthy-side RMS {d[1]:.2f} %, "
-          f"defect-side BPFO envelope line {d[2]:.2f} % ({T:g} s simulated, "
-          f"the first {TRACK_FADE_IN_S:g} s left out); peak memory {peak:.0f} MB")
+    print(f"({T:g} s simulated, the first {TRACK_FADE_IN_S:g} s left out); peak memory {peak:.0f} MB")
 
 
 if __name__ == "__main__":

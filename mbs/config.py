@@ -23,7 +23,7 @@ INF = math.inf
 SCHEMA: dict[str, dict[str, tuple]] = {
     "run": {"duration": (F, 5.0, 1e-4, 1e4), "speed_kmh": (F, 48.0, 1.0, 200.0),
             "seed": (I, 0, 0, 2**31 - 1)},
-    "integrator": {"method": (S, "rk4", ("rk4", "galpha")), "dt": (F, 2e-5, 1e-7, 1e-3),
+    "integrator": {"method": (S, "rk4", ("rk4", "leapfrog", "galpha")), "dt": (F, 2e-5, 1e-7, 1e-3),
                    "output_rate_hz": (F, 1e4, 1.0, 1e6), "state_rate_hz": (F, 500.0, 0.1, 1e6),
                    "rho_inf": (F, 0.8, 0.0, 1.0)},
     "track": {"fra_class": (I, 5, 1, 6), "lambda_min": (F, 1.0, 0.1, 100.0),
@@ -68,7 +68,10 @@ SCHEMA: dict[str, dict[str, tuple]] = {
 # free-form sections checked by their own classes: [bearing] (bearing.params.BearingParams
 # fields, SI) and [[defects]] (bearing.defects.Defect fields, the angle in degrees, plus where)
 DEFECT_PLACE = {"wheelset": (I, 2, 1, 4), "side": (S, "R", ("L", "R"))}
-DTRB_DT_MAX = 2.8e-5      # s: RK4's limit on the roller-raceway contact mode (DESIGN.md)
+# s: the explicit steps' limits on the rollers' tilt mode between the raceways (22.6 kHz,
+# damping ratio 0.12): RK4's w h <= 2.8; the leapfrog's 2 (sqrt(1 + z^2) - z) = 1.77 less a
+# margin for the loads (benchmarks/README.md)
+DTRB_DT_MAX = {"rk4": 2.8e-5, "leapfrog": 1.2e-5}
 
 
 def defaults() -> dict:
@@ -181,12 +184,14 @@ def validate(user: dict) -> dict:
                              f"{need:.0f} m (distance plus its length); expected at least that")
     if cfg["joint"]["model"] == "dtrb":
         ig = cfg["integrator"]
-        if ig["method"] != "rk4":
+        if ig["method"] not in DTRB_DT_MAX:
             raise ParameterError(f"integrator.method = {ig['method']!r} is not allowed with "
-                                 "joint.model = 'dtrb': expected 'rk4'")
-        if ig["dt"] > DTRB_DT_MAX:
+                                 f"joint.model = 'dtrb': expected one of {tuple(DTRB_DT_MAX)}")
+        dt_max = DTRB_DT_MAX[ig["method"]]
+        if ig["dt"] > dt_max:
             raise ParameterError(f"integrator.dt = {ig['dt']:g} is not allowed with joint.model = "
-                                 f"'dtrb': expected at most {DTRB_DT_MAX:g} s (the roller contacts)")
+                                 f"'dtrb' and method {ig['method']!r}: expected at most {dt_max:g} s "
+                                 "(the roller contacts)")
     elif cfg["defects"]:
         raise ParameterError("defects need joint.model = 'dtrb': with the bushing joint there is "
                              "no bearing to hold them")

@@ -1,4 +1,5 @@
-"""Run a :class:`~mbs.system.Model` in time: fixed-step RK4 or generalized-alpha, output at a
+"""Run a :class:`~mbs.system.Model` in time: fixed-step RK4, leapfrog (explicit central
+differences) or generalized-alpha, output at a
 fixed rate, divergence caught and named, results kept when a run stops early.
 
 The run goes in chunks (``chunk`` simulated seconds) so that progress can be shown and a
@@ -17,14 +18,14 @@ from geometry._params import ParameterError, check_ranges, param
 from . import kernel_integrate as ki
 from .system import Model
 
-METHODS = ("rk4", "galpha")
+METHODS = ("rk4", "leapfrog", "galpha")
 
 
 @dataclass(frozen=True)
 class Settings:
     """Integrator settings; ``dt`` must divide the output period."""
 
-    method: str = field(default="rk4", metadata={"doc": "'rk4' or 'galpha'"})
+    method: str = field(default="rk4", metadata={"doc": "'rk4', 'leapfrog' or 'galpha'"})
     dt: float = param(2e-5, 1e-8, 1e-2, unit="s", doc="fixed step")
     output_rate_hz: float = param(10_000.0, 1.0, 1e7, unit="Hz", doc="sensor output rate")
     state_rate_hz: float = param(1_000.0, 0.1, 1e7, unit="Hz", doc="rate of whole-state snapshots")
@@ -84,8 +85,11 @@ _STATUS = {ki.NOT_FINITE: "not finite", ki.RUNAWAY: "runaway", ki.NO_CONVERGENCE
 
 
 def simulate(model: Model, duration: float, settings: Settings | None = None, *, y0=None,
-             t0: float = 0.0, chunk: float = 0.25, progress=None) -> Run:
-    """Integrate ``model`` for ``duration`` s from ``y0`` (default: the model's initial state)."""
+             t0: float = 0.0, chunk: float = 0.25, progress=None, continued: bool = False) -> Run:
+    """Integrate ``model`` for ``duration`` s from ``y0`` (default: the model's initial state).
+
+    ``continued``: ``y0`` is the ``y_end`` of an earlier leapfrog run with the same step, whose
+    velocities are half a step behind (the run then goes on as if it had not stopped)."""
     s = settings or Settings()
     if not (math.isfinite(duration) and duration > 0):
         raise ParameterError(f"duration = {duration!r} is not allowed: expected a time > 0 s")
@@ -106,7 +110,7 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
     if s.method == "galpha" and nbr:
         raise ParameterError("integrator.method = 'galpha' is not allowed with DTRB bearings: "
                              "their roller and cage states are not in the Jacobian's coupling "
-                             "pattern; use 'rk4'")
+                             "pattern; use 'leapfrog' or 'rk4'")
     if s.method == "galpha":
         pattern, groups, n_groups = model.coupling_pattern()
         scale, atol = model.state_scales()
@@ -120,6 +124,10 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
             status, k_done, bad = ki.run_rk4(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S, W,
                                              model.nq, nend, s.vmax, out_t, out_sens, out_wh,
                                              out_el, out_y, se)
+        elif s.method == "leapfrog":
+            status, k_done, bad = ki.run_leapfrog(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S, W,
+                                                  model.nq, nend, s.vmax, out_t, out_sens, out_wh,
+                                                  out_el, out_y, se, k == 0 and not continued)
         else:
             status, k_done, bad = ki.run_galpha(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S, W,
                                                 model.nq, nend, s.vmax, out_t, out_sens, out_wh,

@@ -17,12 +17,20 @@ moments) go back to the two markers as inertial forces and moments.
 """
 from __future__ import annotations
 
+import os
+
 import numpy as np
-from numba import njit
+from numba import config, njit, prange
 
 from bearing.kernel import dtrb_rhs
 
 from .kernel_body import BI_POS, BI_VEL
+
+# OpenMP first: its idle threads spin a while before they sleep, so the bearings' parallel
+# region, entered every right-hand side (~100 us apart), finds them awake (TBB's sleep:
+# 132 against 115 us a call on 2 cores, benchmarks/README.md); the user's own choice stands
+if not (os.environ.get("NUMBA_THREADING_LAYER") or os.environ.get("NUMBA_THREADING_LAYER_PRIORITY")):
+    config.THREADING_LAYER_PRIORITY = ["omp", "tbb", "workqueue"]
 
 BR_MIN, BR_MOUT, BR_BODY, BR_OFF, BR_N, BR_D0, BR_ND = range(7)
 BR_WIDTH = 7
@@ -48,56 +56,82 @@ def bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM,
     nbr = br_i.shape[0]
     if nbr == 0:
         return
-    ring = np.zeros((2, 12))
-    F = np.zeros((2, 6))
-    Qc = np.zeros((2, int(br_P[0, 0]), 6))
-    th = np.zeros(6)
-    d = np.zeros(3)
+    ring = np.zeros((nbr, 2, 12))
+    F = np.zeros((nbr, 2, 6))
+    Qc = np.zeros((nbr, 2, int(br_P[0, 0]), 6))
+    th = np.zeros((nbr, 6))
     for k in range(nbr):
-        mi, mo, b = br_i[k, BR_MIN], br_i[k, BR_MOUT], br_i[k, BR_BODY]
+        _ring_motion(k, y, bi, br_i, mkp, mkv, mkR, mkw, ring[k], th[k])
+    _all_dtrbs(t, y, dy, br_i, br_P, br_D, ring, F, Qc)
+    for k in range(nbr):
+        _loads_back(k, y, br_i, mkF, mkM, elout, F[k], Qc[k], th[k])
+
+
+@njit(cache=True, parallel=True)
+def _all_dtrbs(t, y, dy, br_i, br_P, br_D, ring, F, Qc):
+    """:func:`bearing.kernel.dtrb_rhs` of every bearing, in parallel (numba threads): each
+    writes only its own states and scratch rows, so the result does not depend on the number of
+    threads."""
+    for k in prange(br_i.shape[0]):
         off, n = br_i[k, BR_OFF], br_i[k, BR_N]
         d0, nd = br_i[k, BR_D0], br_i[k, BR_ND]
-        _small_angles(mkR[mi], th, 0)
-        _small_angles(mkR[mo], th, 3)
-        # the bearing frame follows the inner ring's tilt (the journal bends with the axle by
-        # about a milliradian, which on the rollers' 40 mm would be 20 um of misalignment):
-        # the outer ring's displacement and tilt are taken relative to it
-        for a in range(3):
-            d[a] = mkp[mo, a] - mkp[mi, a]
-        ring[:, :] = 0.0
-        ring[1, 0] = d[0] - (th[1] * d[2] - th[2] * d[1])
-        ring[1, 1] = d[1] - (th[2] * d[0] - th[0] * d[2])
-        ring[1, 2] = d[2] - (th[0] * d[1] - th[1] * d[0])
-        ring[1, 3] = th[3] - th[0]
-        ring[1, 4] = th[4]
-        ring[1, 5] = th[5] - th[2]
-        for a in range(3):
-            ring[1, 6 + a] = mkv[mo, a] - mkv[mi, a]
-            ring[0, 9 + a] = mkw[mi, a]
-            ring[1, 9 + a] = mkw[mo, a]
-        # the wheelset's spin: its own angle, and the body-frame rate about the axle
-        ring[0, 4] = y[bi[b, BI_POS] + 7]
-        ring[0, 10] = y[bi[b, BI_VEL] + 4]
-        dtrb_rhs(t, y[off:off + n], ring, br_P[k], br_D[d0:d0 + nd], dy[off:off + n], F, Qc)
-        for r in range(2):                      # back to the track frame: rotate by the tilt
-            for o in (0, 3):
-                f0, f1, f2 = F[r, o], F[r, o + 1], F[r, o + 2]
-                F[r, o] = f0 + th[1] * f2 - th[2] * f1
-                F[r, o + 1] = f1 + th[2] * f0 - th[0] * f2
-                F[r, o + 2] = f2 + th[0] * f1 - th[1] * f0
-        for a in range(3):
-            mkF[mi, a] += F[0, a]
-            mkM[mi, a] += F[0, 3 + a]
-            mkF[mo, a] += F[1, a]
-            mkM[mo, a] += F[1, 3 + a]
-        r = elout.shape[0] - BR_ROWS * (nbr - k)
-        cb = off + n - 24                      # the two cages' states close the bearing's
-        for c in range(6):
-            elout[r, c] = F[0, c]
-            elout[r + 1, c] = F[1, c]
-        elout[r + 2, 0] = Qc[0, 0, 0]
-        elout[r + 2, 1] = Qc[1, 0, 0]
-        elout[r + 2, 2] = y[cb + 5]
-        elout[r + 2, 3] = y[cb + 17]
-        elout[r + 2, 4] = y[cb + 11]
-        elout[r + 2, 5] = y[cb + 23]
+        dtrb_rhs(t, y[off:off + n], ring[k], br_P[k], br_D[d0:d0 + nd], dy[off:off + n], F[k],
+                 Qc[k])
+
+
+@njit(cache=True)
+def _ring_motion(k, y, bi, br_i, mkp, mkv, mkR, mkw, ring, th):
+    """Bearing k's ring motion (bearing/layout.py) from its two markers, and the small angles
+    ``th`` of the markers' orientations."""
+    mi, mo, b = br_i[k, BR_MIN], br_i[k, BR_MOUT], br_i[k, BR_BODY]
+    _small_angles(mkR[mi], th, 0)
+    _small_angles(mkR[mo], th, 3)
+    # the bearing frame follows the inner ring's tilt (the journal bends with the axle by
+    # about a milliradian, which on the rollers' 40 mm would be 20 um of misalignment):
+    # the outer ring's displacement and tilt are taken relative to it
+    d0, d1, d2 = mkp[mo, 0] - mkp[mi, 0], mkp[mo, 1] - mkp[mi, 1], mkp[mo, 2] - mkp[mi, 2]
+    ring[:, :] = 0.0
+    ring[1, 0] = d0 - (th[1] * d2 - th[2] * d1)
+    ring[1, 1] = d1 - (th[2] * d0 - th[0] * d2)
+    ring[1, 2] = d2 - (th[0] * d1 - th[1] * d0)
+    ring[1, 3] = th[3] - th[0]
+    ring[1, 4] = th[4]
+    ring[1, 5] = th[5] - th[2]
+    for a in range(3):
+        ring[1, 6 + a] = mkv[mo, a] - mkv[mi, a]
+        ring[0, 9 + a] = mkw[mi, a]
+        ring[1, 9 + a] = mkw[mo, a]
+    # the wheelset's spin: its own angle, and the body-frame rate about the axle
+    ring[0, 4] = y[bi[b, BI_POS] + 7]
+    ring[0, 10] = y[bi[b, BI_VEL] + 4]
+
+
+@njit(cache=True)
+def _loads_back(k, y, br_i, mkF, mkM, elout, F, Qc, th):
+    """Bearing k's ring loads ``F`` turned back to the track frame onto its markers, and its
+    output rows."""
+    nbr = br_i.shape[0]
+    mi, mo = br_i[k, BR_MIN], br_i[k, BR_MOUT]
+    off, n = br_i[k, BR_OFF], br_i[k, BR_N]
+    for r in range(2):                      # back to the track frame: rotate by the tilt
+        for o in (0, 3):
+            f0, f1, f2 = F[r, o], F[r, o + 1], F[r, o + 2]
+            F[r, o] = f0 + th[1] * f2 - th[2] * f1
+            F[r, o + 1] = f1 + th[2] * f0 - th[0] * f2
+            F[r, o + 2] = f2 + th[0] * f1 - th[1] * f0
+    for a in range(3):
+        mkF[mi, a] += F[0, a]
+        mkM[mi, a] += F[0, 3 + a]
+        mkF[mo, a] += F[1, a]
+        mkM[mo, a] += F[1, 3 + a]
+    r = elout.shape[0] - BR_ROWS * (nbr - k)
+    cb = off + n - 24                      # the two cages' states close the bearing's
+    for c in range(6):
+        elout[r, c] = F[0, c]
+        elout[r + 1, c] = F[1, c]
+    elout[r + 2, 0] = Qc[0, 0, 0]
+    elout[r + 2, 1] = Qc[1, 0, 0]
+    elout[r + 2, 2] = y[cb + 5]
+    elout[r + 2, 3] = y[cb + 17]
+    elout[r + 2, 4] = y[cb + 11]
+    elout[r + 2, 5] = y[cb + 23]

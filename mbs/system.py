@@ -125,6 +125,11 @@ class System:
                                  "expected a marker on a spinning body (the wheelset)")
         if any(x[0] == name for x in self.bearings):
             raise ParameterError(f"bearing = {name!r} is not allowed: the name is taken")
+        for x in self.bearings:     # the bearings run in parallel: each loads its own markers
+            if {inner, outer} & {x[1], x[2]}:
+                raise ParameterError(f"bearing {name!r}: markers ({inner}, {outer}) are not "
+                                     f"allowed: bearing {x[0]!r} uses ({x[1]}, {x[2]}); expected "
+                                     "markers of its own")
         self.bearings.append((name, inner, outer, b, np.asarray(P, float),
                               np.asarray(D, float).reshape(-1, 8), np.asarray(y0, float)))
 

@@ -131,10 +131,14 @@ def matrix(kind: str, cfg: dict, speeds=None, widths=None, duration=None) -> lis
     return cases
 
 
-def run_case(kind: str, toml_text: str, out: str) -> dict:
+def run_case(kind: str, toml_text: str, out: str, threads: int = 0) -> dict:
     """Run one case in this process (a dask worker) into ``out``, written through a temporary
-    name by the runner.  A plain top-level function of plain arguments, so dask can ship it."""
+    name by the runner.  A plain top-level function of plain arguments, so dask can ship it.
+    ``threads`` > 0: numba threads for the case (local workers share the cores between them)."""
     t0 = time.perf_counter()
+    if threads > 0:
+        import numba
+        numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
     out = Path(out)
     if kind == "rig":
         from bearing.rig import config_from_dict, simulate
@@ -186,7 +190,10 @@ def run_cases(todo: list[Case], out, scheduler=None, workers=None, log=print) ->
     failed = []
     try:
         log(f"sweep: {len(todo)} case(s) on {scheduler or f'a local cluster of {n} worker(s)'}")
-        futs = {client.submit(run_case, c.kind, c.toml, str(c.path(out)), pure=False): c for c in todo}
+        # local workers split the cores; a remote scheduler's workers keep numba's default
+        threads = 0 if scheduler else max(1, (os.cpu_count() or 1) // n)
+        futs = {client.submit(run_case, c.kind, c.toml, str(c.path(out)), threads, pure=False): c
+                for c in todo}
         for k, fut in enumerate(as_completed(futs), 1):
             c, head = futs[fut], f"[{k}/{len(todo)}] {futs[fut].name}"
             try:

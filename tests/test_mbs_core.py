@@ -209,3 +209,70 @@ def test_divergence_names_time_and_body():
     assert not run.ok
     assert "block" in run.message and "t = " in run.message
     assert 0 < run.time.size < 1001
+
+
+def _block_on_spring(k, m, z0, c=0.0):
+    s = System(gravity=(0, 0, 0))
+    s.add_body(rigid("block", m, (0.01, 0.01, 0.01)), r=(0, 0, z0))
+    g = s.marker(None)
+    blk = s.marker("block")
+    s.add(Bushing("spring", g, blk, k=(k,) * 3 + (0,) * 3, c=(c,) * 3 + (0,) * 3,
+                  offset=(0, 0, 0)))
+    return s.assemble()
+
+
+def test_leapfrog_oscillates_at_its_closed_form_frequency_and_keeps_its_energy():
+    """Undamped, the central-difference step turns a mode of frequency w into one of
+    ``w_h = (2 / h) asin(w h / 2)`` with no amplitude error, and keeps the discrete energy
+    ``m v_{n-1/2} v_{n+1/2} / 2 + k z_n^2 / 2`` exactly (Hughes, The Finite Element Method,
+    1987, sec. 9.1; Belytschko, Liu and Moran 2000, sec. 6.2).  At ``w h = 0.8`` that is 3.0 %
+    fast: the period over 40 cycles matches it to 0.1 %, not the exact one."""
+    k, m, z0 = 4e4, 1.0, 0.01
+    w = np.sqrt(k / m)                     # 200 rad/s
+    h = 0.8 / w
+    model = _block_on_spring(k, m, z0)
+    run = integrate.simulate(model, 40 * 2 * np.pi / w, integrate.Settings(
+        method="leapfrog", dt=h, output_rate_hz=1 / h, state_rate_hz=1 / h))
+    assert run.ok, run.message
+    z, t = run.states[:, 2], run.state_time
+    up = np.flatnonzero((z[:-1] < 0) & (z[1:] >= 0))
+    tc = t[up] - z[up] * (t[up + 1] - t[up]) / (z[up + 1] - z[up])
+    period = np.diff(tc).mean()
+    w_h = 2 / h * np.arcsin(w * h / 2)
+    assert abs(period / (2 * np.pi / w_h) - 1) < 1e-3
+    assert abs(period / (2 * np.pi / w) - 1) > 0.025
+    v = run.states[1:, model.nq + 2]                    # v_{n-1/2}, n = 1, 2, ...
+    E = 0.5 * m * v[:-1] * v[1:] + 0.5 * k * z[1:-1] ** 2
+    np.testing.assert_allclose(E, E[0], rtol=1e-9)
+    assert abs(E[0] / (0.5 * k * z0 ** 2) - 1) < (w * h) ** 2 / 4
+
+
+def test_leapfrog_with_damping_follows_its_modified_equation():
+    """The damping force sees the velocity half a step late, ``c u(t - h/2) ~ c u - (c h/2) u'``:
+    the step solves ``(m - c h/2) z'' + c z' + k z = 0``, a first-order error in h (frequency
+    up by ``zeta w h / 2``: on the car's 2.7 kHz axle-box mode at 1e-5 s, 2e-6).  Against the
+    closed form of the true equation the error halves with the step; against that of the
+    modified one it is far smaller and falls at second order."""
+    k, m, z0 = 4e4, 1.0, 0.01
+    w = np.sqrt(k / m)
+    zeta = 0.05
+    c = 2 * zeta * w * m
+    model = _block_on_spring(k, m, z0, c=c)
+
+    def free(t, mass):
+        wn = np.sqrt(k / mass)
+        z = c / (2 * mass * wn)
+        wd = wn * np.sqrt(1 - z ** 2)
+        return z0 * np.exp(-z * wn * t) * (np.cos(wd * t) + z * wn / wd * np.sin(wd * t))
+
+    true, modified = [], []
+    for h in (2e-4, 1e-4, 5e-5):
+        run = integrate.simulate(model, 0.2, integrate.Settings(method="leapfrog", dt=h,
+                                                                output_rate_hz=1e3,
+                                                                state_rate_hz=1e3))
+        t, z = run.state_time, run.states[:, 2]
+        true.append(np.abs(z - free(t, m)).max())
+        modified.append(np.abs(z - free(t, m - 0.5 * c * h)).max())
+    assert all(1.8 < a / b < 2.2 for a, b in zip(true, true[1:])), true
+    assert all(3.5 < a / b < 4.5 for a, b in zip(modified, modified[1:])), modified
+    assert all(a < 0.1 * b for a, b in zip(modified, true))
