@@ -107,10 +107,12 @@ def test_outer_ring_defect_rings_at_bpfo_on_its_side_and_weaker_across_the_axle(
 
 def test_leapfrog_matches_rk4_and_the_threads_do_not_change_it(car):
     """The shipped configs' leapfrog (1e-5 s) against RK4 (1e-5 s) on the defect case, smooth
-    track, 50-300 ms: the defect side's RMS and envelope BPFO line and the healthy side's RMS
-    agree within 3 % (the rollers' motion is chaotic sample by sample; the full car over 1 s
-    agrees within 1.3 %, benchmarks/README.md).  The bearings and bodies run on numba threads,
-    each writing only its own rows: one thread and two give identical arrays."""
+    track, 50-300 ms: both sides' RMS agree within 3 % and the defect side's envelope BPFO line
+    within 15 %.  The rollers' motion is chaotic: a change of 1e-13 in the start state moves,
+    with either method, the RMS by up to 1 % and this line (read from 11 fault periods) by up to
+    9 %; over 1 s of the flexible car the two methods agree within 1.3 % (benchmarks/README.md).
+    The bearings and bodies run on numba threads, each writing only its own rows: one thread
+    and two give identical arrays."""
     import numba
     cfg, model, y0 = car
     runs = {}
@@ -133,7 +135,8 @@ def test_leapfrog_matches_rk4_and_the_threads_do_not_change_it(car):
         h = run.sensors["ws2_L"][500:, 2].std()
         return np.array([d.rms, d.lines["BPFO"].searched[0][2], h])     # fundamental's amplitude
     a, b = ind(runs["rk4", n_all]), ind(runs["leapfrog", n_all])
-    np.testing.assert_allclose(b, a, rtol=0.03)
+    np.testing.assert_allclose(b[[0, 2]], a[[0, 2]], rtol=0.03)
+    np.testing.assert_allclose(b[1], a[1], rtol=0.15)
 
 
 def test_simulate_writes_the_bearings(tmp_path):
