@@ -135,6 +135,8 @@ def main():
         ap.error(f"--step-duration {a.step_duration:g} is not allowed: expected more than "
                  f"{TRACK_FADE_IN_S + 0.1:g} s (the first {TRACK_FADE_IN_S:g} s are left out)")
     prof = {}
+    n_all = numba.config.NUMBA_NUM_THREADS
+    numba.set_num_threads(1)          # by subtraction: one thread, or the parallel parts overlap
     for label, over in (("rigid, bushings", {"joint": {"model": "bushing"}, "defects": [],
                                              "bodies": {"flexible": []}}),
                         ("rigid, DTRBs", {"bodies": {"flexible": []}}),
@@ -145,6 +147,8 @@ def main():
                                                         "wheelrail": {"law": "she"}})):
         model, y0 = variant(a.bodies, over)
         prof[label] = (model.n_states, rhs_us(model, y0))
+    numba.set_num_threads(n_all)
+    print("right-hand side at the start, one thread:")
     print("| model | states | RHS us |")
     print("| --- | --- | --- |")
     for k, (n, us) in prof.items():
@@ -161,12 +165,9 @@ def main():
     skip = int(TRACK_FADE_IN_S * fs)
     bpfo = orders(BearingParams()).BPFO * shaft_hz(48.0, 0.42)
     ind = {}
-    print(f"numba threading layer and threads: see the rows ({numba.config.NUMBA_NUM_THREADS} "
-          "threads available)")
     print("| method | dt s | threads | wall s per simulated s | ws2_R RMS m/s^2 | ws2_L RMS m/s^2 | "
           "ws2_R BPFO envelope line m/s^2 |")
     print("| --- | --- | --- | --- | --- | --- | --- |")
-    n_all = numba.config.NUMBA_NUM_THREADS
     for method, dt, threads in (("leapfrog", 1e-5, n_all), ("leapfrog", 1e-5, 1),
                                 ("leapfrog", 5e-6, n_all), ("rk4", 2e-5, n_all)):
         numba.set_num_threads(threads)
