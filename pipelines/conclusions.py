@@ -37,10 +37,10 @@ WHY = {
           "60 km/h it is 1.3 ms between the two kurtosis bands and 0.5 ms with the healthy "
           "side's fault-guided band, which correlates better",
     "2c": "VF measures the spread about FC; our defect side's spectrum is spread between its "
-          "impacts' low harmonics and the coarse axle-box's 2.7 kHz ring, so its VF can exceed "
+          "impacts' low harmonics and the axle-box's lightly damped 2.7 kHz ring, so its VF can exceed "
           "the healthy side's",
-    "3": "the VF range was fitted to the paper's model; our spectra sit elsewhere (the coarse "
-         "axle-box's 2.7 kHz mode), so the absolute range does not carry over; the relative "
+    "3": "the VF range was fitted to the paper's model; our spectra sit elsewhere (the "
+         "axle-box's lightly damped 2.7 kHz mode), so the absolute range does not carry over; the relative "
          "criterion (--relative) is the portable form",
     "rms": "the healthy side's RMS is set by how the impacts' spectrum meets the wheelset's "
            "bending band at each speed, which need not rise monotonically",
