@@ -5,3 +5,5 @@
 
 The multibody solver and the vehicle come next; they read the reduced-body files of :mod:`fem`.
 """
+from bearing import _jitcache  # noqa: F401  (before any kernel compiles or loads)
+

@@ -276,3 +276,19 @@ def test_leapfrog_with_damping_follows_its_modified_equation():
     assert all(1.8 < a / b < 2.2 for a, b in zip(true, true[1:])), true
     assert all(3.5 < a / b < 4.5 for a, b in zip(modified, modified[1:])), modified
     assert all(a < 0.1 * b for a, b in zip(modified, true))
+
+
+def test_leapfrog_run_continued_from_its_end_state_goes_on_as_if_unbroken():
+    """The leapfrog's end state holds its velocities half a step behind; ``continued=True``
+    picks them up as such: 0.1 s + 0.1 s equals 0.2 s to the last bit, and a fresh start from
+    the same state (a half kick again) does not."""
+    k, m = 4e4, 1.0
+    model = _block_on_spring(k, m, 0.01, c=20.0)
+    s = integrate.Settings(method="leapfrog", dt=1e-4, output_rate_hz=1e3, state_rate_hz=1e3)
+    whole = integrate.simulate(model, 0.2, s)
+    first = integrate.simulate(model, 0.1, s)
+    second = integrate.simulate(model, 0.1, s, y0=first.y_end, t0=0.1, continued=True)
+    np.testing.assert_array_equal(second.y_end, whole.y_end)
+    np.testing.assert_array_equal(second.states, whole.states[100:])
+    fresh = integrate.simulate(model, 0.1, s, y0=first.y_end, t0=0.1)
+    assert not np.array_equal(fresh.y_end, whole.y_end)
