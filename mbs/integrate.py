@@ -120,14 +120,11 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
     while k < n_out:
         k1 = min(n_out, k + per)
         tk = t0 + k * s.n_sub * h
-        if s.method == "rk4":
-            status, k_done, bad = ki.run_rk4(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S, W,
-                                             model.nq, nend, s.vmax, out_t, out_sens, out_wh,
-                                             out_el, out_y, se)
-        elif s.method == "leapfrog":
-            status, k_done, bad = ki.run_leapfrog(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S, W,
-                                                  model.nq, nend, s.vmax, out_t, out_sens, out_wh,
-                                                  out_el, out_y, se, k == 0 and not continued)
+        if s.method in ("rk4", "leapfrog"):
+            status, k_done, bad = ki.run_explicit(s.method == "leapfrog", y, tk, h, s.n_sub, k1, k,
+                                                  n_out - 1, model.S, W, model.nq, nend, s.vmax,
+                                                  out_t, out_sens, out_wh, out_el, out_y, se,
+                                                  k == 0 and not continued)
         else:
             status, k_done, bad = ki.run_galpha(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S, W,
                                                 model.nq, nend, s.vmax, out_t, out_sens, out_wh,

@@ -1,9 +1,9 @@
 """Fixed-step integrators over :func:`mbs.kernel_system.rhs`, whole runs in numba.
 
-* ``run_rk4``: classical Runge-Kutta 4.
-* ``run_leapfrog``: the explicit central-difference (leapfrog) step of explicit finite elements
-  and discrete elements, one right-hand side a step (Belytschko, Liu and Moran, Nonlinear Finite
-  Elements for Continua and Structures, 2000, sec. 6.2.1, Box 6.1), in its kick-drift form::
+* ``run_explicit``: classical Runge-Kutta 4, or the explicit central-difference (leapfrog) step
+  of explicit finite elements and discrete elements, one right-hand side a step (Belytschko,
+  Liu and Moran, Nonlinear Finite Elements for Continua and Structures, 2000, sec. 6.2.1,
+  Box 6.1), in its kick-drift form::
 
       u_{n+1/2} = u_{n-1/2} + h a(t_n, q_n, u_{n-1/2})
       q_{n+1}   = q_n + h B(q_n) u_{n+1/2}
@@ -83,42 +83,20 @@ def _normalise(y, bi):
 
 
 @njit(cache=True)
-def run_rk4(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el,
-            out_y, state_every):
-    """Advance ``y`` in place through outputs ``k0 .. n_out - 1``; output ``k`` is at
-    ``t0 + (k - k0) n_sub h`` (recorded from the first stage there); no step follows the
-    output ``k_last``."""
+def _rk4_step(t, y, k1, k2, k3, k4, yt, h, S, W):
+    """The rest of one RK4 step from ``k1 = F(t, y)``."""
     N = y.shape[0]
-    k1 = np.empty(N)
-    k2 = np.empty(N)
-    k3 = np.empty(N)
-    k4 = np.empty(N)
-    yt = np.empty(N)
-    t = t0
-    for k in range(k0, n_out):
-        for j in range(n_sub):
-            t = t0 + ((k - k0) * n_sub + j) * h
-            rhs(t, y, k1, S, W)
-            if j == 0:
-                st, i = _output(k, t, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y,
-                                state_every)
-                if st != OK:
-                    return st, k, i
-                if k == k_last:
-                    break
-            for i in range(N):
-                yt[i] = y[i] + 0.5 * h * k1[i]
-            rhs(t + 0.5 * h, yt, k2, S, W)
-            for i in range(N):
-                yt[i] = y[i] + 0.5 * h * k2[i]
-            rhs(t + 0.5 * h, yt, k3, S, W)
-            for i in range(N):
-                yt[i] = y[i] + h * k3[i]
-            rhs(t + h, yt, k4, S, W)
-            for i in range(N):
-                y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
-            _normalise(y, S[0])
-    return OK, n_out, -1
+    for i in range(N):
+        yt[i] = y[i] + 0.5 * h * k1[i]
+    rhs(t + 0.5 * h, yt, k2, S, W)
+    for i in range(N):
+        yt[i] = y[i] + 0.5 * h * k2[i]
+    rhs(t + 0.5 * h, yt, k3, S, W)
+    for i in range(N):
+        yt[i] = y[i] + h * k3[i]
+    rhs(t + h, yt, k4, S, W)
+    for i in range(N):
+        y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
 
 
 @njit(cache=True)
@@ -154,17 +132,23 @@ def _kick_drift(y, a, hk, h, S, W):
 
 
 @njit(cache=True)
-def run_leapfrog(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t, out_sens,
-                 out_wh, out_el, out_y, state_every, start):
-    """As :func:`run_rk4`, by the leapfrog step.  With ``start`` the velocities in ``y`` are
-    ``u_0`` and the first kick is by ``h / 2``; after that they are ``u_{n-1/2}``, half a step
-    behind the positions, and a run continued from ``y`` (``start`` False) goes on exactly as
-    if it had not stopped."""
-    a = np.empty(y.shape[0])
+def run_explicit(leapfrog, y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t,
+                 out_sens, out_wh, out_el, out_y, state_every, start):
+    """Advance ``y`` in place through outputs ``k0 .. n_out - 1`` by RK4 or (``leapfrog``) the
+    leapfrog; output ``k`` is at ``t0 + (k - k0) n_sub h``, recorded from the step's first
+    evaluation there; no step follows the output ``k_last``.
+
+    Leapfrog: with ``start`` the velocities in ``y`` are ``u_0`` and the first kick is by
+    ``h / 2``; after that they are ``u_{n-1/2}``, half a step behind the positions, and a run
+    continued from ``y`` (``start`` False) goes on exactly as if it had not stopped."""
+    N = y.shape[0]
+    k1 = np.empty(N)
+    m = 0 if leapfrog else N                  # RK4's stages
+    k2, k3, k4, yt = np.empty(m), np.empty(m), np.empty(m), np.empty(m)
     for k in range(k0, n_out):
         for j in range(n_sub):
             t = t0 + ((k - k0) * n_sub + j) * h
-            rhs(t, y, a, S, W)
+            rhs(t, y, k1, S, W)
             if j == 0:
                 st, i = _output(k, t, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y,
                                 state_every)
@@ -172,8 +156,11 @@ def run_leapfrog(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t
                     return st, k, i
                 if k == k_last:
                     break
-            first = start and k == k0 and j == 0
-            _kick_drift(y, a, 0.5 * h if first else h, h, S, W)
+            if leapfrog:
+                first = start and k == k0 and j == 0
+                _kick_drift(y, k1, 0.5 * h if first else h, h, S, W)
+            else:
+                _rk4_step(t, y, k1, k2, k3, k4, yt, h, S, W)
             _normalise(y, S[0])
     return OK, n_out, -1
 
