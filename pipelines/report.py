@@ -27,13 +27,12 @@ from pathlib import Path
 import h5py
 
 from bearing import resultfile
+from bearing.diagnostics.channel import jsonable
 from bearing.diagnostics.pair import PairResult
 from geometry._params import ParameterError
 
 from . import conclusions
 from . import report_figures as figs
-from bearing.diagnostics.channel import jsonable
-
 from .diagnose import analyse_file
 
 SUMMARY_FIELDS = ("rms", "peak", "kurtosis", "crest", "spm_db", "spm_class", "FC", "VF")

@@ -110,9 +110,9 @@ def test_leapfrog_matches_rk4_and_the_threads_do_not_change_it(car):
     track, 50-300 ms: both sides' RMS agree within 3 % and the defect side's envelope BPFO line
     within 15 %.  The rollers' motion is chaotic: a change of 1e-13 in the start state moves,
     with either method, the RMS by up to 1 % and this line (read from 11 fault periods) by up to
-    9 %; over 1 s of the flexible car the two methods agree within 1.3 % (benchmarks/README.md).
-    The bearings and bodies run on numba threads, each writing only its own rows: one thread
-    and two give identical arrays."""
+    9 %; over 1 s of the flexible car the leapfrog at 1e-5 s and RK4 at 2e-5 s agree within
+    1.6 % (benchmarks/README.md).  The bearings and bodies run on numba threads, each writing
+    only its own rows: one thread and two give identical arrays."""
     import numba
     cfg, model, y0 = car
     runs = {}
