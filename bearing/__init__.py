@@ -9,5 +9,5 @@
   :mod:`.rig` the standalone rig; :mod:`.resultfile` the ``axlebox-result`` file;
   :mod:`.spectra` the envelope spectrum.
 """
-from bearing import _jitcache  # noqa: F401  (before any kernel compiles or loads)
+from axlebox import _numba  # noqa: F401  (before any kernel compiles or loads)
 

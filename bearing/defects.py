@@ -23,7 +23,7 @@ from math import asin, pi, sqrt
 
 import numpy as np
 
-from geometry._params import ParameterError, check_ranges, param, require
+from axlebox._params import ParameterError, check_ranges, param, require
 
 from .layout import KINDS
 from .params import BearingParams

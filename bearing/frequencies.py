@@ -14,7 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from math import cos, pi
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 from .params import BearingParams
 

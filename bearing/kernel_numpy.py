@@ -1,4 +1,4 @@
-"""Plain-numpy twin of bearing.kernel (same equations, vectorised over rollers): the baseline for
+"""Plain-numpy twin of axlebox.bearing.kernel (same equations, vectorised over rollers): the baseline for
 benchmarks/bearing.py and a cross-check of the numba kernel.
 
 Vectors are arrays ``(3, ...)``: the component first, then the (row, roller) axes, so that

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from math import cos, pi, radians, sin
 
-from geometry._params import ParameterError, check_ranges, param, require
+from axlebox._params import ParameterError, check_ranges, param, require
 
 DAMPING_LAWS = ("ratio", "paper")
 CAGE_MODES = ("dynamic", "kinematic")

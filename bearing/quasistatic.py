@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 from .params import BearingParams
 from .stiffness import roller_raceways

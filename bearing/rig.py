@@ -4,7 +4,7 @@ load; started from the quasi-static equilibrium; fixed-step RK4 (:mod:`.integrat
 
 Python API::
 
-    from bearing.rig import RigConfig, simulate
+    from axlebox.bearing.rig import RigConfig, simulate
     res = simulate(RigConfig(speed_kmh=48, defects=(Defect(W=2e-3),)), out="rig.h5")
     res.plot("rig.png")
 
@@ -27,7 +27,7 @@ import numpy as np
 import tomli_w
 from scipy.signal import resample_poly
 
-from geometry._params import ParameterError, check_ranges, param, require
+from axlebox._params import ParameterError, check_ranges, param, require
 
 from . import defects as _defects
 from . import resultfile

@@ -1,5 +1,5 @@
 """Envelope spectrum (kept for existing imports): the functions live in
-:mod:`bearing.diagnostics.envelope`."""
+:mod:`axlebox.bearing.diagnostics.envelope`."""
 from .diagnostics.envelope import envelope, envelope_spectrum
 
 __all__ = ["envelope", "envelope_spectrum"]

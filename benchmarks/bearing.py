@@ -9,23 +9,18 @@ Run: ``python benchmarks/bearing.py``.
 """
 from __future__ import annotations
 
-import os
 import platform
 import resource
-import sys
 import time
 
-# this file is named like the package it measures: keep its own folder off the import path
-sys.path = [d for d in sys.path if os.path.abspath(d or ".") != os.path.dirname(os.path.abspath(__file__))]
+import numpy as np
 
-import numpy as np  # noqa: E402
-
-from bearing import equilibrium, kernel, layout, stiffness  # noqa: E402
-from bearing.defects import Defect  # noqa: E402
-from bearing.integrate import run_rk4  # noqa: E402
-from bearing.kernel_numpy import dtrb_rhs_numpy  # noqa: E402
-from bearing.params import BearingParams  # noqa: E402
-from bearing.rig import RigConfig, initial_state, simulate  # noqa: E402
+from axlebox.bearing import equilibrium, kernel, layout, stiffness
+from axlebox.bearing.defects import Defect
+from axlebox.bearing.integrate import run_rk4
+from axlebox.bearing.kernel_numpy import dtrb_rhs_numpy
+from axlebox.bearing.params import BearingParams
+from axlebox.bearing.rig import RigConfig, initial_state, simulate
 
 
 def per_call(f, n, *args):

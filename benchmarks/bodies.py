@@ -16,8 +16,8 @@ import time
 
 CHILD = r"""
 import json, resource, sys, time
-from pipelines.bodies import build_body
-from pipelines import modeid
+from axlebox.pipelines.bodies import build_body
+from axlebox.pipelines import modeid
 name, h = sys.argv[1], (float(sys.argv[2]) if sys.argv[2] != "default" else None)
 t = time.perf_counter()
 body, _ = build_body(name, mesh_size=h, n_modes=20, n_reference=30 if name == "wheelset" else 0,
@@ -28,7 +28,7 @@ out = {"body": name, "mesh_size": body.meta["mesh_size"], "dof": body.meta["n_do
        "f1_hz": float(body.frequencies_hz[0])}
 if name == "wheelset":
     f = body.reference_frequencies_hz
-    from fem import bodyfile
+    from axlebox.fem import bodyfile
     lab = modeid.classify(body.mesh_points, body.mode_shapes)
     out["bending1_hz"] = modeid.first_of(lab, body.frequencies_hz, "bending-1")
     out["bending2_hz"] = modeid.first_of(lab, body.frequencies_hz, "bending-2")

@@ -6,10 +6,10 @@ import resource
 import time
 import tracemalloc
 
-from mbs import track
-from mbs.wheelrail.conicity import equivalent_conicity
-from mbs.wheelrail.geometry import TrackLayout, contact_table
-from mbs.wheelrail.standard import chn60, s1002, uic60
+from axlebox.mbs import track
+from axlebox.mbs.wheelrail.conicity import equivalent_conicity
+from axlebox.mbs.wheelrail.geometry import TrackLayout, contact_table
+from axlebox.mbs.wheelrail.standard import chn60, s1002, uic60
 
 
 def timed(f, *args, **kw):

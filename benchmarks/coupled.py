@@ -11,7 +11,7 @@ configs' leapfrog at 1e-5 s on all numba threads and on one (same numbers expect
 (the step halved), and RK4 at 2e-5 s (another method); they give the rate and the convergence
 of what the diagnosis reads after the 0.5 s fade-in: the defect-side (ws2_R) and healthy-side
 RMS and the BPFO line of the defect side's envelope spectrum.  Last, the right-hand side at the
-end of the first run taken apart by stage (each stage of :func:`mbs.kernel_system.rhs` called
+end of the first run taken apart by stage (each stage of :func:`axlebox.mbs.kernel_system.rhs` called
 alone, in numba): at the start the bearings sit in their quasi-static state, with fewer
 contacts active than running.
 """
@@ -19,31 +19,26 @@ from __future__ import annotations
 
 import argparse
 import resource
-import sys
 import time
-from pathlib import Path
 
-# this folder holds bearing.py (a benchmark): keep it from shadowing the bearing package
-sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
+import numba
+import numpy as np
+from numba import njit
 
-import numba  # noqa: E402
-import numpy as np  # noqa: E402
+from axlebox import configs
+from axlebox.bearing.diagnostics.envelope import envelope_spectrum
+from axlebox.bearing.frequencies import orders, shaft_hz
+from axlebox.bearing.params import BearingParams
+from axlebox.mbs import integrate
+from axlebox.mbs.kernel_bearings import bearing_forces
+from axlebox.mbs.kernel_body import BI_N, frame_kinematics, gravity_load, position_rates
+from axlebox.mbs.kernel_elements import element_forces
+from axlebox.mbs.kernel_markers import marker_acceleration, marker_kinematics, marker_loads
+from axlebox.mbs.kernel_system import _accelerations
+from axlebox.mbs.kernel_wheels import G_GRAV, wheel_forces
+from axlebox.pipelines import simulate as psim
+from axlebox.pipelines.readers import TRACK_FADE_IN_S
 
-from bearing.diagnostics.envelope import envelope_spectrum  # noqa: E402
-from bearing.frequencies import orders, shaft_hz  # noqa: E402
-from bearing.params import BearingParams  # noqa: E402
-from mbs import integrate  # noqa: E402
-from pipelines import simulate as psim  # noqa: E402
-from pipelines.readers import TRACK_FADE_IN_S  # noqa: E402
-from mbs.kernel_bearings import bearing_forces  # noqa: E402
-from mbs.kernel_body import BI_N, frame_kinematics, gravity_load, position_rates  # noqa: E402
-from mbs.kernel_elements import element_forces  # noqa: E402
-from mbs.kernel_system import _accelerations  # noqa: E402
-from mbs.kernel_markers import marker_acceleration, marker_kinematics, marker_loads  # noqa: E402
-from mbs.kernel_wheels import G_GRAV, wheel_forces  # noqa: E402
-from numba import njit  # noqa: E402
-
-ROOT = Path(__file__).resolve().parents[1]
 FRONT = ["frame1", "ws1", "ws2", "ab1L", "ab1R", "ab2L", "ab2R"]
 
 
@@ -61,7 +56,7 @@ def rhs_us(model, y0, n=200, repeats=5) -> float:
 
 @njit
 def _stage(which, nrep, t, y, dy, S, W):
-    """``nrep`` calls of one stage of :func:`mbs.kernel_system.rhs` (same order, same arrays)."""
+    """``nrep`` calls of one stage of :func:`axlebox.mbs.kernel_system.rhs` (same order, same arrays)."""
     bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f, wtab, wpar, trk, sens, \
         br_i, br_P, br_D = S
     Ab, rb, vb, omb, omfb, mku, mkp, mkv, mkR, mkw, mkF, mkM, gen, elout, whout, sensout = W
@@ -119,7 +114,7 @@ def bpfo_line(x, fs: float, bpfo: float) -> float:
 
 def variant(body_dir: str, over: dict):
     over = {**over, "bodies": {**over.get("bodies", {}), "dir": body_dir}}
-    cfg, _ = psim.load_config(ROOT / "configs" / "validation_48kmh.toml", overrides=over)
+    cfg, _ = psim.load_config(configs.path("validation_48kmh"), overrides=over)
     return psim.build_model(cfg, log=lambda *_: None)
 
 

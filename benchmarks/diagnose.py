@@ -21,16 +21,13 @@ import tempfile
 import time
 from pathlib import Path
 
-# benchmarks/bearing.py is named like the package: keep this folder off the import path
-sys.path = [d for d in sys.path if os.path.abspath(d or ".") != os.path.dirname(os.path.abspath(__file__))]
+import numpy as np
 
-import numpy as np  # noqa: E402
-
-from bearing import resultfile  # noqa: E402
-from bearing.diagnostics.channel import jsonable  # noqa: E402
-from bearing.diagnostics.synthetic import coaxial_pair  # noqa: E402
-from bearing.frequencies import orders, shaft_hz  # noqa: E402
-from bearing.params import BearingParams  # noqa: E402
+from axlebox.bearing import resultfile
+from axlebox.bearing.diagnostics.channel import jsonable
+from axlebox.bearing.diagnostics.synthetic import coaxial_pair
+from axlebox.bearing.frequencies import orders, shaft_hz
+from axlebox.bearing.params import BearingParams
 
 FS = 10_000.0
 DURATION = 60.0
@@ -55,7 +52,7 @@ def main():
         resultfile.write(path, config_toml=CONFIG, seed=0, time=np.arange(left.size) / FS, fs_hz=FS,
                          signals={"ws2_L": {"acceleration": acc_l}, "ws2_R": {"acceleration": acc_r}})
         out = Path(tmp) / "diag.json"
-        cmd = [sys.executable, "-m", "pipelines.cli", "diagnose", str(path), "--json", str(out)]
+        cmd = [sys.executable, "-m", "axlebox", "diagnose", str(path), "--json", str(out)]
         t0 = time.perf_counter()
         proc = subprocess.run(cmd, capture_output=True, text=True)
         wall = time.perf_counter() - t0
@@ -65,8 +62,8 @@ def main():
         res = json.loads(out.read_text())
 
         # the stages once more, in this process (imports already paid)
-        from bearing.diagnostics.pair import analyse_pair
-        from pipelines import diagnose
+        from axlebox.bearing.diagnostics.pair import analyse_pair
+        from axlebox.pipelines import diagnose
         t = time.perf_counter()
         rec = diagnose.read(path)
         t_read = time.perf_counter() - t

@@ -19,17 +19,17 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("MKL_NUM_THREADS", "1")
 
 import platform  # noqa: E402
-from functools import partial  # noqa: E402
 import resource  # noqa: E402
 import time  # noqa: E402
 import tracemalloc  # noqa: E402
+from functools import partial  # noqa: E402
 
 import numba  # noqa: E402
 import numpy as np  # noqa: E402
 
-from mbs.wheelrail import fastsim_kernel as fk  # noqa: E402
-from mbs.wheelrail import kalker  # noqa: E402
-from mbs.wheelrail import tangential as tg  # noqa: E402
+from axlebox.mbs.wheelrail import fastsim_kernel as fk  # noqa: E402
+from axlebox.mbs.wheelrail import kalker  # noqa: E402
+from axlebox.mbs.wheelrail import tangential as tg  # noqa: E402
 
 A, B, N, MU, G, NU = 6e-3, 4e-3, 7e4, 0.3, 8.1e10, 0.28
 N_SWEEP = 2000

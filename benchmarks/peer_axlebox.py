@@ -30,13 +30,13 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).resolve().parent
-sys.path[:0] = [str(HERE), str(HERE.parent)]
-from peer_case import LoadHistory, build_case  # noqa: E402
+sys.path.insert(0, str(HERE))
+from axlebox.mbs.body import flexible  # noqa: E402
+from axlebox.mbs.elements import Load  # noqa: E402
+from axlebox.mbs.integrate import Settings, simulate  # noqa: E402
+from axlebox.mbs.system import System  # noqa: E402
 
-from mbs.body import flexible  # noqa: E402
-from mbs.elements import Load  # noqa: E402
-from mbs.integrate import Settings, simulate  # noqa: E402
-from mbs.system import System  # noqa: E402
+from peer_case import LoadHistory, build_case  # noqa: E402
 
 
 def hann_loads(load: LoadHistory, marker: int) -> list[Load]:
@@ -95,7 +95,7 @@ def rhs_cost(model, y, n=20000) -> float:
     overhead).  Take a state from the run: at rest (q = 0) the kernel skips its R q loops."""
     from numba import njit
 
-    from mbs.kernel_system import rhs
+    from axlebox.mbs.kernel_system import rhs
 
     @njit
     def loop(y, dy, S, W, n):

@@ -29,10 +29,10 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse as sp
 
-from fem import assembly, bodyfile, interfaces
-from fem.body import make_body
-from geometry import mesh as gmesh
-from pipelines.bodies import BODIES
+from axlebox.fem import assembly, bodyfile, interfaces
+from axlebox.fem.body import make_body
+from axlebox.geometry import mesh as gmesh
+from axlebox.pipelines.bodies import BODIES
 
 
 @dataclass(frozen=True)

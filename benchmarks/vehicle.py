@@ -12,18 +12,14 @@ import argparse
 import resource
 import sys
 import time
-from pathlib import Path
 
-# this folder holds bearing.py (a benchmark): keep it from shadowing the bearing package
-sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
+import numpy as np
 
-import numpy as np  # noqa: E402
+from axlebox import configs
+from axlebox.mbs import config as vconfig
+from axlebox.mbs import integrate
+from axlebox.pipelines import simulate as psim
 
-from mbs import config as vconfig  # noqa: E402
-from mbs import integrate  # noqa: E402
-from pipelines import simulate as psim  # noqa: E402
-
-ROOT = Path(__file__).resolve().parents[1]
 
 
 def axlebox_rms(run, skip):
@@ -38,7 +34,7 @@ def main():
     a = ap.parse_args()
     rows = []
     for label, flex in (("rigid", []), ("flexible front", None)):
-        cfg, _ = vconfig.load(ROOT / "configs" / "vehicle.toml")
+        cfg, _ = vconfig.load(configs.path("vehicle"))
         cfg["bodies"]["dir"] = a.bodies
         if flex is not None:
             cfg["bodies"]["flexible"] = flex

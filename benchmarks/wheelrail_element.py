@@ -2,12 +2,12 @@
 
 One wheel, 2000 random states around the centred contact (lateral offset within +-6 mm, roll
 +-1 mrad off the table, penetration 20-100 um, tread creepages of a few 1e-3, spin, yaw rate),
-evaluated by :func:`mbs.wheelrail.element_kernel.wheel_rail_force` with FASTSIM 16 x 16 and
+evaluated by :func:`axlebox.mbs.wheelrail.element_kernel.wheel_rail_force` with FASTSIM 16 x 16 and
 8 x 8 (rotate slip step, parabolic bound), Kalker's linear law and Shen-Hedrick-Elkins:
 
 * inside one compiled loop (how the multibody right-hand side calls it);
 * one call from Python per state (dispatch overhead included);
-* the numpy reference (:func:`mbs.wheelrail.element.wheel_force_reference`), for scale.
+* the numpy reference (:func:`axlebox.mbs.wheelrail.element.wheel_force_reference`), for scale.
 
 Table build time (uncached and cached) is printed first.  Run:
 ``python benchmarks/wheelrail_element.py``.
@@ -28,9 +28,9 @@ import numba  # noqa: E402
 import numpy as np  # noqa: E402
 from numba import njit  # noqa: E402
 
-from mbs.wheelrail import element as el  # noqa: E402
-from mbs.wheelrail import element_kernel as ek  # noqa: E402
-from mbs.wheelrail.standard import s1002, uic60  # noqa: E402
+from axlebox.mbs.wheelrail import element as el  # noqa: E402
+from axlebox.mbs.wheelrail import element_kernel as ek  # noqa: E402
+from axlebox.mbs.wheelrail.standard import s1002, uic60  # noqa: E402
 
 from fastsim import rate  # noqa: E402  (benchmarks/fastsim.py: best-of-N calls per second)
 

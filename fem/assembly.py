@@ -12,8 +12,8 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.spatial import cKDTree
 
-from geometry._params import check_ranges, param, require
-from geometry.mesh import MeshData
+from axlebox._params import check_ranges, param, require
+from axlebox.geometry.mesh import MeshData
 
 
 @dataclass(frozen=True)

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 from . import damping as damping_laws
 from . import invariants, massprops

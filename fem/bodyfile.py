@@ -15,7 +15,7 @@
 ``nodes/<name>/position``      (3,) master / output node, m
 ``nodes/<name>/shapes``        (6, n) translations (m) and rotations (rad) per
                                unit modal coordinate; attr ``coupling``
-``invariants/<name>``          FFRF invariants (see :mod:`fem.invariants`)
+``invariants/<name>``          FFRF invariants (see :mod:`axlebox.fem.invariants`)
 ``mesh/points``, ``mesh/cells``  (p, 3) m, (c, 10) tet10 in VTK node order
 ``modes/shapes``               (n, p, 3) full-field mode shapes
 ``reference/frequencies_hz``   full FE free-free frequencies, when computed

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 
 def modal(frequencies_hz: np.ndarray, zeta: float | np.ndarray = 0.01) -> np.ndarray:

@@ -22,7 +22,7 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 from .assembly import FEModel
 

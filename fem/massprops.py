@@ -33,6 +33,6 @@ def from_rigid_mass(Mrr: np.ndarray) -> MassProperties:
 
 
 def from_model(model) -> MassProperties:
-    """Mass properties of an assembled :class:`~fem.assembly.FEModel`."""
+    """Mass properties of an assembled :class:`~axlebox.fem.assembly.FEModel`."""
     R = model.rigid_modes()
     return from_rigid_mass(R.T @ (model.M @ R))

@@ -23,7 +23,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 from scipy.sparse.linalg import eigsh
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 from .assembly import FEModel
 from .interfaces import Condensation

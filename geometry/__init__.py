@@ -1,4 +1,4 @@
 """Parametric gmsh (OCC) models with named interface surfaces: wheelset, axle-box, bogie frame."""
-from ._params import ParameterError
+from axlebox._params import ParameterError
 
 __all__ = ["ParameterError"]

@@ -10,8 +10,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from axlebox._params import check_ranges, param, require
+
 from ._occ import boundary_faces, face_boxes, select
-from ._params import check_ranges, param, require
 
 
 @dataclass(frozen=True)

@@ -3,8 +3,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from axlebox._params import check_ranges, param
+
 from ._occ import boundary_faces, face_boxes, select
-from ._params import check_ranges, param
 
 
 @dataclass(frozen=True)

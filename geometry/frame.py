@@ -12,8 +12,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from axlebox._params import check_ranges, param, require
+
 from ._occ import boundary_faces, face_boxes, select
-from ._params import check_ranges, param, require
 
 AXLES = (1, 2)
 SIDES = ("L", "R")

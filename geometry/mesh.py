@@ -5,8 +5,8 @@ the solid(s) in the current gmsh model (OCC kernel, synchronised) and returns th
 OCC surface tags of each named interface.  :func:`mesh_model` turns those into
 gmsh physical groups, meshes, writes ``<name>-<hash>.msh`` into the cache and
 returns plain arrays.  The hash covers the builder name, every parameter, the
-mesh size and order and :data:`GEOMETRY_VERSION`, so a change of any of them
-regenerates the mesh.
+mesh size and order, gmsh's version and every source file of :mod:`axlebox.geometry`
+(:func:`geometry_hash`), so a change of any of them regenerates the mesh.
 """
 from __future__ import annotations
 
@@ -18,10 +18,8 @@ from typing import Callable
 
 import numpy as np
 
-from ._params import ParameterError, digest
-
-#: bump when a builder changes its output for the same parameters
-GEOMETRY_VERSION = 2
+from axlebox._cache import cache_dir, package_dir, source_hash
+from axlebox._params import ParameterError, digest
 
 # gmsh node order -> VTK/meshio node order (tet10: last two edges swapped)
 _GMSH_TO_VTK_TET10 = np.array([0, 1, 2, 3, 4, 5, 6, 7, 9, 8])
@@ -41,10 +39,10 @@ class MeshData:
         return np.unique(self.groups[name])
 
 
-def cache_dir() -> Path:
-    """``$AXLEBOX_CACHE`` or ``~/.cache/axlebox``; meshes live in its ``meshes/``."""
-    root = os.environ.get("AXLEBOX_CACHE") or Path.home() / ".cache" / "axlebox"
-    return Path(root) / "meshes"
+def geometry_hash(folder: Path | None = None) -> str:
+    """Hash of every source file of :mod:`axlebox.geometry` (or of ``folder``): an edit to a
+    builder, or an upgrade, makes new meshes instead of reading ones it would no longer make."""
+    return source_hash([package_dir("geometry") if folder is None else folder])
 
 
 def mesh_model(name: str, build: Callable, params, mesh_size: float, *,
@@ -56,8 +54,8 @@ def mesh_model(name: str, build: Callable, params, mesh_size: float, *,
         raise ParameterError(f"mesh_size = {mesh_size!r} is not allowed: expected a length > 0 m")
     if order not in (1, 2):
         raise ParameterError(f"order = {order!r} is not allowed: expected 1 or 2")
-    key = digest(name, params, float(mesh_size), order, GEOMETRY_VERSION, gmsh.__version__)
-    path = cache_dir() / f"{name}-{key}.msh"
+    key = digest(name, params, float(mesh_size), order, geometry_hash(), gmsh.__version__)
+    path = cache_dir("meshes") / f"{name}-{key}.msh"
 
     initialised = gmsh.isInitialized()
     if not initialised:

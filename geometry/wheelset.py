@@ -15,8 +15,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from axlebox._params import ParameterError, check_ranges, param, require
+
 from ._occ import boundary_faces, face_boxes, revolve_profile, select
-from ._params import ParameterError, check_ranges, param, require
 
 SIDES = ("L", "R")
 

@@ -4,7 +4,7 @@ A body has a reference frame with position ``r`` (inertial) and orientation ``A`
 inertial, a unit quaternion), and ``n`` modal coordinates ``q`` (none for a rigid body).  A
 material point at ``x`` (body frame, undeformed) sits at ``r + A (x + Phi(x) q)``.  Everything the
 equations of motion need is a volume integral over the body, precomputed once (the FFRF inertia
-invariants of :mod:`fem.invariants`, Shabana ch. 5):
+invariants of :mod:`axlebox.fem.invariants`, Shabana ch. 5):
 
 * ``mass``, ``mc`` (first moment about the frame origin), ``P0 = int rho x x^T`` (3, 3);
 * ``Ct = int rho Phi`` (3, n), ``Q[a, b, k] = int rho x_a Phi_kb``, ``R[a, b, k, l] =
@@ -28,8 +28,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from fem.bodyfile import ReducedBody
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
+from axlebox.fem.bodyfile import ReducedBody
 
 
 @dataclass
@@ -95,7 +95,7 @@ def rigid(name: str, mass: float, inertia, *, spin: bool = False) -> Body:
 
 def flexible(name: str, rb: ReducedBody, *, n_modes: int | None = None, spin: bool = False,
              rigid_only: bool = False) -> Body:
-    """A flexible body from a reduced-body file (:func:`fem.bodyfile.read`).
+    """A flexible body from a reduced-body file (:func:`axlebox.fem.bodyfile.read`).
 
     The frame origin is the FE origin.  ``n_modes`` keeps the lowest modes (all by default);
     ``rigid_only`` keeps none, giving the rigid body with the FE mass properties and the same

@@ -2,7 +2,7 @@
 
 Every field has a default (the values of ``configs/vehicle.toml``), a type and an allowed range;
 a user file overrides what it names.  An unknown section or field, a value of the wrong type or
-out of range is refused with :class:`~geometry._params.ParameterError` naming ``section.field``,
+out of range is refused with :class:`~axlebox._params.ParameterError` naming ``section.field``,
 the value and what is allowed (the CLI turns it into one line and exit status 2).
 """
 from __future__ import annotations
@@ -12,7 +12,7 @@ import math
 import tomllib
 from pathlib import Path
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 BODY_NAMES = (["carbody", "frame1", "frame2"] + [f"ws{i}" for i in range(1, 5)]
               + [f"ab{i}{s}" for i in range(1, 5) for s in "LR"] + [f"gb{i}" for i in range(1, 5)])
@@ -65,8 +65,8 @@ SCHEMA: dict[str, dict[str, tuple]] = {
 }
 
 
-# free-form sections checked by their own classes: [bearing] (bearing.params.BearingParams
-# fields, SI) and [[defects]] (bearing.defects.Defect fields, the angle in degrees, plus where)
+# free-form sections checked by their own classes: [bearing] (axlebox.bearing.params.BearingParams
+# fields, SI) and [[defects]] (axlebox.bearing.defects.Defect fields, the angle in degrees, plus where)
 DEFECT_PLACE = {"wheelset": (I, 2, 1, 4), "side": (S, "R", ("L", "R"))}
 # s: the explicit steps' limits on the rollers' tilt mode between the raceways (22.6 kHz,
 # damping ratio 0.12): RK4's w h <= 2.8; the leapfrog's 2 (sqrt(1 + z^2) - z) = 1.77 less a
@@ -83,7 +83,7 @@ def defaults() -> dict:
 
 
 def _bearing(fields) -> dict:
-    from bearing.params import BearingParams
+    from axlebox.bearing.params import BearingParams
     if not isinstance(fields, dict):
         raise ParameterError(f"bearing = {fields!r} is not allowed: expected a [bearing] table")
     BearingParams(**fields)                 # names the field and the allowed range
@@ -93,7 +93,8 @@ def _bearing(fields) -> dict:
 def _defects(items) -> list[dict]:
     """Each ``[[defects]]`` entry: ``wheelset``, ``side`` and the Defect fields, angle in deg."""
     import dataclasses
-    from bearing.defects import Defect
+
+    from axlebox.bearing.defects import Defect
     if not isinstance(items, list) or not all(isinstance(d, dict) for d in items):
         raise ParameterError(f"defects = {items!r} is not allowed: expected [[defects]] tables")
     allowed = list(DEFECT_PLACE) + [f.name for f in dataclasses.fields(Defect) if f.name != "angle"] \

@@ -1,10 +1,10 @@
 """The eight axle-box DTRBs of the car: their kernel parameters, defect tables and a start in
-equilibrium, for :func:`mbs.vehicle.build` (``joint.model = "dtrb"``).
+equilibrium, for :func:`axlebox.mbs.vehicle.build` (``joint.model = "dtrb"``).
 
 The start: the car is first put in equilibrium with stiff row bushings in place of the bearings
-(:mod:`mbs.statics`; the bearings' roller states would make that Newton solve forty times
+(:mod:`axlebox.mbs.statics`; the bearings' roller states would make that Newton solve forty times
 larger); each bushing pair's load is then the load its bearing carries, and the bearing's own
-quasi-static solution (:func:`bearing.equilibrium.static_state`, of the healthy bearing, with
+quasi-static solution (:func:`axlebox.bearing.equilibrium.static_state`, of the healthy bearing, with
 the roller set turned half a pitch when a roller would sit in a defect) gives its roller and
 cage states and the outer ring's displacement, which the axle-box is moved to (micrometres).
 The row bushings leave the rings free to tilt against each other; the bearings do not, so the
@@ -22,10 +22,10 @@ import dataclasses
 
 import numpy as np
 
-from bearing import defects as bdefects
-from bearing.equilibrium import static_state
-from bearing.layout import pack
-from bearing.params import BearingParams
+from axlebox.bearing import defects as bdefects
+from axlebox.bearing.equilibrium import static_state
+from axlebox.bearing.layout import pack
+from axlebox.bearing.params import BearingParams
 
 from .kernel_markers import MK_BODY
 from .vehicle import SIDES

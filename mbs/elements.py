@@ -1,9 +1,9 @@
 """Force elements between markers: what the user builds a system from.
 
-Each element names its markers by the integer handles :meth:`mbs.system.System.marker` returns,
-checks its values (a bad one raises :class:`~geometry._params.ParameterError` naming the element,
+Each element names its markers by the integer handles :meth:`axlebox.mbs.system.System.marker` returns,
+checks its values (a bad one raises :class:`~axlebox._params.ParameterError` naming the element,
 the field and what is allowed) and packs itself into one row of the element table that
-:mod:`mbs.kernel_elements` evaluates.
+:mod:`axlebox.mbs.kernel_elements` evaluates.
 
 =============  ==========================================================================
 ``Bushing``    6-DOF linear spring-damper in marker 1's frame: translations and small
@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 from . import kernel_elements as ke
 

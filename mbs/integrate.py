@@ -1,4 +1,4 @@
-"""Run a :class:`~mbs.system.Model` in time: fixed-step RK4, leapfrog (explicit central
+"""Run a :class:`~axlebox.mbs.system.Model` in time: fixed-step RK4, leapfrog (explicit central
 differences) or generalized-alpha, output at a
 fixed rate, divergence caught and named, results kept when a run stops early.
 
@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from geometry._params import ParameterError, check_ranges, param
+from axlebox._params import ParameterError, check_ranges, param
 
 from . import kernel_integrate as ki
 from .system import Model

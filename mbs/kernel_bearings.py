@@ -17,20 +17,12 @@ moments) go back to the two markers as inertial forces and moments.
 """
 from __future__ import annotations
 
-import os
-
 import numpy as np
-from numba import config, njit, prange
+from numba import njit, prange
 
-from bearing.kernel import dtrb_rhs
+from axlebox.bearing.kernel import dtrb_rhs
 
 from .kernel_body import BI_POS, BI_VEL
-
-# OpenMP first: its idle threads spin a while before they sleep, so the bearings' parallel
-# region, entered every right-hand side (~100 us apart), finds them awake (TBB's sleep:
-# 132 against 115 us a call on 2 cores, benchmarks/README.md); the user's own choice stands
-if not (os.environ.get("NUMBA_THREADING_LAYER") or os.environ.get("NUMBA_THREADING_LAYER_PRIORITY")):
-    config.THREADING_LAYER_PRIORITY = ["omp", "tbb", "workqueue"]
 
 BR_MIN, BR_MOUT, BR_BODY, BR_OFF, BR_N, BR_D0, BR_ND = range(7)
 BR_WIDTH = 7
@@ -69,7 +61,7 @@ def bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM,
 
 @njit(cache=True, parallel=True)
 def _all_dtrbs(t, y, dy, br_i, br_P, br_D, ring, F, Qc):
-    """:func:`bearing.kernel.dtrb_rhs` of every bearing, in parallel (numba threads): each
+    """:func:`axlebox.bearing.kernel.dtrb_rhs` of every bearing, in parallel (numba threads): each
     writes only its own states and scratch rows, so the result does not depend on the number of
     threads."""
     for k in prange(br_i.shape[0]):

@@ -1,4 +1,4 @@
-"""Numba force laws of the force elements between markers (see :mod:`mbs.elements`).
+"""Numba force laws of the force elements between markers (see :mod:`axlebox.mbs.elements`).
 
 Each element row ``el_i = [kind, m1, m2, aux]`` and ``el_f`` (parameters) adds forces and moments
 (inertial) to its markers' accumulators ``mkF``, ``mkM``.  Action and reaction are exact: the

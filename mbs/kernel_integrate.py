@@ -1,4 +1,4 @@
-"""Fixed-step integrators over :func:`mbs.kernel_system.rhs`, whole runs in numba.
+"""Fixed-step integrators over :func:`axlebox.mbs.kernel_system.rhs`, whole runs in numba.
 
 * ``run_explicit``: classical Runge-Kutta 4, or the explicit central-difference (leapfrog) step
   of explicit finite elements and discrete elements, one right-hand side a step (Belytschko,
@@ -40,7 +40,7 @@ import math
 import numpy as np
 from numba import njit
 
-from bearing.layout import KINEMATIC, N_CAGE, N_ROLLER
+from axlebox.bearing.layout import KINEMATIC, N_CAGE, N_ROLLER
 
 from .kernel_bearings import BR_N, BR_OFF
 from .kernel_body import BI_N, BI_POS, BI_SPIN, BI_VEL, frame_kinematics, position_rates

@@ -1,5 +1,5 @@
 """The system right-hand side ``y' = F(t, y)`` in numba, over the packed arrays of
-:class:`mbs.system.Model`.
+:class:`axlebox.mbs.system.Model`.
 
 ``S`` (static arrays): ``bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f, wtab,
 wpar, trk, sens``; ``W`` (work arrays, overwritten every call): frame quantities per body,
@@ -19,9 +19,7 @@ from .kernel_bearings import bearing_forces
 from .kernel_body import BI_N, BI_VEL, body_accelerations, frame_kinematics, gravity_load, position_rates
 from .kernel_elements import element_forces
 from .kernel_markers import marker_acceleration, marker_kinematics, marker_loads
-from .kernel_wheels import wheel_forces  # noqa: E402
-
-from .kernel_wheels import G_GRAV
+from .kernel_wheels import G_GRAV, wheel_forces
 
 
 @njit(cache=True)

@@ -5,10 +5,10 @@ point of the nominal taping line (bottom of the wheel in the non-spinning frame)
 centre is ``c = p + r_c R e_z`` (the marker frame's z axis), the axle direction ``e = R e_y``;
 the material angular velocity adds the body's spin to the frame rate.  The rails' irregularities
 at ``s = c_x`` come from the track table ``trk (8, ns)``: ``zL, zR, yL, yR`` and their slopes,
-cubic Hermite on a uniform periodic grid (C1, like :meth:`mbs.track.TrackIrregularity.at`),
+cubic Hermite on a uniform periodic grid (C1, like :meth:`axlebox.mbs.track.TrackIrregularity.at`),
 faded in over the first ``glob[G_RAMP]`` seconds (half-cosine) so that a run can start from the
 equilibrium on smooth track without a jump.
-The contact itself is :func:`mbs.wheelrail.element_kernel.wheel_rail_force`.
+The contact itself is :func:`axlebox.mbs.wheelrail.element_kernel.wheel_rail_force`.
 """
 from __future__ import annotations
 
@@ -17,7 +17,7 @@ import math
 import numpy as np
 from numba import njit
 
-from mbs.wheelrail.element_kernel import wheel_rail_force
+from axlebox.mbs.wheelrail.element_kernel import wheel_rail_force
 
 from .kernel_body import BI_SPIN, cross
 

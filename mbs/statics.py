@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 from .system import Model
 

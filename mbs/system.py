@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 from . import ffrf_numpy as fn
 from .body import Body
@@ -226,7 +226,8 @@ class System:
 
     def _pack_bearings(self, y0):
         """Bearing rows (mbs/kernel_bearings.py) and their states appended to ``y0``."""
-        from bearing.layout import N_P
+        from axlebox.bearing.layout import N_P
+
         from .kernel_bearings import BR_WIDTH
         br_i = np.zeros((len(self.bearings), BR_WIDTH), np.int64)
         br_P = np.zeros((max(len(self.bearings), 1), N_P))

@@ -20,7 +20,7 @@ S = 2 pi A_v Omega_c^2 / (Omega^2 (Omega^2 + Omega_c^2)) with Omega_c = 0.8242 a
 sqrt(4 S dOmega): it is not this one and must not be mixed with it.
 
 **Units and signs.**  SI inside: :func:`psd` converts cm^2 to m^2 once (:data:`CM2`).  Axes as in
-:mod:`geometry.wheelset`: y along the axle, positive to the left, z up.  Cross-level ``c`` is
+:mod:`axlebox.geometry.wheelset`: y along the axle, positive to the left, z up.  Cross-level ``c`` is
 the height of the left rail above the right one (m), not an angle (some sources divide by the
 rail distance), and ``g`` is the gauge widening (m): positive g moves the left rail left and
 the right rail right.  So z_L = z_v + c/2, z_R = z_v - c/2, y_L = y_a + g/2, y_R = y_a - g/2.
@@ -53,7 +53,7 @@ from functools import partial
 import numpy as np
 from scipy.fft import irfft, next_fast_len
 
-from geometry._params import ParameterError, check_ranges, param, require
+from axlebox._params import ParameterError, check_ranges, param, require
 
 KINDS = ("vertical", "alignment", "crosslevel", "gauge")
 COMPONENTS = KINDS + ("roughness_L", "roughness_R")

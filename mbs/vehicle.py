@@ -1,7 +1,7 @@
-"""The B-type metro motor car on tangent track, built from a validated config (:mod:`mbs.config`).
+"""The B-type metro motor car on tangent track, built from a validated config (:mod:`axlebox.mbs.config`).
 
 Bodies: carbody; two bogie frames (``frame1`` front at x = 0, ``frame2`` at ``-bogie_distance``);
-four wheelsets ``ws1..ws4`` (spinning frames, see :mod:`mbs.body`); eight axle-boxes
+four wheelsets ``ws1..ws4`` (spinning frames, see :mod:`axlebox.mbs.body`); eight axle-boxes
 ``ab<i><L|R>``; four gearboxes ``gb<i>`` hung between the axle (bushing at the gear seat, free to
 turn about the axle) and the frame (a vertical hanger link).  Any of the frames, wheelsets and
 axle-boxes is flexible when named in ``bodies.flexible`` (then its reduced body's modes below
@@ -19,16 +19,16 @@ Track frame: x forward, y left, z up, z = 0 at the crown of the rails.  Suspensi
   lateral damper, an anti-roll bar (roll bushing), a traction rod (longitudinal link) and a
   lateral bump stop;
 * the static loads are preloads so the nominal geometry is near equilibrium;
-  :func:`mbs.statics.equilibrium` removes the rest.
+  :func:`axlebox.mbs.statics.equilibrium` removes the rest.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from fem.bodyfile import ReducedBody
+from axlebox.fem.bodyfile import ReducedBody
 
 from .body import Body, add_point_masses, flexible, mode_count, rigid
-from .elements import Bushing, BumpStop, Spring
+from .elements import BumpStop, Bushing, Spring
 from .system import System
 from .wheelrail.element_kernel import COL_C0Z, COL_KH, COL_PZ, P_L0
 
@@ -63,11 +63,11 @@ def _marker(s: System, body: Body, node: str, at, align: bool = False, place: bo
 
 def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None = None,
           bearings: dict | None = None) -> System:
-    """The car as a :class:`~mbs.system.System` (not yet in equilibrium: see mbs.statics).
+    """The car as a :class:`~axlebox.mbs.system.System` (not yet in equilibrium: see mbs.statics).
 
     ``bearings``: ``(k, side) -> (P, D, y0)`` (kernel parameters, defect table, roller and cage
     states) puts a DTRB between wheelset k's journal and its axle-box on that side instead of
-    the row bushings (:func:`pipelines.simulate.build_model` makes them)."""
+    the row bushings (:func:`axlebox.pipelines.simulate.build_model` makes them)."""
     V = cfg["run"]["speed_kmh"] / 3.6
     geo, prim, sec, gb, jt = cfg["geometry"], cfg["primary"], cfg["secondary"], cfg["gearbox"], cfg["joint"]
     r0 = cfg["wheelset"]["r0"]

@@ -8,11 +8,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from fem import assembly, bodyfile, eigen, interfaces
-from fem.body import make_body
-from fem.reduction import METHODS
-from geometry import axlebox, frame, mesh, wheelset
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
+from axlebox.fem import assembly, bodyfile, eigen, interfaces
+from axlebox.fem.body import make_body
+from axlebox.fem.reduction import METHODS
+from axlebox.geometry import axlebox, frame, mesh, wheelset
 
 
 @dataclass(frozen=True)

@@ -10,9 +10,9 @@ import dataclasses
 import sys
 from pathlib import Path
 
-from bearing.resultfile import ResultFileError
-from fem.bodyfile import BodyFileError
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
+from axlebox.bearing.resultfile import ResultFileError
+from axlebox.fem.bodyfile import BodyFileError
 
 
 class _Parser(argparse.ArgumentParser):
@@ -31,7 +31,8 @@ def _params(text: list[str]) -> dict[str, str]:
 
 
 def _cmd_bodies_build(a) -> None:
-    from fem import bodyfile
+    from axlebox.fem import bodyfile
+
     from .bodies import BODIES, build_body, make_params
     names = list(BODIES) if a.body == "all" else [a.body]
     overrides = _params(a.param)
@@ -61,6 +62,27 @@ def _cmd_bodies_report(a) -> None:
     report(a.dir, a.out, max_modes=a.max_modes)
 
 
+def _cmd_configs(a) -> None:
+    import textwrap
+
+    from axlebox import configs
+    if a.action == "show":
+        if not a.name:
+            raise ParameterError("configs show needs a NAME: one of " + ", ".join(configs.names()))
+        print(configs.path(a.name).read_text(), end="")
+        return
+    if a.name:
+        raise ParameterError(f"configs {a.action} {a.name!r} is not allowed: a NAME goes with 'show'")
+    width = max(map(len, configs.names()))
+    for n in configs.names():
+        lines = textwrap.wrap(configs.summary(n), 100 - width - 2) or [""]
+        print(f"{n:<{width}}  {lines[0]}")
+        for more in lines[1:]:
+            print(" " * (width + 2) + more)
+    print(f"\n(in {configs.folder()}; axlebox configs show NAME > my.toml to copy and edit; "
+          "simulate and sweep take a NAME or a path)")
+
+
 def _cmd_demo(a) -> None:
     from .demo import demo
     demo(a.out, duration=a.duration)
@@ -69,9 +91,9 @@ def _cmd_demo(a) -> None:
 def _cmd_bearing_simulate(a) -> None:
     from math import radians
 
-    from bearing.defects import Defect
-    from bearing.params import BearingParams
-    from bearing.rig import RigConfig, simulate
+    from axlebox.bearing.defects import Defect
+    from axlebox.bearing.params import BearingParams
+    from axlebox.bearing.rig import RigConfig, simulate
     if a.defect_width < 0:
         raise ParameterError(f"--defect-width = {a.defect_width} is not allowed: expected a width >= 0 mm "
                              "(0: healthy)")
@@ -106,7 +128,8 @@ def _cmd_bearing_simulate(a) -> None:
 
 
 def _cmd_contact_geometry(a) -> None:
-    from mbs.wheelrail.geometry import TrackLayout
+    from axlebox.mbs.wheelrail.geometry import TrackLayout
+
     from .contact import run
     lay = TrackLayout(r0=a.r0, gauge=a.gauge * 1e-3, back_to_back=a.back_to_back * 1e-3,
                       cant=0.0 if a.cant == 0 else 1.0 / a.cant)
@@ -126,8 +149,9 @@ def _cmd_simulate(a) -> None:
 
 def _analysis_options(a) -> dict:
     """The options ``diagnose`` and ``report`` share, as keyword arguments of
-    :func:`pipelines.diagnose.analyse_file`."""
-    from bearing.diagnostics.criterion import Criterion
+    :func:`axlebox.pipelines.diagnose.analyse_file`."""
+    from axlebox.bearing.diagnostics.criterion import Criterion
+
     from .diagnose import parse_pair
     crit = Criterion(mode="relative" if a.relative else "absolute",
                      **({"vf_range": parse_pair(a.vf_range, "--vf-range")} if a.vf_range else {}),
@@ -167,8 +191,9 @@ def _add_sweep(sub) -> None:
                         "cluster or the scheduler named; one result file per case (DIR/v<speed>_"
                         "w<width>.h5), written through a temporary name; a rerun skips finished "
                         "cases. Ends with a table of indicators per case and side (DIR/summary.csv).")
-    sw.add_argument("config", help="base config (TOML): a rig config (configs/study_rig.toml) or a "
-                                   "vehicle config; an optional [sweep] gives speeds_kmh, widths_mm")
+    sw.add_argument("config", help="base config: a TOML file or a shipped config's name (axlebox "
+                                   "configs): a rig config (study_rig) or a vehicle config (study); "
+                                   "an optional [sweep] gives speeds_kmh, widths_mm")
     sw.add_argument("--speeds", type=float, nargs="+", metavar="V",
                     help="speeds in km/h (default: sweep.speeds_kmh, else the config's speed)")
     sw.add_argument("--widths", type=float, nargs="+", metavar="MM",
@@ -226,8 +251,18 @@ def parser() -> argparse.ArgumentParser:
                                     "its DTRBs, diagnosis of both sides and the HTML report")
     d.add_argument("--out", default="axlebox-demo", help="output folder (default: axlebox-demo)")
     d.add_argument("--duration", type=float, default=1.6, metavar="S",
-                   help="simulated time of the validation case (default 1.6, at least 1.4)")
+                   help="simulated time of the validation case (default 1.6, at least 1.41: "
+                        "the track's fade-in and two cage periods)")
     d.set_defaults(func=_cmd_demo)
+
+    cf = sub.add_parser("configs", help="the shipped configs: list them, or show one to copy and edit",
+                        description="Lists the configs installed with axlebox (each takes the place "
+                        "of a path in simulate and sweep), or prints one: axlebox configs show "
+                        "validation_48kmh > my.toml")
+    cf.add_argument("action", nargs="?", default="list", choices=["list", "show"],
+                    help="list (default) or show NAME")
+    cf.add_argument("name", nargs="?", help="a shipped config's name (with show)")
+    cf.set_defaults(func=_cmd_configs)
 
     b = sub.add_parser("bodies", help="modal bodies from geometry")
     bs = b.add_subparsers(dest="bodies_command", required=True, parser_class=_Parser)
@@ -288,8 +323,8 @@ def parser() -> argparse.ArgumentParser:
     bsim.set_defaults(func=_cmd_bearing_simulate)
 
     sm = sub.add_parser("simulate", help="the metro car on tangent track from a config "
-                                         "(configs/vehicle.toml); writes an axlebox-result file")
-    sm.add_argument("config", help="vehicle config (TOML)")
+                                         "(e.g. vehicle, validation_48kmh); writes an axlebox-result file")
+    sm.add_argument("config", help="vehicle config: a TOML file or a shipped config's name (axlebox configs)")
     sm.add_argument("--duration", type=float, default=None, metavar="S",
                     help="simulated time (default: the config's run.duration)")
     sm.add_argument("--out", required=True, help="result file (.h5)")

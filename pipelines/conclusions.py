@@ -2,7 +2,7 @@
 claim against a sweep's diagnoses: what the paper says, what ours shows, whether they agree,
 and where they do not, why (the reasons are the known differences between the two models).
 
-Input: :class:`pipelines.report.Case` objects with ``defect_side`` set ("left"/"right", the side
+Input: :class:`axlebox.pipelines.report.Case` objects with ``defect_side`` set ("left"/"right", the side
 of the defective bearing; the other side is the healthy one).  Cases without a defect are the
 baseline.  Everything is read from the diagnoses the report already made (``case.pair``), so
 the table and the report's other tables never disagree.

@@ -6,11 +6,11 @@ from pathlib import Path
 
 import numpy as np
 
-from geometry._params import ParameterError
-from mbs.wheelrail import standard
-from mbs.wheelrail.conicity import equivalent_conicity
-from mbs.wheelrail.geometry import ContactTable, TrackLayout, contact_table
-from mbs.wheelrail.profile import Profile, read_profile
+from axlebox._params import ParameterError
+from axlebox.mbs.wheelrail import standard
+from axlebox.mbs.wheelrail.conicity import equivalent_conicity
+from axlebox.mbs.wheelrail.geometry import ContactTable, TrackLayout, contact_table
+from axlebox.mbs.wheelrail.profile import Profile, read_profile
 
 WHEELS = {"S1002": standard.s1002}
 RAILS = {"UIC60": standard.uic60, "60E1": standard.uic60, "CHN60": standard.chn60}

@@ -2,7 +2,7 @@
 one shaft) from a file, the one-channel indicators of each side, the time lag, the VF
 difference and the paper's criterion (bearing/diagnostics/); a JSON file and a figure.
 
-Readers: :mod:`pipelines.readers` (axlebox-result, HDF5, .mat v5 and v7.3, CSV).  Every refusal
+Readers: :mod:`axlebox.pipelines.readers` (axlebox-result, HDF5, .mat v5 and v7.3, CSV).  Every refusal
 is a ParameterError (exit status 2) whose one line names the option, variable or value at fault.
 """
 from __future__ import annotations
@@ -13,10 +13,10 @@ from pathlib import Path
 
 import numpy as np
 
-from bearing.diagnostics.channel import jsonable
-from bearing.frequencies import FaultOrders, orders, shaft_hz
-from bearing.params import BearingParams
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
+from axlebox.bearing.diagnostics.channel import jsonable
+from axlebox.bearing.frequencies import FaultOrders, orders, shaft_hz
+from axlebox.bearing.params import BearingParams
 
 from .readers import Record, read
 
@@ -95,8 +95,8 @@ def analyse_file(path, *, left=None, right=None, fs=None, column: int = 2, scale
                  guided: bool = True):
     """Read ``path`` and analyse both sides: ``(record, input info, PairResult)``.  The shaft
     speed and the bearing come from the options, else from the file, else the DTRB."""
-    from bearing.diagnostics.criterion import Criterion
-    from bearing.diagnostics.pair import analyse_pair
+    from axlebox.bearing.diagnostics.criterion import Criterion
+    from axlebox.bearing.diagnostics.pair import analyse_pair
     criterion = Criterion() if criterion is None else criterion
     if not (np.isfinite(scale) and scale > 0):
         raise ParameterError(f"--scale = {scale!r} is not allowed: expected a factor > 0")
@@ -127,7 +127,7 @@ def analyse_file(path, *, left=None, right=None, fs=None, column: int = 2, scale
 
 def run(path, *, json_out=None, figures=None, log=print, **options):
     """The whole command: :func:`analyse_file` with ``options``, a printed summary, the JSON and
-    the figure.  Returns the :class:`bearing.diagnostics.pair.PairResult`."""
+    the figure.  Returns the :class:`axlebox.bearing.diagnostics.pair.PairResult`."""
     if json_out is not None and not Path(json_out).parent.is_dir():
         raise FileNotFoundError(f"--json: folder {str(Path(json_out).parent)!r} does not exist")
     rec, info, res = analyse_file(path, **options)

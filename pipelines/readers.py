@@ -25,10 +25,10 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-from bearing import resultfile
-from bearing.frequencies import FaultOrders, orders, shaft_hz
-from bearing.params import BearingParams
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
+from axlebox.bearing import resultfile
+from axlebox.bearing.frequencies import FaultOrders, orders, shaft_hz
+from axlebox.bearing.params import BearingParams
 
 HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
 DEFAULT_SENSORS = ("ws2_L", "ws2_R")

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fem import bodyfile
+from axlebox.fem import bodyfile
 
 
 def _pyvista():

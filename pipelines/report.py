@@ -6,7 +6,7 @@ A *case* is one ``axlebox-result`` file; its speed and defect width come from th
 it (``run.speed_kmh`` for the vehicle, ``rig.speed_kmh`` for the rig; the widest ``W`` among the
 top-level ``defects``, 0 without).  A folder is searched for result files one level deep (a
 sweep writes one file per case).  Each case is diagnosed exactly as ``axlebox diagnose`` does
-(:func:`pipelines.diagnose.analyse_file`), so the report and the command never disagree.
+(:func:`axlebox.pipelines.diagnose.analyse_file`), so the report and the command never disagree.
 
 Figures (paper numbering): 9 time signals and 10 envelope spectra, one figure per speed with a
 row per width; 11 RMS and SPM, 13 lag and 14 VF against speed; 12 time and frequency comparison
@@ -26,10 +26,10 @@ from pathlib import Path
 
 import h5py
 
-from bearing import resultfile
-from bearing.diagnostics.channel import jsonable
-from bearing.diagnostics.pair import PairResult
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
+from axlebox.bearing import resultfile
+from axlebox.bearing.diagnostics.channel import jsonable
+from axlebox.bearing.diagnostics.pair import PairResult
 
 from . import conclusions
 from . import report_figures as figs
@@ -202,7 +202,7 @@ def write_html(cases, figures: list[tuple[str, Path]], modes: list[Path], out: P
 def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
            **diagnose_kw) -> Path:
     """Diagnose every case of ``source`` and write figures, tables and ``index.html`` into
-    ``out_dir``; ``diagnose_kw`` go to :func:`pipelines.diagnose.analyse_file` (shaft speed,
+    ``out_dir``; ``diagnose_kw`` go to :func:`axlebox.pipelines.diagnose.analyse_file` (shaft speed,
     bearing, criterion, band ...).  Returns the page's path."""
     files = find_results(source)
     out = Path(out_dir)

@@ -1,7 +1,7 @@
 """The paper's result figures (Figs. 9-14) in its style, drawn with matplotlib off-screen.
 
-Each function takes :class:`pipelines.report.Case` objects (a run's case parameters and its
-:class:`bearing.diagnostics.pair.PairResult`) and writes one PNG.  Sides are drawn the same way
+Each function takes :class:`axlebox.pipelines.report.Case` objects (a run's case parameters and its
+:class:`axlebox.bearing.diagnostics.pair.PairResult`) and writes one PNG.  Sides are drawn the same way
 everywhere: the left sensor solid, the right sensor dashed; defect widths by colour.
 """
 from __future__ import annotations
@@ -14,7 +14,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from bearing.diagnostics.spectral import psd  # noqa: E402
+from axlebox.bearing.diagnostics.spectral import psd  # noqa: E402
 
 SIDES = (("left", "-"), ("right", "--"))
 SPM_BANDS = ((0.0, 21.0, "#e8f5e9", "normal"), (21.0, 35.0, "#fff8e1", "mild"),

@@ -9,7 +9,6 @@ command exits with status 1.
 """
 from __future__ import annotations
 
-import os
 import sys
 import time
 import tomllib
@@ -18,22 +17,20 @@ from pathlib import Path
 import numpy as np
 import tomli_w
 
-from bearing import resultfile
-from fem import bodyfile
-from geometry._params import ParameterError
-from mbs import config as vconfig
-from mbs import dtrb, integrate, statics, track, vehicle
-from mbs.wheelrail import element_kernel as ek
-from mbs.wheelrail.element import WheelRailParams, build_tables
-from mbs.wheelrail.geometry import TrackLayout
-from mbs.wheelrail.profile import read_profile
-from mbs.wheelrail.standard import chn60, s1002, uic60
+from axlebox import configs
+from axlebox._cache import cache_dir
+from axlebox._params import ParameterError
+from axlebox.bearing import resultfile
+from axlebox.fem import bodyfile
+from axlebox.mbs import config as vconfig
+from axlebox.mbs import dtrb, integrate, statics, track, vehicle
+from axlebox.mbs.wheelrail import element_kernel as ek
+from axlebox.mbs.wheelrail.element import WheelRailParams, build_tables
+from axlebox.mbs.wheelrail.geometry import TrackLayout
+from axlebox.mbs.wheelrail.profile import read_profile
+from axlebox.mbs.wheelrail.standard import chn60, s1002, uic60
 
 KINDS = ("wheelset", "axlebox", "frame")
-
-
-def _cache_dir() -> Path:
-    return Path(os.environ.get("AXLEBOX_CACHE", Path.home() / ".cache" / "axlebox"))
 
 
 def reduced_bodies(cfg: dict, log=print) -> dict:
@@ -52,7 +49,7 @@ def reduced_bodies(cfg: dict, log=print) -> dict:
             out[kind] = bodyfile.read(p, fields=False)
         return out
     from .bodies import BODIES, build_body
-    where = _cache_dir() / "bodies" / f"coarse-{cfg['bodies']['modes']}"
+    where = cache_dir("bodies", f"coarse-{cfg['bodies']['modes']}")
     for kind in KINDS:
         rb, _ = build_body(kind, mesh_size=BODIES[kind].coarse_mesh_size, n_modes=cfg["bodies"]["modes"],
                            n_reference=0, out_dir=where, log=log)
@@ -147,7 +144,9 @@ def write(path, run: integrate.Run, model, cfg_text: str, seed: int) -> Path:
 def load_config(config_path, duration: float | None = None, overrides: dict | None = None):
     """``(cfg, text)``: the validated config and the TOML text of what will run (the file's own
     text, or, with ``duration`` or ``overrides`` (section -> {field: value}), the merged
-    config written out again, so that a result file's config is exactly its run's)."""
+    config written out again, so that a result file's config is exactly its run's).
+    ``config_path`` is a TOML file or the name of a shipped config (:mod:`axlebox.configs`)."""
+    config_path = configs.resolve(config_path)
     cfg, text = vconfig.load(config_path)
     if duration is None and not overrides:
         return cfg, text

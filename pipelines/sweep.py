@@ -9,7 +9,8 @@ and defects; width 0 removes the ``[[defects]]``, > 0 sets their ``W`` (m).  Eac
 skips files that open as a result of the same config and removes ``*.tmp`` left by a killed run
 (one sweep per folder at a time; the rig's ``*.partial.h5`` checkpoints are kept, it resumes from
 them).  The summary per case and side goes to ``DIR/summary.csv``: two-sensor (vehicle) results
-through :mod:`pipelines.report`, the rig's one sensor through :func:`bearing.diagnostics.channel.analyse`.
+through :mod:`axlebox.pipelines.report`, the rig's one sensor through
+:func:`axlebox.bearing.diagnostics.channel.analyse`.
 """
 from __future__ import annotations
 
@@ -27,8 +28,9 @@ from pathlib import Path
 
 import tomli_w
 
-from bearing import resultfile
-from geometry._params import ParameterError
+from axlebox import configs
+from axlebox._params import ParameterError
+from axlebox.bearing import resultfile
 
 SWEEP_FIELDS = ("speeds_kmh", "widths_mm")
 RUN_SECTION = {"rig": "rig", "vehicle": "run"}       # where speed_kmh and duration live
@@ -49,11 +51,10 @@ class Case:
 
 
 def load_config(path) -> tuple[str, dict]:
-    """``(kind, parsed TOML)`` of a sweep's base config, kind ``"rig"`` or ``"vehicle"``."""
-    from mbs.config import SCHEMA
-    path = Path(path)
-    if not path.is_file():
-        raise ParameterError(f"config = {str(path)!r} is not allowed: no such file")
+    """``(kind, parsed TOML)`` of a sweep's base config (a file, or the name of a shipped config),
+    kind ``"rig"`` or ``"vehicle"``."""
+    from axlebox.mbs.config import SCHEMA
+    path = configs.resolve(path)
     try:
         cfg = tomllib.loads(path.read_text())
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as err:
@@ -82,9 +83,9 @@ def _numbers(values, name: str, what: str, zero_ok: bool) -> list[float]:
 def case_toml(kind: str, d: dict) -> str:
     """The case's config as its runner stores it, validated here before any worker starts."""
     if kind == "rig":
-        from bearing.rig import config_from_dict
+        from axlebox.bearing.rig import config_from_dict
         return config_from_dict(d).to_toml()
-    from mbs.config import validate
+    from axlebox.mbs.config import validate
     validate(d)
     return tomli_w.dumps(d)
 
@@ -141,7 +142,7 @@ def run_case(kind: str, toml_text: str, out: str, threads: int = 0) -> dict:
         numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
     out = Path(out)
     if kind == "rig":
-        from bearing.rig import config_from_dict, simulate
+        from axlebox.bearing.rig import config_from_dict, simulate
         simulate(config_from_dict(tomllib.loads(toml_text)), out=out)      # resultfile.write: .tmp, rename
     else:
         from .simulate import run
@@ -219,8 +220,9 @@ def _row(c: Case, path: Path, side: str, sensor: str, ch, verdict: str, lag_s=No
 def rig_rows(c: Case, path: Path) -> list[dict]:
     """The rig's one sensor: one-channel indicators, searching the fault lines the record holds
     two periods of (``channel.analyse`` needs that; a 0.3 s run at 20 km/h holds BPFO only)."""
-    from bearing.diagnostics.channel import analyse
-    from bearing.rig import SENSOR
+    from axlebox.bearing.diagnostics.channel import analyse
+    from axlebox.bearing.rig import SENSOR
+
     from .diagnose import DTRB_BORE
     from .readers import read
     rec = read(path, SENSOR, SENSOR)
@@ -233,7 +235,7 @@ def rig_rows(c: Case, path: Path) -> list[dict]:
 
 def vehicle_rows(c: Case, path: Path):
     """Both sides of the defect's wheelset (``wheelset`` of the first defect, else ws2) as
-    ``axlebox diagnose`` does: ``(pipelines.report.Case, rows)``."""
+    ``axlebox diagnose`` does: ``(axlebox.pipelines.report.Case, rows)``."""
     from .diagnose import analyse_file
     from .report import Case as ReportCase
     defects = tomllib.loads(c.toml).get("defects", [])

@@ -23,9 +23,9 @@ def full_size() -> bool:
 @pytest.fixture(scope="session")
 def wheelset_fe():
     """The default-mesh wheelset: FE model and its full free-free modes (built once)."""
-    from fem import assembly, eigen
-    from geometry import mesh, wheelset
-    from pipelines.bodies import BODIES
+    from axlebox.fem import assembly, eigen
+    from axlebox.geometry import mesh, wheelset
+    from axlebox.pipelines.bodies import BODIES
     p = wheelset.WheelsetParams()
     m = mesh.mesh_model("wheelset", wheelset.build, p, BODIES["wheelset"].mesh_size)
     fe = assembly.assemble(m)

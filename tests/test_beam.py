@@ -2,9 +2,9 @@
 import numpy as np
 import pytest
 
-from fem import assembly, eigen, interfaces, massprops
-from fem.body import make_body
-from geometry import beam, mesh
+from axlebox.fem import assembly, eigen, interfaces, massprops
+from axlebox.fem.body import make_body
+from axlebox.geometry import beam, mesh
 
 E, RHO = 2.1e11, 7850.0
 # cos(bL) cosh(bL) = 1 (REFERENCE_DATA.md; Blevins, Formulas for Natural Frequency

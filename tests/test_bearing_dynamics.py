@@ -4,13 +4,13 @@ import numpy as np
 import pytest
 from scipy.signal import find_peaks
 
-from bearing import defects, equilibrium, kernel, layout, stiffness
-from bearing.defects import Defect
-from bearing.frequencies import orders, shaft_hz
-from bearing.params import BearingParams
-from bearing.rig import RigConfig, load, simulate
-from bearing.spectra import envelope, envelope_spectrum
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
+from axlebox.bearing import defects, equilibrium, kernel, layout, stiffness
+from axlebox.bearing.defects import Defect
+from axlebox.bearing.frequencies import orders, shaft_hz
+from axlebox.bearing.params import BearingParams
+from axlebox.bearing.rig import RigConfig, load, simulate
+from axlebox.bearing.spectra import envelope, envelope_spectrum
 
 F_S = shaft_hz(48.0, 0.42)                       # 5.05 Hz
 BPFO = orders(BearingParams()).BPFO * F_S        # 44.06 Hz at the cup angle
@@ -200,15 +200,15 @@ def test_bad_rig_input_is_named(make, field):
     (["--defect-width", "-1"], "defect-width"), (["--defect-width", "2", "--defect-row", "3"], "row"),
 ])
 def test_cli_bad_input_exits_2_naming_the_parameter(args, field, tmp_path, capsys):
-    from pipelines.cli import main
+    from axlebox.pipelines.cli import main
     assert main(["bearing", "simulate", *args, "--out", str(tmp_path / "x.h5")]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and field in err
 
 
 def test_cli_simulate_writes_the_result_file(tmp_path, capsys):
-    from bearing.resultfile import open_result
-    from pipelines.cli import main
+    from axlebox.bearing.resultfile import open_result
+    from axlebox.pipelines.cli import main
     out = tmp_path / "rig.h5"
     assert main(["bearing", "simulate", "--duration", "0.01", "--defect-width", "2", "--out", str(out)]) == 0
     with open_result(out) as f:

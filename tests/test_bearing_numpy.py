@@ -1,14 +1,14 @@
-"""The plain-numpy twin of the DTRB kernel (bearing.kernel_numpy) against the numba kernel, and
+"""The plain-numpy twin of the DTRB kernel (axlebox.bearing.kernel_numpy) against the numba kernel, and
 both closed-form line integrals against quadrature."""
 import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from bearing import defects, equilibrium, layout
-from bearing.kernel import dtrb_rhs, line_integrals
-from bearing.kernel_numpy import dtrb_rhs_numpy, line_integrals_numpy
-from bearing.layout import CPHI, CTX, CTZ, CX, CY, CZ, ETA, PHI, PSI, RHO, TH_S, TH_T
-from bearing.params import BearingParams
+from axlebox.bearing import defects, equilibrium, layout
+from axlebox.bearing.kernel import dtrb_rhs, line_integrals
+from axlebox.bearing.kernel_numpy import dtrb_rhs_numpy, line_integrals_numpy
+from axlebox.bearing.layout import CPHI, CTX, CTZ, CX, CY, CZ, ETA, PHI, PSI, RHO, TH_S, TH_T
+from axlebox.bearing.params import BearingParams
 
 OMEGA = 2 * np.pi * 5.05
 RTOL = 1e-9

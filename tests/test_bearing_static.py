@@ -2,9 +2,9 @@
 import numpy as np
 import pytest
 
-from bearing import frequencies, loaddist, quasistatic, stiffness
-from bearing.params import BearingParams
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
+from axlebox.bearing import frequencies, loaddist, quasistatic, stiffness
+from axlebox.bearing.params import BearingParams
 
 
 def test_fault_orders_match_reference_table():

@@ -2,10 +2,10 @@
 import numpy as np
 import pytest
 
-from fem import assembly, massprops
-from geometry import axlebox, frame, mesh, wheelset
-from geometry._params import ParameterError
-from pipelines.bodies import BODIES, build_body, make_params
+from axlebox._params import ParameterError
+from axlebox.fem import assembly, massprops
+from axlebox.geometry import axlebox, frame, mesh, wheelset
+from axlebox.pipelines.bodies import BODIES, build_body, make_params
 
 
 @pytest.mark.parametrize("name,size", [("axlebox", 0.04), ("frame", 0.08)])

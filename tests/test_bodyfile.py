@@ -4,8 +4,8 @@ import meshio
 import numpy as np
 import pytest
 
-from fem import bodyfile
-from pipelines.bodies import build_body
+from axlebox.fem import bodyfile
+from axlebox.pipelines.bodies import build_body
 
 
 @pytest.fixture(scope="module")

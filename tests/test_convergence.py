@@ -2,10 +2,11 @@
 import numpy as np
 import pytest
 
+from axlebox.fem import assembly, eigen
+from axlebox.geometry import mesh, wheelset
+from axlebox.pipelines import modeid
+
 from conftest import full_size
-from fem import assembly, eigen
-from geometry import mesh, wheelset
-from pipelines import modeid
 
 
 @pytest.mark.slow
@@ -35,7 +36,7 @@ def test_axlebox_modes_in_the_car_converge_with_mesh():
     mode near 2.7 kHz, which carries the defect side's impacts (README), moves less than 2 %
     on a mesh of 25 mm (and 2.5 % on 18 mm, full size); every mode comes down with refinement,
     as a displacement FE model's must."""
-    from pipelines.bodies import build_body
+    from axlebox.pipelines.bodies import build_body
     sizes = (0.040, 0.025, 0.018) if full_size() else (0.040, 0.025)
     f = np.array([build_body("axlebox", mesh_size=h, n_modes=12, n_reference=0,
                              log=lambda *_: None)[0].frequencies_hz[:12] for h in sizes])

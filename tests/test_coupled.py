@@ -5,27 +5,26 @@ Rigid bodies here (the coupled flexible car is the validation case's, and slower
 bearings are what is under test.
 """
 import tomllib
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-from bearing.diagnostics.channel import analyse
-from bearing.frequencies import orders, shaft_hz
-from bearing.params import BearingParams
-from geometry._params import ParameterError
-from mbs import config as vconfig
-from mbs import integrate
-from mbs.kernel_bearings import BR_ROWS
-from pipelines import simulate as psim
+from axlebox import configs
+from axlebox._params import ParameterError
+from axlebox.bearing.diagnostics.channel import analyse
+from axlebox.bearing.frequencies import orders, shaft_hz
+from axlebox.bearing.params import BearingParams
+from axlebox.mbs import config as vconfig
+from axlebox.mbs import integrate
+from axlebox.mbs.kernel_bearings import BR_ROWS
+from axlebox.pipelines import simulate as psim
 
-ROOT = Path(__file__).parents[1]
 G = 9.81
 DEFECT = {"wheelset": 2, "side": "R", "row": 2, "W": 2e-3, "L": 50.4e-3, "H": 2e-3}
 
 
 def coupled_config(**over):
-    base, _ = vconfig.load(ROOT / "configs" / "vehicle.toml")
+    base, _ = vconfig.load(configs.path("vehicle"))
     user = {sec: dict(v) for sec, v in base.items() if sec not in ("bearing", "defects")}
     user["bodies"]["flexible"] = []
     user["joint"]["model"] = "dtrb"
@@ -147,9 +146,9 @@ def test_simulate_writes_the_bearings(tmp_path):
     start did not resist: a transient of +-15 %)."""
     import h5py
 
-    from pipelines import cli
+    from axlebox.pipelines import cli
     out = tmp_path / "val.h5"
-    assert cli.main(["simulate", str(ROOT / "configs" / "validation_48kmh.toml"), "--duration",
+    assert cli.main(["simulate", "validation_48kmh", "--duration",
                      "0.02", "--out", str(out)]) == 0
     with h5py.File(out, "r") as f:
         assert f.attrs["status"] == "done"
@@ -166,17 +165,17 @@ def test_shipped_configs_are_the_papers_cases():
     row 2 of wheelset 2's gearbox-side bearing (paper, validation); configs/study.toml: widths
     0, 1, 3, 5 mm x 20, 40, 60, 80 km/h (paper, study), every case long enough for the diagnosis
     (two cage periods after the 0.5 s fade-in)."""
-    from pipelines.sweep import load_config, matrix
-    cfg, _ = vconfig.load(ROOT / "configs" / "validation_48kmh.toml")
+    from axlebox.pipelines.sweep import load_config, matrix
+    cfg, _ = vconfig.load(configs.path("validation_48kmh"))
     assert (cfg["run"]["speed_kmh"], cfg["track"]["fra_class"], cfg["joint"]["model"]) == (48.0, 5, "dtrb")
     (d,) = cfg["defects"]
     assert (d["wheelset"], d["side"], d["defect"].row) == (2, cfg["gearbox"]["side"], 2)
     assert (d["defect"].L, d["defect"].W, d["defect"].H) == (50.4e-3, 2e-3, 2e-3)
-    cases = matrix(*load_config(ROOT / "configs" / "study.toml"))
+    cases = matrix(*load_config(configs.path("study")))
     assert sorted({(c.speed_kmh, c.width_mm) for c in cases}) == sorted(
         (v, w) for v in (20.0, 40.0, 60.0, 80.0) for w in (0.0, 1.0, 3.0, 5.0))
     ftf = orders(BearingParams()).FTF * shaft_hz(20.0)
-    T = tomllib.loads((ROOT / "configs" / "study.toml").read_text())["run"]["duration"]
+    T = tomllib.loads(configs.path("study").read_text())["run"]["duration"]
     assert T - 0.5 >= 2 / ftf
 
 

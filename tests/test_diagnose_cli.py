@@ -13,15 +13,16 @@ import numpy as np
 import pytest
 import scipy.io
 
-from bearing import resultfile
-from bearing.diagnostics.channel import jsonable
-from bearing.diagnostics.criterion import VF_METRO, VF_RANGE_PAPER, Criterion
-from bearing.diagnostics.pair import analyse_pair
-from bearing.frequencies import FaultOrders, orders, shaft_hz
-from bearing.params import BearingParams
+from axlebox.bearing import resultfile
+from axlebox.bearing.diagnostics.channel import jsonable
+from axlebox.bearing.diagnostics.criterion import VF_METRO, VF_RANGE_PAPER, Criterion
+from axlebox.bearing.diagnostics.pair import analyse_pair
+from axlebox.bearing.frequencies import FaultOrders, orders, shaft_hz
+from axlebox.bearing.params import BearingParams
+from axlebox.pipelines import diagnose, readers
+from axlebox.pipelines.cli import main
+
 from conftest import reference_dir
-from pipelines import diagnose, readers
-from pipelines.cli import main
 
 CWRU = reference_dir() / "cwru" / "cwru_130_OR007_6_0_DE12k.mat"
 # CWRU's published fault orders of the drive-end 6205 (README there); BSF = rolling element / 2
@@ -264,7 +265,7 @@ def test_bad_input_through_the_installed_command(tmp_path, reference_result):
     """The real entry point, in a fresh process: status 2, one line, no traceback."""
     left, right, _ = reference_result
     args, words = bad_inputs(tmp_path, left, right)["NaNs"]
-    r = subprocess.run([sys.executable, "-m", "pipelines.cli", "diagnose", *args],
+    r = subprocess.run([sys.executable, "-m", "axlebox", "diagnose", *args],
                        capture_output=True, text=True, timeout=300)
     assert r.returncode == 2
     assert len(r.stderr.strip().splitlines()) == 1 and "3 NaN" in r.stderr

@@ -9,13 +9,13 @@ import numpy as np
 import pytest
 from scipy.signal import lfilter
 
-from bearing.diagnostics import channel, faultlines, spm
-from bearing.diagnostics.envelope import envelope, envelope_spectrum, select_band
-from bearing.diagnostics.indicators import time_indicators
-from bearing.diagnostics.spectral import default_nperseg, fc_vf
-from bearing.frequencies import orders
-from bearing.params import BearingParams
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
+from axlebox.bearing.diagnostics import channel, faultlines, spm
+from axlebox.bearing.diagnostics.envelope import envelope, envelope_spectrum, select_band
+from axlebox.bearing.diagnostics.indicators import time_indicators
+from axlebox.bearing.diagnostics.spectral import default_nperseg, fc_vf
+from axlebox.bearing.frequencies import orders
+from axlebox.bearing.params import BearingParams
 
 FS = 10e3
 SHAFT = 5.1                       # Hz: the paper's wheelset at 48 km/h
@@ -132,7 +132,7 @@ def test_envelope_spectrum_of_an_am_carrier(nperseg):
     assert f[i] == pytest.approx(fm)
     assert A[i] == pytest.approx(m, rel=1e-3)
     # the old import path keeps working (bearing/rig.py and older tests use it)
-    from bearing import spectra
+    from axlebox.bearing import spectra
     assert spectra.envelope is envelope and spectra.envelope_spectrum is envelope_spectrum
 
 
@@ -305,8 +305,8 @@ def test_analyse_is_json_and_60_s_at_10_khz_takes_under_2_s():
 
 @pytest.fixture(scope="module")
 def rig_pair():
-    from bearing.defects import Defect
-    from bearing.rig import RigConfig, simulate
+    from axlebox.bearing.defects import Defect
+    from axlebox.bearing.rig import RigConfig, simulate
     return simulate(RigConfig(duration=1.0, defects=(Defect(W=2e-3),))), simulate(RigConfig(duration=1.0))
 
 
@@ -316,7 +316,7 @@ def test_rig_outer_ring_defect_is_found_at_bpfo_and_the_healthy_bearing_is_not(r
     roller-passage (varying compliance) modulation at BPFO has no harmonics to pass the rule.
     The defect's impulses raise the SPM level (the paper's Fig. 11: SPM grows with defect width):
     by more than 20 dB here."""
-    from bearing.frequencies import shaft_hz
+    from axlebox.bearing.frequencies import shaft_hz
     faulty, healthy = rig_pair
     c = faulty.config
     n_b = shaft_hz(c.speed_kmh, c.r_wheel)
@@ -343,8 +343,10 @@ def test_cwru_outer_race_record_shows_bpfo_and_its_shaft_sidebands_are_not_bpfi(
     within 3.1 % of BPFI = 162.1 Hz and carries its own harmonics; it is masked as BPFO's
     sideband, so no inner-race fault is reported for an outer-race record."""
     import scipy.io
+
+    from axlebox.bearing.frequencies import FaultOrders
+
     from conftest import reference_dir
-    from bearing.frequencies import FaultOrders
     path = reference_dir() / "cwru" / "cwru_130_OR007_6_0_DE12k.mat"
     if not path.exists():
         pytest.skip(f"reference data not found: {path}")

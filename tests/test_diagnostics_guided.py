@@ -10,15 +10,15 @@ BPFO line stands highest holds the 546 Hz response, and there the line is found.
 import numpy as np
 import pytest
 
-from bearing.diagnostics.channel import analyse
-from bearing.diagnostics.criterion import Criterion
-from bearing.diagnostics.envelope import select_band
-from bearing.diagnostics.guided import band_grid, guided_band
-from bearing.diagnostics.pair import analyse_pair
-from bearing.diagnostics.synthetic import impulse_train, resonance, wheel_rail_noise
-from bearing.frequencies import orders, shaft_hz
-from bearing.params import BearingParams
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
+from axlebox.bearing.diagnostics.channel import analyse
+from axlebox.bearing.diagnostics.criterion import Criterion
+from axlebox.bearing.diagnostics.envelope import select_band
+from axlebox.bearing.diagnostics.guided import band_grid, guided_band
+from axlebox.bearing.diagnostics.pair import analyse_pair
+from axlebox.bearing.diagnostics.synthetic import impulse_train, resonance, wheel_rail_noise
+from axlebox.bearing.frequencies import orders, shaft_hz
+from axlebox.bearing.params import BearingParams
 
 FS = 10_000.0
 SHAFT = shaft_hz(48.0)

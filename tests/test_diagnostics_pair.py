@@ -14,14 +14,14 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from bearing.diagnostics.criterion import (REL_RANGE_DEFAULT, VF_METRO, VF_RANGE_PAPER, Criterion,
-                                           verdict, vf_difference)
-from bearing.diagnostics.lag import time_lag
-from bearing.diagnostics.pair import analyse_pair
-from bearing.diagnostics.synthetic import impulse_train, resonance, wheel_rail_noise
-from bearing.frequencies import orders, shaft_hz
-from bearing.params import BearingParams
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
+from axlebox.bearing.diagnostics.criterion import (REL_RANGE_DEFAULT, VF_METRO, VF_RANGE_PAPER,
+                                                   Criterion, verdict, vf_difference)
+from axlebox.bearing.diagnostics.lag import time_lag
+from axlebox.bearing.diagnostics.pair import analyse_pair
+from axlebox.bearing.diagnostics.synthetic import impulse_train, resonance, wheel_rail_noise
+from axlebox.bearing.frequencies import orders, shaft_hz
+from axlebox.bearing.params import BearingParams
 
 FS = 10_000.0                               # the paper's field system samples at 10 kHz
 SHAFT = shaft_hz(48.0)                      # the paper's validation speed, 0.42 m wheels

@@ -2,8 +2,8 @@
 import numpy as np
 import pytest
 
-from geometry._params import ParameterError
-from mbs.wheelrail import hertz as hz
+from axlebox._params import ParameterError
+from axlebox.mbs.wheelrail import hertz as hz
 
 E_STEEL, NU_STEEL = 2.1e11, 0.3
 E_STAR = hz.effective_modulus(E_STEEL, NU_STEEL)

@@ -2,9 +2,9 @@
 import numpy as np
 import pytest
 
-from fem import assembly, damping, interfaces
-from fem.body import make_body
-from geometry import beam, mesh
+from axlebox.fem import assembly, damping, interfaces
+from axlebox.fem.body import make_body
+from axlebox.geometry import beam, mesh
 
 
 @pytest.fixture(scope="module")

@@ -3,15 +3,15 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from fem import assembly, interfaces
-from fem.body import make_body
-from geometry import beam, mesh
-from geometry._params import ParameterError
-from mbs import ffrf_numpy as fn
-from mbs import integrate
-from mbs.body import add_point_masses, flexible, rigid
-from mbs.elements import Bushing, Load
-from mbs.system import System
+from axlebox._params import ParameterError
+from axlebox.fem import assembly, interfaces
+from axlebox.fem.body import make_body
+from axlebox.geometry import beam, mesh
+from axlebox.mbs import ffrf_numpy as fn
+from axlebox.mbs import integrate
+from axlebox.mbs.body import add_point_masses, flexible, rigid
+from axlebox.mbs.elements import Bushing, Load
+from axlebox.mbs.system import System
 
 
 @pytest.fixture(scope="module")
@@ -145,7 +145,7 @@ def test_asymmetric_body_follows_eulers_equations_and_keeps_angular_momentum():
 def _full_fe_tip_deflection(fe, itf, F):
     """Full FE static solution (all DOFs, same RBE couplings): end_a master fixed, force F
     at end_b's master; returns end_b's master translation."""
-    from fem.linsolve import Factor
+    from axlebox.fem.linsolve import Factor
     cond = interfaces.condense(fe, itf)
     K = (cond.T.T @ fe.K @ cond.T).tocsr()
     a, b = cond.master_slice(0), cond.master_slice(1)

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from pipelines.bodies import build_body
-from pipelines.render import report
+from axlebox.pipelines.bodies import build_body
+from axlebox.pipelines.render import report
 
 
 @pytest.fixture(scope="module")
@@ -37,7 +37,7 @@ def test_report_pictures_exist_and_are_not_blank(body_dir, tmp_path):
 def _cli(*args):
     env = dict(os.environ)
     env.pop("DISPLAY", None)
-    return subprocess.run([sys.executable, "-m", "pipelines.cli", *args], capture_output=True,
+    return subprocess.run([sys.executable, "-m", "axlebox", *args], capture_output=True,
                           text=True, env=env, timeout=300)
 
 

@@ -12,12 +12,12 @@ import json
 import numpy as np
 import pytest
 
-from bearing import resultfile
-from bearing.diagnostics.synthetic import coaxial_pair
-from bearing.frequencies import orders, shaft_hz
-from bearing.params import BearingParams
-from pipelines import cli, report
-from pipelines.diagnose import analyse_file
+from axlebox.bearing import resultfile
+from axlebox.bearing.diagnostics.synthetic import coaxial_pair
+from axlebox.bearing.frequencies import orders, shaft_hz
+from axlebox.bearing.params import BearingParams
+from axlebox.pipelines import cli, report
+from axlebox.pipelines.diagnose import analyse_file
 
 FS = 10_000.0
 SPEEDS = (20.0, 48.0)

@@ -10,9 +10,9 @@ import h5py
 import numpy as np
 import pytest
 
-from bearing import resultfile
-from pipelines import cli
-from pipelines.sweep import is_finished, load_config, matrix, run_case, run_cases, sweep
+from axlebox.bearing import resultfile
+from axlebox.pipelines import cli
+from axlebox.pipelines.sweep import is_finished, load_config, matrix, run_case, run_cases, sweep
 
 from conftest import full_size
 
@@ -36,8 +36,7 @@ def _config(tmp_path, duration=0.1, seed=0, name="rig.toml") -> Path:
 
 
 def _cli(*args, **kw):
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
-    return subprocess.Popen([sys.executable, "-m", "pipelines.cli", "sweep", *args], cwd=ROOT, env=env,
+    return subprocess.Popen([sys.executable, "-m", "axlebox", "sweep", *args], cwd=ROOT,
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, **kw)
 
 
@@ -160,15 +159,16 @@ def test_a_failed_case_does_not_stop_the_others(tmp_path, monkeypatch, capsys):
     """A case whose run raises is reported on its own line and leaves no file; the others finish;
     the command exits 1 naming it; a rerun retries only that case.  (In-process workers, so the
     runner can be made to fail at 60 km/h.)"""
-    import bearing.rig
     from dask.distributed import LocalCluster
-    real = bearing.rig.simulate
+
+    from axlebox.bearing import rig
+    real = rig.simulate
 
     def failing(cfg, **kw):
         if cfg.speed_kmh == 60.0:
             raise FloatingPointError("made to fail")
         return real(cfg, **kw)
-    monkeypatch.setattr(bearing.rig, "simulate", failing)
+    monkeypatch.setattr(rig, "simulate", failing)
     cfg, out = _config(tmp_path, duration=0.05), tmp_path / "out"
     with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as lc:
         args = ["sweep", str(cfg), "--speeds", "48", "60", "--widths", "1", "--out", str(out),
@@ -179,7 +179,7 @@ def test_a_failed_case_does_not_stop_the_others(tmp_path, monkeypatch, capsys):
         assert text.err.strip().splitlines()[-1].startswith("axlebox: failed: RuntimeError: 1 case(s) "
                                                             "failed (v60_w1)")
         assert sorted(p.name for p in out.glob("*.h5")) == ["v48_w1.h5"]
-        monkeypatch.setattr(bearing.rig, "simulate", real)
+        monkeypatch.setattr(rig, "simulate", real)
         assert cli.main(args) == 0
         assert "sweep: v48_w1: skipped (finished)" in capsys.readouterr().out
     assert sorted(p.name for p in out.glob("*.h5")) == ["v48_w1.h5", "v60_w1.h5"]
@@ -194,8 +194,8 @@ def test_two_local_workers_run_four_cases_at_least_1_6_times_faster(tmp_path):
     case (about 9 s of one core; measured 1.82-1.85 on an idle 2-core machine); CI: 1.5 s (about
     4.5 s; measured 1.76-1.78; 1 s gave 1.70-1.76, too close to the bar).  Another job on the
     machine pulls the ratio towards 1 (0.91-0.95 measured beside a one-core job): one retry."""
-    from bearing.defects import Defect
-    from bearing.rig import RigConfig, simulate
+    from axlebox.bearing.defects import Defect
+    from axlebox.bearing.rig import RigConfig, simulate
     simulate(RigConfig(duration=0.01, defects=(Defect(W=1e-3),)))          # compile or load the cache
     cases = matrix(*load_config(_config(tmp_path, duration=3.0 if full_size() else 1.5)),
                    speeds=[40.0, 50.0, 60.0, 70.0], widths=[1.0])

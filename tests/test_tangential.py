@@ -3,8 +3,9 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from geometry._params import ParameterError
-from mbs.wheelrail import kalker, tangential as tg
+from axlebox._params import ParameterError
+from axlebox.mbs.wheelrail import kalker
+from axlebox.mbs.wheelrail import tangential as tg
 
 # a realistic tread contact: semi-axes 6 mm x 4 mm, 70 kN, steel
 A_, B_, N_, MU, G_, NU = 6e-3, 4e-3, 7e4, 0.3, 8.1e10, 0.28

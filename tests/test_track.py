@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 from scipy import integrate, signal
 
-from geometry._params import ParameterError
-from mbs import track
-from mbs.track import IrregularityParams, generate, psd
+from axlebox._params import ParameterError
+from axlebox.mbs import track
+from axlebox.mbs.track import IrregularityParams, generate, psd
 
 
 @pytest.fixture(scope="module")

@@ -8,28 +8,28 @@ roller contact force that turns with the cage (0.456 s, 2.193 Hz against an FTF 
 One run of 1.5 s (2.0 s with AXLEBOX_FULL=1): after the 0.5 s fade-in 1 s is left, 44 fault
 periods and 2.2 cage periods.
 """
-from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
+
+from axlebox import configs
+from axlebox.bearing.diagnostics.envelope import envelope
+from axlebox.bearing.diagnostics.lag import time_lag
+from axlebox.bearing.frequencies import orders, shaft_hz
+from axlebox.bearing.params import BearingParams
+from axlebox.pipelines import readers
+from axlebox.pipelines import simulate as psim
+
 from conftest import full_size
 
-from bearing.diagnostics.envelope import envelope
-from bearing.diagnostics.lag import time_lag
-from bearing.frequencies import orders, shaft_hz
-from bearing.params import BearingParams
-from pipelines import readers
-from pipelines import simulate as psim
-
-ROOT = Path(__file__).parents[1]
 FADE = readers.TRACK_FADE_IN_S
 
 
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
     out = tmp_path_factory.mktemp("validation") / "validation.h5"
-    psim.run(ROOT / "configs" / "validation_48kmh.toml", out, duration=2.0 if full_size() else 1.5,
+    psim.run(configs.path("validation_48kmh"), out, duration=2.0 if full_size() else 1.5,
              log=lambda *_: None)
     o = orders(BearingParams())
     f_r = shaft_hz(48.0, 0.42)

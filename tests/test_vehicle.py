@@ -1,16 +1,17 @@
 """The B-type metro car: statics, a run on FRA class 5 track, and config errors."""
-from pathlib import Path
 
 import numpy as np
 import pytest
 from scipy.signal import find_peaks, welch
 
+from axlebox import configs
+from axlebox.mbs import config as vconfig
+from axlebox.mbs import integrate
+from axlebox.mbs.wheelrail import element_kernel as ek
+from axlebox.pipelines import cli
+from axlebox.pipelines import simulate as psim
+
 from conftest import full_size
-from mbs import config as vconfig
-from mbs import integrate
-from mbs.wheelrail import element_kernel as ek
-from pipelines import cli
-from pipelines import simulate as psim
 
 G = 9.81
 
@@ -19,7 +20,7 @@ G = 9.81
 def car():
     """The shipped config (front bogie flexible, coarse reduced bodies built into the test
     cache), in equilibrium on the track as it lies at t = 0."""
-    cfg, text = vconfig.load(Path(__file__).parents[1] / "configs" / "vehicle.toml")
+    cfg, text = vconfig.load(configs.path("vehicle"))
     model, y0 = psim.build_model(cfg, log=lambda *_: None)
     return cfg, model, y0
 

@@ -5,13 +5,14 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from geometry._params import ParameterError
-from mbs.wheelrail import element as el
-from mbs.wheelrail import element_kernel as ek
-from mbs.wheelrail.geometry import TrackLayout, _sides
-from mbs.wheelrail.hertz import effective_modulus, hertz, normal_load
-from mbs.wheelrail.kalker import creep_coefficients
-from mbs.wheelrail.standard import s1002, uic60
+from axlebox._cache import cache_dir
+from axlebox._params import ParameterError
+from axlebox.mbs.wheelrail import element as el
+from axlebox.mbs.wheelrail import element_kernel as ek
+from axlebox.mbs.wheelrail.geometry import TrackLayout, _sides
+from axlebox.mbs.wheelrail.hertz import effective_modulus, hertz, normal_load
+from axlebox.mbs.wheelrail.kalker import creep_coefficients
+from axlebox.mbs.wheelrail.standard import s1002, uic60
 
 V = 20.0
 
@@ -335,7 +336,7 @@ def test_tables_are_cached_on_disk(tables):
     assert again.key == tables.key
     np.testing.assert_array_equal(again.tab, tables.tab)
     assert again.par[ek.P_MU] == 0.2 and again.par[ek.P_U0] == tables.par[ek.P_U0]
-    assert (el.cache_dir() / f"tables-{tables.key}.npz").exists()
+    assert (cache_dir("wheelrail") / f"tables-{tables.key}.npz").exists()
 
 
 @pytest.mark.parametrize("kw, field", [(dict(mu=-0.1), "mu"), (dict(nx=1), "nx"),

@@ -3,12 +3,13 @@ import math
 
 import numpy as np
 import pytest
-from conftest import reference_dir
 
-from geometry._params import ParameterError
-from mbs.wheelrail.conicity import equivalent_conicity, klingel_wavelength
-from mbs.wheelrail.geometry import TrackLayout, contact_table
-from mbs.wheelrail.profile import Profile, ProfileError, read_profile
+from axlebox._params import ParameterError
+from axlebox.mbs.wheelrail.conicity import equivalent_conicity, klingel_wavelength
+from axlebox.mbs.wheelrail.geometry import TrackLayout, contact_table
+from axlebox.mbs.wheelrail.profile import Profile, ProfileError, read_profile
+
+from conftest import reference_dir
 
 REF = reference_dir() / "profiles"
 S1002 = REF / "MBench_S1002_v3.prw"

@@ -3,13 +3,14 @@ import math
 
 import numpy as np
 import pytest
-from conftest import reference_dir
 from scipy.optimize import least_squares
 
-from mbs.wheelrail.conicity import equivalent_conicity
-from mbs.wheelrail.geometry import TrackLayout, contact_table
-from mbs.wheelrail.profile import read_profile
-from mbs.wheelrail.standard import chn60, s1002, s1002_F, uic60
+from axlebox.mbs.wheelrail.conicity import equivalent_conicity
+from axlebox.mbs.wheelrail.geometry import TrackLayout, contact_table
+from axlebox.mbs.wheelrail.profile import read_profile
+from axlebox.mbs.wheelrail.standard import chn60, s1002, s1002_F, uic60
+
+from conftest import reference_dir
 
 REF = reference_dir() / "profiles"
 needs_ref = pytest.mark.skipif(not REF.is_dir(),
@@ -84,7 +85,7 @@ def test_built_pair_conicity_equals_the_reference_pair(amplitude):
 
 
 def test_cli_contact_geometry_writes_table_and_conicity(tmp_path, capsys):
-    from pipelines.cli import main
+    from axlebox.pipelines.cli import main
     assert main(["contact", "geometry", "--rail", "CHN60", "--back-to-back", "1353", "--y-max", "4",
                  "--amplitude", "2", "3", "--out", str(tmp_path)]) == 0
     table = np.genfromtxt(tmp_path / "contact_table.csv", delimiter=",", names=True)

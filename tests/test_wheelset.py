@@ -3,10 +3,10 @@ and the bending modes the paper's pseudo-fault analysis rests on."""
 import numpy as np
 import pytest
 
-from fem import interfaces
-from fem.body import make_body
-from pipelines import modeid
-from pipelines.bodies import BODIES, compare_table
+from axlebox.fem import interfaces
+from axlebox.fem.body import make_body
+from axlebox.pipelines import modeid
+from axlebox.pipelines.bodies import BODIES, compare_table
 
 
 @pytest.fixture(scope="module")

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.signal import butter, hilbert, sosfiltfilt, stft, welch
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 
 def _signal(x, name: str = "x") -> np.ndarray:

@@ -43,7 +43,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.stats import chi2
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 
 @dataclass(frozen=True)

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 from . import faultlines
 from .envelope import _signal, check_fs, envelope_spectrum, kurtogram_levels

@@ -22,7 +22,7 @@ from scipy.fft import next_fast_len, rfft
 from scipy.optimize import minimize_scalar
 from scipy.signal import correlate, correlation_lags
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 from .envelope import check_fs, envelope
 

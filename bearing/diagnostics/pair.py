@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 from ..frequencies import FaultOrders
 from .channel import LINE_OPTIONS, ChannelResult, analyse, reguide

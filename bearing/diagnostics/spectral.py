@@ -19,7 +19,7 @@ import math
 import numpy as np
 from scipy.signal import welch
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 from .envelope import _signal, check_fs
 

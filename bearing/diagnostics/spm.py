@@ -46,7 +46,7 @@ from PyEMD import EMD
 from scipy.signal import hilbert
 from scipy.stats import kurtosis
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 from .envelope import _signal, check_fs
 

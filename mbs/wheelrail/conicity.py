@@ -23,8 +23,8 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from geometry._params import ParameterError
-from mbs.wheelrail.geometry import ContactTable
+from axlebox._params import ParameterError
+from axlebox.mbs.wheelrail.geometry import ContactTable
 
 METHODS = ("harmonic", "klingel")
 

@@ -1,11 +1,11 @@
 """The wheel-rail force element: its parameters, its tables, and a numpy reference of the kernel.
 
-:func:`build_tables` turns a wheel/rail profile pair on a :class:`~mbs.wheelrail.geometry.
+:func:`build_tables` turns a wheel/rail profile pair on a :class:`~axlebox.mbs.wheelrail.geometry.
 TrackLayout` into the two plain arrays the numba kernel
-:func:`mbs.wheelrail.element_kernel.wheel_rail_force` reads (method and frames in that module's
+:func:`axlebox.mbs.wheelrail.element_kernel.wheel_rail_force` reads (method and frames in that module's
 docstring):
 
-1. :func:`~mbs.wheelrail.geometry.contact_table` of the rigid wheelset (``n_geom`` lateral
+1. :func:`~axlebox.mbs.wheelrail.geometry.contact_table` of the rigid wheelset (``n_geom`` lateral
    displacements y in ``[-y_max, y_max]``): roll0, z0, contact points, contact angles, rolling
    radii, curvatures, per side.
 2. Per side, the wheel's own look-up offset ``u(y) = y + s l0 (cos roll0 - 1) + k r0 sin roll0``
@@ -23,19 +23,19 @@ docstring):
    i.e. over 2-4 mm of u for contact angles 0.02-0.04 rad apart, which a Gaussian of 1 mm
    spreads it over.  Away from the jumps the columns change by ``smooth_y^2 f''/2``: 2 um of
    rolling radius on the tread (``tests/test_wheelrail_element.py``).
-4. At each grid point: Hertz (:mod:`mbs.wheelrail.hertz`) with the relative curvatures
+4. At each grid point: Hertz (:mod:`axlebox.mbs.wheelrail.hertz`) with the relative curvatures
    ``A = kappa_wheel_x / 2`` (straight rail) and ``B = (kappa_wheel_y + kappa_rail_y) / 2``
    floored at ``B_min`` (a conformal contact is not Hertzian; S1002/60E1 stays above 0.27/m),
    ``K_H`` of ``N = K_H pen^1.5`` and, from the semi-axes at N = 1 N (``a ~ N^(1/3)``),
    ``a_hat = a_1 K_H^(1/3)`` so that ``a = a_hat sqrt(pen)`` (likewise b); Kalker's
-   C11, C22, C23, C33 at ``a_hat / b_hat`` (:func:`mbs.wheelrail.kalker.creep_coefficients`).
+   C11, C22, C23, C33 at ``a_hat / b_hat`` (:func:`axlebox.mbs.wheelrail.kalker.creep_coefficients`).
 5. With the same profiles on both sides, each column is made exactly mirror-symmetric
    (``L(u) = +-R(-u)``, the average of the two computed sides), so that mirrored states give
    mirrored forces to rounding.
 
 Tables depend on the profiles, the layout and the geometry/elastic fields of
 :class:`WheelRailParams`; they are cached in memory and in ``$AXLEBOX_CACHE/wheelrail`` (or
-``~/.cache/axlebox/wheelrail``) by a hash of all of those (as :mod:`geometry.mesh` caches meshes).
+``~/.cache/axlebox/wheelrail``) by a hash of all of those (as :mod:`axlebox.geometry.mesh` caches meshes).
 ``par`` (friction, law, damping...) is rebuilt from the parameters on every call: cheap.
 """
 from __future__ import annotations
@@ -45,12 +45,12 @@ import hashlib
 import math
 import os
 import tempfile
-from pathlib import Path
 
 import numpy as np
 from scipy.ndimage import gaussian_filter1d
 
-from geometry._params import ParameterError, check_ranges, digest, param, require
+from axlebox._cache import cache_dir
+from axlebox._params import ParameterError, check_ranges, digest, param, require
 
 from . import element_kernel as ek
 from . import fastsim_kernel as fk
@@ -161,12 +161,6 @@ def _profile_key(p: Profile) -> str:
     return h.hexdigest()[:16]
 
 
-def cache_dir() -> Path:
-    """``$AXLEBOX_CACHE/wheelrail`` or ``~/.cache/axlebox/wheelrail``."""
-    root = os.environ.get("AXLEBOX_CACHE") or Path.home() / ".cache" / "axlebox"
-    return Path(root) / "wheelrail"
-
-
 def build_tables(wheel: Profile, rail: Profile, layout: TrackLayout | None = None,
                  params: WheelRailParams | None = None, *, wheel_right: Profile | None = None,
                  rail_right: Profile | None = None, cache: bool = True) -> WheelRailTables:
@@ -192,7 +186,7 @@ def build_tables(wheel: Profile, rail: Profile, layout: TrackLayout | None = Non
                  wheel_right is None and rail_right is None, layout,
                  {f: getattr(params, f) for f in _TABLE_FIELDS})
     if key not in _MEMO:
-        path = cache_dir() / f"tables-{key}.npz"
+        path = cache_dir("wheelrail") / f"tables-{key}.npz"
         if cache and path.exists():
             with np.load(path) as z:
                 _MEMO[key] = (z["tab"], z["grid_par"], z["u"])
@@ -279,7 +273,7 @@ def _compute(wheel, rail, layout, params, wheel_right, rail_right):
 
 def wheel_force_reference(side, c, e, v_c, omega, V, z_rail, y_rail, dz_rail, dy_rail,
                           tables: WheelRailTables) -> np.ndarray:
-    """The element of :func:`mbs.wheelrail.element_kernel.wheel_rail_force` in numpy (vectors,
+    """The element of :func:`axlebox.mbs.wheelrail.element_kernel.wheel_rail_force` in numpy (vectors,
     ``np.interp``, a rotation matrix, ``np.cross``), returning its ``out`` array.  FASTSIM runs
     as the interpreted Python source of the kernel (``_fastsim.py_func``): it is checked
     against the independent numpy FASTSIM in ``tests/test_tangential.py``; here it is the

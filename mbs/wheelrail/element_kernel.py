@@ -1,11 +1,11 @@
 """The wheel-rail force element in numba: one wheel on its rail, plain arrays and floats only.
 
 :func:`wheel_rail_force` is what the multibody right-hand side calls for each wheel.  Its tables
-come from :func:`mbs.wheelrail.element.build_tables`; :func:`mbs.wheelrail.element.
+come from :func:`axlebox.mbs.wheelrail.element.build_tables`; :func:`axlebox.mbs.wheelrail.element.
 wheel_force_reference` is the same element in numpy, for the tests.
 
 Frame: the track frame (inertial, track-fixed): x forward along the track, y left, z up, z = 0 at
-the crown of the nominal rails (the side-local rail origin of :mod:`mbs.wheelrail.geometry`); the
+the crown of the nominal rails (the side-local rail origin of :mod:`axlebox.mbs.wheelrail.geometry`); the
 vehicle runs at +V along x.  Side 0 = left (s = +1), 1 = right (s = -1).
 
 Method (one contact point per wheel, elastic normal contact, table look-up):
@@ -40,16 +40,16 @@ Method (one contact point per wheel, elastic normal contact, table look-up):
 4. Contact frame ``t1 = x``, ``n = (0, -s sin(delta), cos(delta))`` (the rail's outward normal,
    acting on the wheel: its lateral part pushes a flange back towards the track centre),
    ``t2 = n x t1 = (0, cos(delta), s sin(delta))``, so ``n = t1 x t2`` as in
-   :mod:`mbs.wheelrail.kalker`.  Creepages from the wheel's material velocity at the contact,
+   :mod:`axlebox.mbs.wheelrail.kalker`.  Creepages from the wheel's material velocity at the contact,
    ``v_p = v_c + omega x (p - c)``: ``xi = v_p.t1/V``, ``eta = v_p.t2/V``, spin
    ``omega.n/V`` (1/m).  The rail's material is at rest, so nothing is subtracted: a wheel that
    follows a lateral irregularity exactly (``v_y = V y_rail'``, yaw ``y_rail'``) has ``eta = 0``;
    ``dy_rail, dz_rail`` enter only the approach rate.  ``V`` is floored at ``v_min``.
 5. Tangential forces ``Fx, Fy`` (on the wheel, along t1, t2) and spin moment ``Mz`` by the law
-   code: FASTSIM (:mod:`mbs.wheelrail.fastsim_kernel`, flexibilities
+   code: FASTSIM (:mod:`axlebox.mbs.wheelrail.fastsim_kernel`, flexibilities
    ``L1 = 8a/(3 C11 G)``, ``L2 = 8a/(3 C22 G)``, ``L3 = pi a sqrt(a/b)/(4 C23 G)``), Kalker's
-   linear law, or Shen-Hedrick-Elkins (formulas in :mod:`mbs.wheelrail.kalker` and
-   :func:`mbs.wheelrail.tangential.shen_hedrick_elkins`).  None when ``N = 0``.
+   linear law, or Shen-Hedrick-Elkins (formulas in :mod:`axlebox.mbs.wheelrail.kalker` and
+   :func:`axlebox.mbs.wheelrail.tangential.shen_hedrick_elkins`).  None when ``N = 0``.
 6. ``F = N n + Fx t1 + Fy t2`` on the wheel at ``p = (c_x, y_rail + p0_y, z_rail + p0_z)`` and
    ``M = (p - c) x F + Mz n`` about c.
 

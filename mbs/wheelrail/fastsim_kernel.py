@@ -37,7 +37,7 @@ Traction bound ``elliptic`` (0 = parabolic): Kalker's FASTSIM takes ``p_n`` para
 
 Outputs: ``Fx, Fy`` the force on the wheel along the rolling and lateral directions and
 ``Mz = sum (x py - y px) dA`` the moment about the contact normal (sign convention of
-:mod:`mbs.wheelrail.kalker`).
+:mod:`axlebox.mbs.wheelrail.kalker`).
 """
 from __future__ import annotations
 

@@ -1,8 +1,8 @@
 """Contact geometry of a rigid wheelset on straight track: tables against lateral displacement.
 
-Track frame: x forward, y to the left, z up (as the wheelset body, :mod:`geometry.wheelset`).
+Track frame: x forward, y to the left, z up (as the wheelset body, :mod:`axlebox.geometry.wheelset`).
 Side ``L`` (index 0, sign s = +1) and ``R`` (index 1, s = -1). Each side has its own side-local
-frame (:mod:`mbs.wheelrail.profile`: y towards the field side, z up):
+frame (:mod:`axlebox.mbs.wheelrail.profile`: y towards the field side, z up):
 
 - the rail's side-local origin lies at track ``y = s * y_rail`` with ``y_rail`` such that the gauge
   measured between the gauge points (14 mm below the top of the canted rails, EN 13848-1) is
@@ -30,8 +30,8 @@ import math
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
-from geometry._params import ParameterError, check_ranges, param, require
-from mbs.wheelrail.profile import Profile
+from axlebox._params import ParameterError, check_ranges, param, require
+from axlebox.mbs.wheelrail.profile import Profile
 
 SIDES = ("L", "R")
 _SIGN = (1.0, -1.0)

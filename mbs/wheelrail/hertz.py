@@ -35,7 +35,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy.special import ellipe, ellipkm1
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 __all__ = ["HertzContact", "relative_curvatures", "auxiliary_angle", "effective_modulus",
            "eccentricity", "hertz_mn", "hertz", "contact_stiffness", "normal_load",

@@ -52,7 +52,7 @@ import math
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 __all__ = ["NU_NODES", "AB_NODES", "TABLE_E3", "creep_coefficients", "linear_creep_forces"]
 

@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 KINDS = ("wheel", "rail")
 

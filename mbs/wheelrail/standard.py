@@ -1,6 +1,6 @@
 """Standard wheel and rail profiles built from their published definitions.
 
-Every dimension below names its source. Coordinates follow :mod:`mbs.wheelrail.profile`
+Every dimension below names its source. Coordinates follow :mod:`axlebox.mbs.wheelrail.profile`
 (side-local y towards the field side, z up, metres); the standards' own coordinates are in
 millimetres and are converted once, at the end of each builder.
 
@@ -16,7 +16,7 @@ millimetres and are converted once, at the end of each builder.
   :data:`CHN60_ASSUMED`.
 
 The LM wheel (TB/T 449-2016) is defined in that standard by point coordinates (Appendix A) that
-are not openly available; read them with :func:`mbs.wheelrail.profile.read_profile` (two-column
+are not openly available; read them with :func:`axlebox.mbs.wheelrail.profile.read_profile` (two-column
 ``y z`` text, mm). No LM is built here rather than one made up.
 """
 from __future__ import annotations
@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-from mbs.wheelrail.profile import Profile
+from axlebox.mbs.wheelrail.profile import Profile
 
 # -------------------------------------------------------------------------------------- S1002 wheel
 # EN 13715 Annex C (the UIC 510-2 definition): F(S) in mm, S in mm. Section B and C polynomial

@@ -1,6 +1,6 @@
 """Tangential wheel-rail contact: FASTSIM, Shen-Hedrick-Elkins, and creepages from kinematics.
 
-Sign convention (as :mod:`mbs.wheelrail.kalker`): creepages are the velocity of the wheel's
+Sign convention (as :mod:`axlebox.mbs.wheelrail.kalker`): creepages are the velocity of the wheel's
 material point minus the rail's at the contact over the reference speed V, in the contact
 frame t1 (rolling direction), t2 (lateral, in the tangent plane), n = t1 x t2 (normal, into
 the wheel); spin ``phi = (omega_wheel - omega_rail).n / V`` in 1/m.  Forces ``Fx, Fy`` act on
@@ -34,7 +34,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from geometry._params import ParameterError
+from axlebox._params import ParameterError
 
 from . import fastsim_kernel as _k
 from .kalker import creep_coefficients, linear_creep_forces

@@ -1,0 +1,46 @@
+"""numba's process-wide settings, made before any kernel compiles or loads (``axlebox.bearing``
+and ``axlebox.mbs`` import this first).
+
+* The cache of compiled kernels goes in a folder named by a hash of every kernel source of
+  ``bearing`` and ``mbs`` together.  Numba's own cache checks only the source file of the
+  function it loads; a kernel that calls into another file keeps the callee it was compiled with.
+  After an edit (or a ``git pull``, or an upgrade) that touches only the callee, the stale machine
+  code runs, and can crash the interpreter.  ``NUMBA_CACHE_DIR``, when set, is left alone.
+* The threading layer: OpenMP first.  Its idle threads spin a while before they sleep, so the
+  bearings' parallel region, entered every right-hand side (~100 us apart), finds them awake
+  (TBB's sleep: 132 against 115 us a call on 2 cores, benchmarks/README.md).  The user's own
+  ``NUMBA_THREADING_LAYER`` (or ``..._PRIORITY``) stands.
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from numba import config
+
+from ._cache import cache_dir, package_dir, source_hash
+
+KERNEL_PACKAGES = ("bearing", "mbs")
+
+
+def kernel_hash(top: Path | None = None) -> str:
+    """Hash of the kernel sources (the files with ``@njit``) of ``bearing`` and ``mbs``: those of
+    this installation, or the folders of those names under ``top``."""
+    folders = [package_dir(p) if top is None else Path(top) / p for p in KERNEL_PACKAGES]
+    return source_hash(folders, only_with=b"@njit")
+
+
+def configure() -> None:
+    if not (os.environ.get("NUMBA_THREADING_LAYER") or os.environ.get("NUMBA_THREADING_LAYER_PRIORITY")):
+        config.THREADING_LAYER_PRIORITY = ["omp", "tbb", "workqueue"]
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        return
+    where = cache_dir("numba", kernel_hash())
+    try:
+        where.mkdir(parents=True, exist_ok=True)
+    except OSError:         # read-only home: numba's own __pycache__ places stay in use
+        return
+    config.CACHE_DIR = str(where)
+
+
+configure()

@@ -1,0 +1,62 @@
+"""The configs axlebox ships, installed with the package: ``axlebox configs`` lists them,
+``axlebox configs show NAME`` prints one to copy and edit, and ``axlebox simulate`` and
+``axlebox sweep`` take a name (``validation_48kmh``) wherever they take a path.
+
+* ``vehicle``: the B-type metro motor car at 48 km/h on FRA class 5 track, stiff bushings for
+  the bearings (the defaults of :mod:`axlebox.mbs.config`)
+* ``validation_48kmh``: the paper's validation case, eight DTRBs, a 50.4 x 2 x 2 mm defect
+* ``study``: the paper's study matrix (speeds x defect widths) of the car, for ``axlebox sweep``
+* ``study_rig``: the same matrix on the standalone bearing rig
+"""
+from __future__ import annotations
+
+from importlib import resources
+from pathlib import Path
+
+from axlebox._params import ParameterError
+
+
+def folder() -> Path:
+    """Where the shipped configs lie (inside the installed package)."""
+    return Path(str(resources.files(__name__)))
+
+
+def names() -> list[str]:
+    """The shipped configs' names (file names without ``.toml``), sorted."""
+    return sorted(p.stem for p in folder().glob("*.toml"))
+
+
+def path(name: str) -> Path:
+    """The file of the shipped config ``name`` (``.toml`` may be given or left off)."""
+    stem = name[:-5] if name.endswith(".toml") else name
+    p = folder() / f"{stem}.toml"
+    if stem not in names():
+        raise ParameterError(f"config {name!r} is not a shipped config: expected one of "
+                             f"{', '.join(names())} (axlebox configs), or a path to a TOML file")
+    return p
+
+
+def resolve(config) -> Path:
+    """``config`` as a file: the path itself when it names a file, else the shipped config of
+    that name; refused (naming both) when it is neither."""
+    p = Path(config)
+    if p.is_file():
+        return p
+    if p.parent == Path(".") and not p.exists():
+        try:
+            return path(p.name)
+        except ParameterError:
+            pass
+    raise ParameterError(f"config = {str(config)!r} is not allowed: no such file, and not a shipped "
+                         f"config ({', '.join(names())}; axlebox configs)")
+
+
+def summary(name: str) -> str:
+    """The first sentence of the shipped config's opening comment."""
+    text = []
+    for line in path(name).read_text().splitlines():
+        if not line.startswith("#"):
+            break
+        text.append(line.lstrip("# ").rstrip())
+    head = " ".join(text)
+    return head.split(". ")[0].rstrip(".") + "." if head else ""

@@ -1,0 +1,108 @@
+"""axlebox installs as one import root, ``axlebox``, with its shipped configs inside, and runs from
+any folder after a plain (non-editable) install.
+
+The wheel is built from this checkout with the environment's setuptools (``--no-build-isolation``:
+no download), and the fresh venv sees the environment's packages (``--system-site-packages``) so
+that only axlebox itself is installed into it, from the checkout, as ``pip install .`` does."""
+import os
+import shutil
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+from axlebox import _numba, configs
+from axlebox._cache import source_hash
+from axlebox.geometry import mesh
+from axlebox.pipelines.demo import min_duration
+
+ROOT = Path(__file__).resolve().parents[1]
+SUBPACKAGES = ("geometry", "fem", "mbs", "bearing", "pipelines", "configs")
+
+pytestmark = pytest.mark.skipif(not (ROOT / "pyproject.toml").is_file(), reason="needs the checkout")
+
+
+def _run(cmd, **kw):
+    r = subprocess.run([str(c) for c in cmd], capture_output=True, text=True, **kw)
+    assert r.returncode == 0, \
+        f"{' '.join(map(str, cmd))} exited {r.returncode}:\n{r.stdout[-3000:]}\n{r.stderr[-3000:]}"
+    return r
+
+
+@pytest.fixture(scope="module")
+def checkout(tmp_path_factory) -> Path:
+    """A copy of the checkout to build from: setuptools builds in the source tree, where it would
+    leave ``build/`` behind, and a ``build/`` left by an earlier build would carry files since
+    removed into the wheel."""
+    src = tmp_path_factory.mktemp("src") / "axlebox"
+    shutil.copytree(ROOT, src, ignore=shutil.ignore_patterns(".git", "build", "*.egg-info", "__pycache__",
+                                                             "axlebox-demo", ".pytest_cache"))
+    return src
+
+
+@pytest.fixture(scope="module")
+def wheel(checkout, tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp("wheel")
+    _run([sys.executable, "-m", "pip", "wheel", "-q", "--no-deps", "--no-build-isolation", "-w", out,
+          checkout])
+    (whl,) = out.glob("axlebox-*.whl")
+    return whl
+
+
+def _sources(folder: Path) -> set[str]:
+    return {p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.suffix in (".py", ".toml")
+            and "__pycache__" not in p.parts}
+
+
+def test_wheel_installs_axlebox_alone_with_every_source_and_the_configs(wheel, tmp_path):
+    with zipfile.ZipFile(wheel) as z:
+        names = z.namelist()
+        z.extractall(tmp_path)
+    top = {n.split("/")[0] for n in names if not n.split("/")[0].endswith(".dist-info")}
+    assert top == {"axlebox"}
+    for name in ("vehicle", "validation_48kmh", "study", "study_rig"):
+        assert f"axlebox/configs/{name}.toml" in names
+    installed = tmp_path / "axlebox"
+    assert _sources(installed) == {"__init__.py", "__main__.py", "_cache.py", "_numba.py", "_params.py"} \
+        | {f"{sub}/{f}" for sub in SUBPACKAGES for f in _sources(ROOT / sub)}
+    # the cache keys find the same files, under the same names, in the installed package
+    assert _numba.kernel_hash(installed) == _numba.kernel_hash()
+    assert mesh.geometry_hash(installed / "geometry") == mesh.geometry_hash()
+    assert source_hash([installed / "configs"]) == source_hash([configs.folder()])
+    entry = next(n for n in names if n.endswith(".dist-info/entry_points.txt"))
+    with zipfile.ZipFile(wheel) as z:
+        assert "axlebox = axlebox.pipelines.cli:main" in z.read(entry).decode()
+
+
+@pytest.mark.slow
+def test_plain_install_runs_the_demo_from_another_folder(checkout, tmp_path):
+    """``pip install .`` (not editable) into a fresh venv; from a folder outside the checkout:
+    ``axlebox configs``, ``python -m axlebox --help`` and ``axlebox demo`` (at its shortest
+    duration, 1.41 s simulated) work, and the code that ran is the venv's copy."""
+    venv = tmp_path / "venv"
+    # --without-pip: the environment's pip and setuptools serve (a venv's own setuptools of
+    # Python 3.11 is too old to build a wheel without the wheel package)
+    _run([sys.executable, "-m", "venv", "--system-site-packages", "--without-pip", venv])
+    py, exe = venv / "bin" / "python", venv / "bin" / "axlebox"
+    _run([py, "-m", "pip", "install", "-q", "--no-build-isolation", "."], cwd=checkout)
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    where = _run([py, "-c", "import axlebox.pipelines, axlebox.configs as c; "
+                  "print(axlebox.pipelines.__file__); print(c.folder())"], cwd=elsewhere, env=env)
+    for line in where.stdout.split():
+        assert Path(line).resolve().is_relative_to(venv.resolve()), line
+    listing = _run([exe, "configs"], cwd=elsewhere, env=env).stdout
+    for name in configs.names():
+        assert name in listing
+    shown = _run([exe, "configs", "show", "validation_48kmh"], cwd=elsewhere, env=env).stdout
+    assert shown == configs.path("validation_48kmh").read_text()
+    assert "demo" in _run([py, "-m", "axlebox", "--help"], cwd=elsewhere, env=env).stdout
+    bad = subprocess.run([exe, "simulate", "no_such_config", "--out", "x.h5"], cwd=elsewhere, env=env,
+                         capture_output=True, text=True)
+    assert bad.returncode == 2 and "no_such_config" in bad.stderr and len(bad.stderr.splitlines()) == 1
+    _run([exe, "demo", "--out", "demo", "--duration", str(min_duration())], cwd=elsewhere, env=env)
+    assert (elsewhere / "demo" / "report" / "index.html").is_file()
+    assert (elsewhere / "demo" / "diagnosis.json").is_file()
