@@ -39,7 +39,7 @@ from math import pi, sin, cos, sqrt
 
 from numba import njit
 
-from .layout import (C_O, C_RULE, CAC, CAF, CAI, CAM, CAO, GX, GY, GZ, H_R, J_CD, J_CP, J_RA,
+from .layout import (BETA, C_O, C_RULE, CAC, CAF, CAI, CAM, CAO, GX, GY, GZ, H_R, J_CD, J_CP, J_RA,
                      J_RD, K_A, K_CR, K_I, K_O, KINEMATIC, L_B, L_E, LAW, M_C, M_R, MU_A, MU_C,
                      MU_R, N_CAGE, N_ROLLER, R_B, R_M, RATIO, ROW, S_P, S_PA, SAC, SAF, SAI, SAM,
                      SAO, V_S, ZETA, Z)
@@ -128,14 +128,17 @@ def _normal(q_el, K, n, ddot, m, P, dmax):
     ``k = n q_el / dmax`` (exact for ``q_el = K delta^n`` at uniform compression dmax; a tilted
     line contact, whose largest compression is dmax, gets a little less), i.e. the damping
     ratio zeta of the contact oscillator of mass m at its current load.  Law 1: the paper's
-    ``c = c_rule K`` (below Eq. 4).
+    ``c = c_rule K`` (below Eq. 4).  Law 2: ``c = beta k``, the paper's rule made dimensionally
+    consistent (the tangent stiffness k in N/m instead of the Hertz coefficient K in N/m^n).
     """
     if q_el <= 0.0:
         return 0.0
     if P[LAW] == 0.0:
         c = 2.0 * P[ZETA] * sqrt(m * n * q_el / dmax)
-    else:
+    elif P[LAW] == 1.0:
         c = P[C_RULE] * K
+    else:
+        c = P[BETA] * n * q_el / dmax
     q = q_el + c * ddot
     return q if q > 0.0 else 0.0
 

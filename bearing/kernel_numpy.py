@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .layout import (C_O, C_RULE, CAC, CAF, CAI, CAM, CAO, GX, GY, GZ, H_R, J_CD, J_CP, J_RA,
+from .layout import (BETA, C_O, C_RULE, CAC, CAF, CAI, CAM, CAO, GX, GY, GZ, H_R, J_CD, J_CP, J_RA,
                      J_RD, K_A, K_CR, K_I, K_O, KINEMATIC, L_B, L_E, LAW, M_C, M_R, MU_A, MU_C,
                      MU_R, N_CAGE, N_ROLLER, R_B, R_M, RATIO, ROW, S_P, S_PA, SAC, SAF, SAI, SAM,
                      SAO, V_S, ZETA, Z)
@@ -65,10 +65,13 @@ def _normal(q_el, K, n, ddot, m, P, dmax):
     """Normal force from the elastic part ``q_el``, the approach rate ``ddot`` and the largest
     compression ``dmax`` (see kernel._normal)."""
     on = q_el > 0.0
+    k = n * np.where(on, q_el / np.where(on, dmax, 1.0), 0.0)      # tangent stiffness
     if P[LAW] == 0.0:
-        c = 2.0 * P[ZETA] * np.sqrt(m * n * np.where(on, q_el / np.where(on, dmax, 1.0), 0.0))
-    else:
+        c = 2.0 * P[ZETA] * np.sqrt(m * k)
+    elif P[LAW] == 1.0:
         c = P[C_RULE] * K
+    else:
+        c = P[BETA] * k
     return np.where(on, np.maximum(q_el + c * ddot, 0.0), 0.0)
 
 

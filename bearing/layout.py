@@ -26,12 +26,13 @@ from math import cos, pi, sin
 
 import numpy as np
 
+from .params import DAMPING_LAWS
 from .stiffness import contacts
 
 # --- parameter vector slots ---------------------------------------------------------------
 (Z, R_M, R_B, L_E, L_B, CAO, SAO, CAI, SAI, CAF, SAF, CAM, SAM, CAC, SAC, ROW, C_O, H_R,
  K_O, K_I, K_A, K_CR, S_P, S_PA, M_R, J_RA, J_RD, M_C, J_CP, J_CD, MU_R, MU_A, MU_C, V_S,
- LAW, ZETA, C_RULE, KINEMATIC, RATIO, GX, GY, GZ, N_P) = range(43)
+ LAW, ZETA, C_RULE, BETA, KINEMATIC, RATIO, GX, GY, GZ, N_P) = range(44)
 
 # --- state slots ------------------------------------------------------------------------------
 RHO, PHI, ETA, TH_T, TH_S, PSI = range(6)           # roller positions; +6 for the rates
@@ -62,7 +63,7 @@ def pack(p, gravity=(0.0, 0.0, -9.81)) -> np.ndarray:
     v[[S_P, S_PA]] = 0.5 * p.s_p, 0.5 * p.s_pa
     v[[M_R, J_RA, J_RD, M_C, J_CP, J_CD]] = p.M_r, J_ra, J_rd, p.M_c, J_cp, J_cd
     v[[MU_R, MU_A, MU_C, V_S]] = p.mu_race, p.mu_rib, p.mu_cage, p.v_s
-    v[[LAW, ZETA, C_RULE]] = ("ratio", "paper").index(p.damping), p.zeta, p.c_rule
+    v[[LAW, ZETA, C_RULE, BETA]] = DAMPING_LAWS.index(p.damping), p.zeta, p.c_rule, p.beta
     v[KINEMATIC] = p.cage == "kinematic"
     v[RATIO] = 0.5 * (1.0 - p.gamma)         # paper Eq. (2): omega_c = (1 - D_b/D_m) omega_w / 2
     v[[GX, GY, GZ]] = gravity

@@ -12,7 +12,7 @@ from math import cos, pi, radians, sin
 
 from axlebox._params import ParameterError, check_ranges, param, require
 
-DAMPING_LAWS = ("ratio", "paper")
+DAMPING_LAWS = ("ratio", "paper", "stiffness")
 CAGE_MODES = ("dynamic", "kinematic")
 
 
@@ -53,6 +53,9 @@ class BearingParams:
     zeta: float = param(0.10, 0.0, 5.0, unit="", doc="contact damping ratio (damping='ratio'); "
                         "assumed, an underdamped lubricated contact (see benchmarks/README.md)")
     c_rule: float = param(1e-3, 0.0, 1.0, unit="s", doc="the paper's C = c_rule x K (damping='paper')")
+    beta: float = param(2.5e-5, 0.0, 1.0, unit="s", doc="C = beta x k, k the contact's tangent "
+                        "stiffness (damping='stiffness'); the paper cites 2.5e-5 to 0.25 s of the "
+                        "stiffness for bearing contacts (below its Eq. 4, its ref. 6)")
     cage: str = "dynamic"
 
     def __post_init__(self):

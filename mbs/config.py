@@ -17,6 +17,7 @@ from axlebox._params import ParameterError
 BODY_NAMES = (["carbody", "frame1", "frame2"] + [f"ws{i}" for i in range(1, 5)]
               + [f"ab{i}{s}" for i in range(1, 5) for s in "LR"] + [f"gb{i}" for i in range(1, 5)])
 
+BODY_KINDS = ("wheelset", "axlebox", "frame")
 F, I, S, B, L = "float", "int", "str", "bool", "list"
 INF = math.inf
 # section -> field -> (kind, default, lo, hi | choices)
@@ -38,6 +39,8 @@ SCHEMA: dict[str, dict[str, tuple]] = {
     "bodies": {"dir": (S, "", None), "modes": (I, 12, 1, 100),
                "fmax_wheelset_hz": (F, 1500.0, 1.0, 1e5), "fmax_axlebox_hz": (F, 2500.0, 1.0, 1e5),
                "fmax_frame_hz": (F, 600.0, 1.0, 1e5),
+               **{f"method_{k}": (S, "craig-bampton", ("craig-bampton", "guyan")) for k in BODY_KINDS},
+               **{f"zeta_{k}": (F, 0.01, 0.0, 0.5) for k in BODY_KINDS},
                "flexible": (L, ["frame1", "ws1", "ws2", "ab1L", "ab1R", "ab2L", "ab2R"], BODY_NAMES)},
     "carbody": {"mass": (F, 37400.0, 1.0, 1e6), "inertia": (L, [35.3e3, 1447e3, 1435e3], (1e-3, 1e9)),
                 "cg_height": (F, 1.45, 0.3, 5.0)},
@@ -45,7 +48,9 @@ SCHEMA: dict[str, dict[str, tuple]] = {
               "cg_height": (F, 0.60, 0.2, 2.0)},
     "wheelset": {"mass": (F, 1539.0, 1.0, 1e5), "inertia": (L, [801.0, 104.0, 814.0], (1e-3, 1e6)),
                  "r0": (F, 0.42, 0.2, 0.7)},
-    "axlebox": {"mass": (F, 78.7, 0.1, 1e4), "inertia": (L, [0.75, 2.36, 2.08], (1e-5, 1e4))},
+    "axlebox": {"mass": (F, 78.7, 0.1, 1e4), "inertia": (L, [0.75, 2.36, 2.08], (1e-5, 1e4)),
+                "cup_mass": (F, 0.0, 0.0, 1e3), "cover_mass": (F, 0.0, 0.0, 1e3),
+                "adapter_mass": (F, 0.0, 0.0, 1e3)},
     "gearbox": {"mass": (F, 450.0, 0.0, 1e4), "inertia": (L, [20.0, 30.0, 20.0], (1e-4, 1e5)),
                 "arm": (F, 0.35, 0.0, 1.5), "hanger_arm": (F, 0.6, 0.05, 2.0),
                 "hanger_k": (F, 5e6, 1.0, 1e10), "hanger_c": (F, 2e4, 0.0, 1e8),
@@ -61,7 +66,10 @@ SCHEMA: dict[str, dict[str, tuple]] = {
                   "bumpstop_k": (F, 2e6, 0.0, 1e10)},
     "joint": {"model": (S, "bushing", ("bushing", "dtrb")),
               "k_radial": (F, 1e9, 1e3, 1e12), "k_axial": (F, 5e8, 1e3, 1e12), "c": (F, 2e4, 0.0, 1e8)},
-    "sensors": {"node": (S, "sensor_pad", None)},
+    "sensors": {"node": (S, "sensor_pad", None), "model": (S, "ideal", ("ideal", "accelerometer")),
+                "fs_hz": (F, 1e4, 100.0, 1e6), "resonance_hz": (F, 25e3, 100.0, 1e7),
+                "resonance_q": (F, 30.0, 0.5, 1e3), "highpass_hz": (F, 0.5, 0.0, 1e3),
+                "passband": (F, 0.45, 0.05, 0.49)},
 }
 
 
@@ -196,6 +204,20 @@ def validate(user: dict) -> dict:
     elif cfg["defects"]:
         raise ParameterError("defects need joint.model = 'dtrb': with the bushing joint there is "
                              "no bearing to hold them")
+    ig = cfg["integrator"]
+    per_output = 1.0 / ig["output_rate_hz"] / ig["dt"]
+    if round(per_output) < 1 or abs(per_output - round(per_output)) > 1e-6 * per_output:
+        raise ParameterError(f"integrator.dt = {ig['dt']:g} is not allowed: expected the output period "
+                             f"1/integrator.output_rate_hz = {1.0 / ig['output_rate_hz']:g} s over a "
+                             "whole number")
+    sn = cfg["sensors"]
+    if sn["model"] != "ideal":
+        ratio = cfg["integrator"]["output_rate_hz"] / sn["fs_hz"]
+        if ratio < 2 or abs(ratio - round(ratio)) > 1e-9:
+            raise ParameterError(f"integrator.output_rate_hz = {cfg['integrator']['output_rate_hz']:g} is "
+                                 f"not allowed with sensors.model = {sn['model']!r}: expected a whole "
+                                 f"multiple, at least 2, of sensors.fs_hz = {sn['fs_hz']:g} (the "
+                                 "acquisition filters and decimates what the run writes)")
     g = cfg["gearbox"]
     if g["mass"] > 0 and g["arm"] >= g["hanger_arm"]:
         raise ParameterError(f"gearbox.arm = {g['arm']:g} is not allowed: expected less than "

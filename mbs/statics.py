@@ -81,12 +81,17 @@ def equilibrium(model: Model, y0=None, *, tol: float = 1e-6, accept: float = 1e-
         return model.rhs(0.0, yy)[rows] * wmass
 
     r = res(y)
+    history = []
     for it in range(max_iter):
         err = np.abs(r).max()
-        if log:
-            log(f"statics: iteration {it}, largest residual {err:.3e} N")
+        history.append(err)
         if err < tol:
+            if log:
+                log(f"statics: converged in {it} iterations (largest residual {err:.3g} N)")
             return y
+        # a stall (three iterations that gain under 1 %) below the accepted level ends the search
+        if it >= 3 and err < accept * max(weight, 1.0) and err > 0.99 * history[-4]:
+            break
         J = np.empty((len(rows), n))
         for j in range(n):
             dx = np.zeros(n)
@@ -105,7 +110,8 @@ def equilibrium(model: Model, y0=None, *, tol: float = 1e-6, accept: float = 1e-
     err = np.abs(r).max()
     if err < accept * max(weight, 1.0):
         if log:
-            log(f"statics: stalled at a residual of {err:.3g} N ({err / weight:.1e} of the weight): taken")
+            log(f"statics: stalled after {len(history)} iterations at a residual of {err:.3g} N "
+                f"({err / weight:.1e} of the weight): taken")
         return y
     worst = model.state_owner(int(rows[np.abs(r).argmax()]))
     raise ParameterError(f"statics: no equilibrium after {max_iter} iterations (largest "

@@ -26,6 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from axlebox.fem.bodyfile import ReducedBody
+from axlebox.fem.damping import modal as modal_damping
 
 from .body import Body, add_point_masses, flexible, mode_count, rigid
 from .elements import BumpStop, Bushing, Spring
@@ -48,9 +49,27 @@ def _body(name: str, kind: str, cfg: dict, reduced: dict | None, *, spin: bool =
     if rb is None:
         sec = cfg[kind]
         return rigid(name, sec["mass"], sec["inertia"], spin=spin)
-    if flex:
-        return flexible(name, rb, n_modes=mode_count(rb, cfg["bodies"][f"fmax_{kind}_hz"]), spin=spin)
-    return flexible(name, rb, rigid_only=True, spin=spin)
+    if not flex:
+        return flexible(name, rb, rigid_only=True, spin=spin)
+    body = flexible(name, rb, n_modes=mode_count(rb, cfg["bodies"][f"fmax_{kind}_hz"]), spin=spin)
+    # the config's modal damping ratio of this kind of body replaces the file's (the modes are
+    # mass-normalised until point masses are added, so D = diag(2 zeta omega))
+    body.D = modal_damping(body.frequencies_hz, cfg["bodies"][f"zeta_{kind}"])
+    return body
+
+
+def _axlebox_assembly(ab: Body, cfg: dict) -> Body:
+    """The parts of the axle-box assembly its housing mesh lacks, as point masses on the housing's
+    nodes: the bearing cup on the two bore spiders, the end cover on the outboard one (row 2),
+    the adapter on the two spring seats."""
+    a = cfg["axlebox"]
+    if not ab.nodes:                    # config mass: the parts' masses add at its centre
+        ab.mass += a["cup_mass"] + a["cover_mass"] + a["adapter_mass"]
+        return ab
+    return add_point_masses(ab, {"bore_row1": a["cup_mass"] / 2,
+                                 "bore_row2": a["cup_mass"] / 2 + a["cover_mass"],
+                                 "spring_front": a["adapter_mass"] / 2,
+                                 "spring_rear": a["adapter_mass"] / 2})
 
 
 def _marker(s: System, body: Body, node: str, at, align: bool = False, place: bool = False) -> int:
@@ -133,7 +152,7 @@ def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None 
             ws = _body(f"ws{k}", "wheelset", cfg, reduced, spin=True)
             s.add_body(ws, r=(x, 0, z_ws), v=(V, 0, 0), omega=(0, spin, 0))
             for side, sg in SIDES:
-                ab = _body(f"ab{k}{side}", "axlebox", cfg, reduced)
+                ab = _axlebox_assembly(_body(f"ab{k}{side}", "axlebox", cfg, reduced), cfg)
                 W_ab = ab.mass * G
                 s.add_body(ab, r=(x, sg * geo["journal_y"], z_ws), v=(V, 0, 0),
                            rotation=None if sg > 0 else _rotz_pi())

@@ -311,8 +311,10 @@ def parser() -> argparse.ArgumentParser:
     bsim.add_argument("--axial-load", type=float, default=0.0, metavar="N", help="default 0")
     bsim.add_argument("--duration", type=float, default=1.0, metavar="S", help="simulated time (default 1)")
     bsim.add_argument("--dt", type=float, default=1e-5, metavar="S", help="integration step (default 1e-5)")
-    bsim.add_argument("--damping", default="ratio", choices=["ratio", "paper"],
-                      help="contact damping law (default: ratio)")
+    bsim.add_argument("--damping", default="ratio", choices=["ratio", "paper", "stiffness"],
+                      help="contact damping law: ratio (zeta of the roller's contact oscillator), "
+                           "paper (c_rule x K), stiffness (beta x the tangent stiffness); "
+                           "default ratio")
     bsim.add_argument("--cage", default="dynamic", choices=["dynamic", "kinematic"],
                       help="cage rotation: dynamic state or the paper's Eq. 2 (default dynamic)")
     bsim.add_argument("--param", action="append", metavar="NAME=VALUE",

@@ -30,28 +30,34 @@ from axlebox.mbs.wheelrail.geometry import TrackLayout
 from axlebox.mbs.wheelrail.profile import read_profile
 from axlebox.mbs.wheelrail.standard import chn60, s1002, uic60
 
-KINDS = ("wheelset", "axlebox", "frame")
-
+from . import sensor
 
 def reduced_bodies(cfg: dict, log=print) -> dict:
-    """The reduced bodies the config needs: from ``bodies.dir`` or built (coarse mesh) into the
-    cache; none when every body is rigid and no folder is given."""
-    d = cfg["bodies"]["dir"]
-    if not d and not cfg["bodies"]["flexible"]:
+    """The reduced bodies the config needs: from ``bodies.dir`` or built (coarse mesh, each kind
+    by its ``bodies.method_<kind>``) into the cache; none when every body is rigid and no folder
+    is given."""
+    b = cfg["bodies"]
+    if not b["dir"] and not b["flexible"]:
         return {}
     out = {}
-    if d:
-        for kind in KINDS:
-            p = Path(d) / f"{kind}.h5"
+    if b["dir"]:
+        for kind in vconfig.BODY_KINDS:
+            p = Path(b["dir"]) / f"{kind}.h5"
             if not p.is_file():
-                raise ParameterError(f"bodies.dir = {d!r} is not allowed: it has no {kind}.h5 "
+                raise ParameterError(f"bodies.dir = {b['dir']!r} is not allowed: it has no {kind}.h5 "
                                      "(axlebox bodies build --body all --out DIR)")
             out[kind] = bodyfile.read(p, fields=False)
+            if out[kind].method != b[f"method_{kind}"]:
+                raise ParameterError(f"bodies.method_{kind} = {b[f'method_{kind}']!r} is not allowed "
+                                     f"with bodies.dir = {b['dir']!r}: its {kind}.h5 is "
+                                     f"{out[kind].method!r}")
         return out
     from .bodies import BODIES, build_body
-    where = cache_dir("bodies", f"coarse-{cfg['bodies']['modes']}")
-    for kind in KINDS:
-        rb, _ = build_body(kind, mesh_size=BODIES[kind].coarse_mesh_size, n_modes=cfg["bodies"]["modes"],
+    for kind in vconfig.BODY_KINDS:
+        method = b[f"method_{kind}"]
+        where = cache_dir("bodies", f"coarse-{b['modes']}" if method == "craig-bampton" else "coarse-guyan")
+        rb, _ = build_body(kind, method=method, mesh_size=BODIES[kind].coarse_mesh_size,
+                           n_modes=b["modes"] if method == "craig-bampton" else None,
                            n_reference=0, out_dir=where, log=log)
         out[kind] = rb
     return out
@@ -175,6 +181,8 @@ def run(config_path, out, duration: float | None = None, log=print,
         print(f"\rsimulating: {t:6.3f} / {T:g} s", end="", file=sys.stderr, flush=True)
     res = integrate.simulate(model, cfg["run"]["duration"], s, y0=y0, progress=progress)
     print(file=sys.stderr)
+    if cfg["sensors"]["model"] != "ideal":          # what the acquisition records of it
+        res = sensor.decimate_run(res, s.output_rate_hz, cfg["sensors"])
     write(out, res, model, text, cfg["run"]["seed"])
     T = res.time[-1] if res.time.size else 0.0
     log(f"wrote {out}: {T:g} s simulated in {res.wall_s:.1f} s wall ({T / max(res.wall_s, 1e-9):.3f} "

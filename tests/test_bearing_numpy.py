@@ -81,7 +81,8 @@ def test_perturbed_contacts(start):
 
 
 @pytest.mark.parametrize("kw", [dict(damping="paper"), dict(cage="kinematic"),
-                                dict(damping="paper", cage="kinematic")])
+                                dict(damping="paper", cage="kinematic"),
+                                dict(damping="stiffness", beta=5e-5)])
 def test_variants(start, kw):
     p, _, D, y0, ring0 = start
     p2 = BearingParams(**kw)

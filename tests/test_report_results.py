@@ -106,7 +106,9 @@ def test_report_recovers_the_sweep_it_was_given(sweep):
             assert float(r["left_rms"]) > float(r["right_rms"])
             assert (r["left_verdict"], r["right_verdict"]) == ("real fault", "pseudo-fault"), r
             assert r["leading"] == "left"
-            assert float(r["lag_s"]) == pytest.approx(DELAY, abs=1e-4)
+            # the healthy copy passes a 546 Hz mode (zeta 0.05) after the transport delay: its
+            # arrival is picked after the delay and within one build-up time 1/(zeta w) of it
+            assert DELAY <= float(r["lag_s"]) <= DELAY + 1 / (0.05 * 2 * np.pi * 546.0), r["lag_s"]
 
 
 def test_report_command_and_its_refusals(sweep, tmp_path, capsys):

@@ -1,9 +1,20 @@
 """Time lag between the two sides of a shaft: which channel's fault impulses come first.
 
 The paper (section "Difference analyses ...", Fig. 13) finds that the impulses transmitted to the
-healthy side lag those of the defect side by 1.1-4.2 ms.  The lag is read from the
-cross-correlation of the two Hilbert envelopes (mean removed): the envelope keeps the impulse
-timing and drops the carrier, whose phase the transmission path (the wheelset's modes) changes.
+healthy side lag those of the defect side by 1.1-4.2 ms.  Two estimators, both on the Hilbert
+envelopes (the envelope keeps the impulse timing and drops the carrier, whose phase the
+transmission path, the wheelset's modes, changes):
+
+* :func:`impulse_lag`, impulse by impulse: each fault impulse of the more impulsive channel is
+  found, both envelopes are averaged over the impulses (synchronous averaging), and on each
+  average the arrival is picked (where the envelope's level changes, by the Akaike information
+  criterion); bootstrap resamples of the impulses give the spread and the share that agrees
+  on the sign.  It names no leading side
+  when fewer than ``min_impulses`` impulses are found or too few agree: on short records where
+  both sides ring the same modes the whole-record correlation can lock onto the ringing instead
+  of the arrivals and name the wrong side with a high correlation.
+* :func:`time_lag`, the cross-correlation of the two envelopes over the whole record (mean
+  removed), for records without separable impulses.
 
 Sub-sample refinement: the integer peak of ``scipy.signal.correlate`` is refined by evaluating the
 same cross-correlation between samples with its trigonometric (band-limited) interpolant, the
@@ -20,7 +31,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from scipy.fft import next_fast_len, rfft
 from scipy.optimize import minimize_scalar
-from scipy.signal import correlate, correlation_lags
+from scipy.signal import correlate, correlation_lags, find_peaks
 
 from axlebox._params import ParameterError
 
@@ -30,10 +41,11 @@ from .envelope import check_fs, envelope
 @dataclass(frozen=True)
 class LagResult:
     """``lag_s``/``lag_samples`` >= 0: how much the trailing channel's envelope is behind;
-    ``leading``: "a" or "b" (or "none" when the refined lag is below 1e-3 sample);
-    ``delay_b_samples``: the signed delay of b behind a; ``peak``: the normalised
-    cross-correlation (Pearson coefficient of the envelopes) at the lag; ``band_a``/``band_b``:
-    the envelope bands used (None: broadband)."""
+    ``leading``: "a" or "b" (or "none" when the refined lag is below 1e-3 sample, or, by
+    impulses, when the evidence is weak); ``delay_b_samples``: the signed delay of b behind a;
+    ``peak``: the normalised cross-correlation (Pearson coefficient of the envelopes) at the
+    lag; ``band_a``/``band_b``: the envelope bands used (None: broadband); ``method``:
+    "correlation" or "impulses", with the latter's count, spread and agreement."""
 
     lag_s: float
     lag_samples: float
@@ -43,6 +55,10 @@ class LagResult:
     fs: float
     band_a: tuple[float, float] | None = None
     band_b: tuple[float, float] | None = None
+    method: str = "correlation"
+    n_impulses: int = 0             # impulse_lag: impulses averaged
+    spread_s: float = 0.0           # impulse_lag: half the interquartile range of the bootstrap
+    agreement: float = 1.0          # impulse_lag: share of the bootstrap with the lag's sign
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -113,3 +129,89 @@ def time_lag(a, b, fs: float, band: tuple[float, float] | None = None,
                      delay_b_samples=tau, peak=peak, fs=float(fs),
                      band_a=None if band is None else tuple(map(float, band)),
                      band_b=None if band_b is None else tuple(map(float, band_b)))
+
+
+def _onset(x: np.ndarray) -> int:
+    """Arrival of the impulse in ``x``, an envelope stretch ending at its peak: the Akaike
+    information criterion picker, ``AIC(k) = k log var(x[:k]) + (n - k - 1) log var(x[k:])``,
+    minimal where the level changes (Maeda, Zisin 38 (1985) 365-379; for acoustic-emission
+    onsets Kurz et al., Ultrasonics 43 (2005) 538-546).  No threshold: the same rule reads a
+    sharp and a slowly building arrival."""
+    n = x.size
+    if n < 8:
+        return 0
+    k = np.arange(2, n - 2)
+    c1, c2 = np.cumsum(x), np.cumsum(x * x)
+    v1 = (c2[k - 1] - c1[k - 1] ** 2 / k) / k
+    v2 = ((c2[-1] - c2[k - 1]) - (c1[-1] - c1[k - 1]) ** 2 / (n - k)) / (n - k)
+    aic = k * np.log(np.maximum(v1, 1e-300)) + (n - k - 1) * np.log(np.maximum(v2, 1e-300))
+    return int(k[np.argmin(aic)])
+
+
+def _delay(stack_a: np.ndarray, stack_b: np.ndarray) -> int:
+    """Arrival on b's averaged envelope less that on a's (samples), each picked on the stretch
+    of one length that ends at its own peak (:func:`_onset`; equal lengths keep the pick's
+    bias the same on both, so a shifted copy reads as its shift)."""
+    avg = [st.mean(axis=0) for st in (stack_a, stack_b)]
+    top = [int(np.argmax(v)) for v in avg]
+    n = min(top)
+    out = [t - n + _onset(v[t - n:t + 1]) for v, t in zip(avg, top)]
+    return out[1] - out[0]
+
+
+def impulse_lag(a, b, fs: float, period_s: float, band: tuple[float, float] | None = None, *,
+                band_b: tuple[float, float] | None = None, min_impulses: int = 5,
+                min_agreement: float = 0.9, n_boot: int = 200, seed: int = 0) -> LagResult:
+    """Delay of ``b`` behind ``a`` read on their impulses (module docstring).
+
+    The impulses are the peaks, at least 0.6 ``period_s`` apart and 4 median absolute
+    deviations over the median, of the more impulsive envelope (99th percentile over median);
+    both envelopes are cut +-0.45 ``period_s`` around each and averaged over the impulses
+    (synchronous averaging: what recurs with the fault adds up, the noise averages out), and
+    the arrival on each average is picked.  ``n_boot`` bootstrap resamples of the impulses give
+    the spread (half their interquartile range) and the agreement (the share with the same
+    sign).  ``leading`` is named only with at least ``min_impulses`` impulses,
+    ``min_agreement`` and a delay of at least one sample."""
+    a = np.asarray(a, float)
+    b = np.asarray(b, float)
+    fs = check_fs(fs)
+    if a.ndim != 1 or a.shape != b.shape or a.size < 3:
+        raise ParameterError(f"channels of shapes {a.shape} and {b.shape} are not allowed: expected "
+                             "two 1-D channels of the same length >= 3")
+    if not (np.isfinite(period_s) and period_s > 0):
+        raise ParameterError(f"period_s = {period_s!r} s is not allowed: expected a fault period > 0")
+    band_b = band if band_b is None else band_b
+    env = (envelope(a, fs, band), envelope(b, fs, band_b))
+    m = a.size // 50                       # filter and Hilbert edge transients, as time_lag
+    inner = [e[m:a.size - m] for e in env]
+    score = [np.percentile(e, 99.0) / max(np.median(e), 1e-300) for e in inner]
+    ref = env[int(np.argmax(score))]
+    core = ref[m:a.size - m]
+    med = np.median(core)
+    mad = np.median(np.abs(core - med))
+    w = int(0.45 * period_s * fs)
+    peaks, _ = find_peaks(ref, distance=max(1, int(0.6 * period_s * fs)), height=med + 4.0 * mad)
+    peaks = peaks[(peaks - w >= m) & (peaks + w < a.size - m)]
+    n = int(peaks.size)
+    bands = dict(band_a=None if band is None else tuple(map(float, band)),
+                 band_b=None if band_b is None else tuple(map(float, band_b)))
+    if n < 2 or w < 8:
+        return LagResult(0.0, 0.0, "none", 0.0, 0.0, fs, method="impulses", n_impulses=n,
+                         agreement=0.0, **bands)
+    idx = peaks[:, None] + np.arange(-w, w)
+    stacks = env[0][idx], env[1][idx]
+    tau = float(_delay(*stacks))
+    rng = np.random.default_rng(seed)
+    boot = np.array([_delay(stacks[0][r], stacks[1][r])
+                     for r in rng.integers(0, n, size=(n_boot, n))], float)
+    q1, q3 = np.percentile(boot, [25.0, 75.0])
+    agree = float(np.mean(np.sign(boot) == np.sign(tau))) if tau != 0 else 0.0
+    sure = n >= min_impulses and agree >= min_agreement and abs(tau) >= 1
+    k = int(tau)
+    ea, eb = (e[m:a.size - m] - e[m:a.size - m].mean() for e in env)
+    x, y = (ea[:ea.size - k], eb[k:]) if k >= 0 else (ea[-k:], eb[:eb.size + k])
+    r = float(np.dot(x, y) / max(np.sqrt(np.dot(x, x) * np.dot(y, y)), 1e-300))
+    return LagResult(lag_s=abs(tau) / fs, lag_samples=abs(tau),
+                     leading=("a" if tau > 0 else "b") if sure else "none", delay_b_samples=tau,
+                     peak=r, fs=fs, method="impulses", n_impulses=n,
+                     spread_s=0.5 * float(q3 - q1) / fs, agreement=agree, **bands)

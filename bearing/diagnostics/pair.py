@@ -15,7 +15,7 @@ from ..frequencies import FaultOrders
 from .channel import LINE_OPTIONS, ChannelResult, analyse, reguide
 from .criterion import PAPER, Criterion, verdict, vf_difference
 from .envelope import _signal, check_fs
-from .lag import LagResult, time_lag
+from .lag import LagResult, impulse_lag, time_lag
 
 
 @dataclass(frozen=True)
@@ -51,9 +51,11 @@ class PairResult:
                        f"{', '.join(c.detected) or 'none'} -> {self.verdicts[s][0]}")
         lead = {"a": "left", "b": "right"}.get(self.lag.leading, "neither")
         lo, hi = self.criterion.range
+        how = (f"{self.lag.n_impulses} impulses, {100 * self.lag.agreement:.0f} % agree, spread "
+               f"{self.lag.spread_s * 1e3:.2g} ms; " if self.lag.method == "impulses" else "")
         out.append(f"VF difference {self.vf_diff:.4g} Hz^2 (criterion, {self.criterion.mode}: "
                    f"{self.m:.4g} against [{lo:.4g}, {hi:.4g}]); lag {self.lag.lag_s * 1e3:.3g} ms, "
-                   f"{lead} leads (envelope correlation {self.lag.peak:.2f})")
+                   f"{lead} leads ({how}envelope correlation {self.lag.peak:.2f})")
         return "\n".join(out)
 
     def plot(self, path=None):
@@ -111,9 +113,9 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders: FaultOrder
     (the pseudo-fault side rings other modes).  ``guided``: when one of the criterion's lines
     is detected on one side only, the other side is searched again in the band where that line
     stands highest (:mod:`.guided`, its thresholds corrected for the bands tried): the
-    transmitted impulses need not lie in the healthy side's kurtosis band.  The lag is the
-    best-correlated of the two sides' envelopes in either side's band, each in its own, or
-    broadband, within ``max_lag_s``
+    transmitted impulses need not lie in the healthy side's kurtosis band.  The lag is read
+    impulse by impulse (:func:`.lag.impulse_lag`), broadband, else in either side's band; only
+    a record without impulses falls back to the envelopes' correlation within ``max_lag_s``
     (default half a BPFO period: periodic impulses make the lag ambiguous by whole periods)."""
     fs = check_fs(fs)
     xs = []
@@ -149,15 +151,25 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders: FaultOrder
                 line_kw = {k: v for k, v in channel_kw.items() if k in LINE_OPTIONS}
                 res[side] = reguide(res[side], x, name, **line_kw)
                 break
-    if max_lag_s is None:
-        max_lag_s = 0.5 / (orders.BPFO * shaft_hz)
-    # which band shows the transmitted impulses is not known beforehand: the pseudo-fault side's
-    # own kurtosis band may hold only its sensor noise.  Try each side's band on both, each its
-    # own, and none; keep the lag where the envelopes correlate best.
+    period = 1.0 / (orders.BPFO * shaft_hz)
     bl, br = res["left"].band, res["right"].band
-    lag = max((time_lag(xs[0], xs[1], fs, ba, max_lag_s, band_b=bb)
-               for ba, bb in dict.fromkeys([(bl, bl), (br, br), (bl, br), (None, None)])),
-              key=lambda r: r.peak)
+    # impulse by impulse, broadband first: an onset needs bandwidth (a band-pass smears it by
+    # about one over its width, and weighs each side's modes differently); then in either
+    # side's band on both.  A side is named only where the impulses agree (lag.impulse_lag).
+    lag = None
+    for ba in dict.fromkeys([None, bl, br]):
+        r = impulse_lag(xs[0], xs[1], fs, period, ba)
+        lag = lag or r
+        if r.leading != "none":
+            lag = r
+            break
+    if lag.n_impulses == 0:
+        # no impulses to read: the best-correlated envelopes, either side's band on both, each
+        # its own, or none, within max_lag_s (periodic impulses: the lag is ambiguous by periods)
+        max_lag_s = 0.5 * period if max_lag_s is None else max_lag_s
+        lag = max((time_lag(xs[0], xs[1], fs, ba, max_lag_s, band_b=bb)
+                   for ba, bb in dict.fromkeys([(bl, bl), (br, br), (bl, br), (None, None)])),
+                  key=lambda r: r.peak)
     m = vf_difference(res["left"].VF, res["right"].VF, criterion)
     v = verdict(res["left"], res["right"], lag, criterion)
     return PairResult(left=res["left"], right=res["right"], lag=lag,
