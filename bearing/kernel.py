@@ -37,6 +37,7 @@ from __future__ import annotations
 
 from math import pi, sin, cos, sqrt
 
+import numpy as np
 from numba import njit
 
 from .layout import (BETA, C_O, C_RULE, CAC, CAF, CAI, CAM, CAO, GX, GY, GZ, H_R, J_CD, J_CP, J_RA,
@@ -130,9 +131,11 @@ def _normal(q_el, K, n, ddot, m, P, dmax):
     ratio zeta of the contact oscillator of mass m at its current load.  Law 1: the paper's
     ``c = c_rule K`` (below Eq. 4).  Law 2: ``c = beta k``, the paper's rule made dimensionally
     consistent (the tangent stiffness k in N/m instead of the Hertz coefficient K in N/m^n).
+    Returns ``(Q, c)``: the force, and the damping coefficient acting in it (0 out of contact
+    or where the force is clipped), for the implicit damping step (:func:`_damping_rows`).
     """
     if q_el <= 0.0:
-        return 0.0
+        return 0.0, 0.0
     if P[LAW] == 0.0:
         c = 2.0 * P[ZETA] * sqrt(m * n * q_el / dmax)
     elif P[LAW] == 1.0:
@@ -140,17 +143,17 @@ def _normal(q_el, K, n, ddot, m, P, dmax):
     else:
         c = P[BETA] * n * q_el / dmax
     q = q_el + c * ddot
-    return q if q > 0.0 else 0.0
+    return (q, c) if q > 0.0 else (0.0, 0.0)
 
 
 @njit(inline="always", fastmath=True)
 def _line_contact(i0, i1, K, L, d0, kap, ddot, m, mu, vrel, nrm, P):
     """A line contact (Eqs. 4a, 9) from its integrals ``i0, i1`` over the line of length L:
     normal force Q, elastic couple ``m1 = (K/L) int s delta^n`` (none once Q is clipped to 0),
-    and the friction ``mu Q`` against the slip ``vrel``."""
-    Q = _normal(K / L * i0, K, N_LINE, ddot, m, P, d0 + 0.5 * L * abs(kap))
+    the friction ``mu Q`` against the slip ``vrel``, and the damping coefficient in Q."""
+    Q, c = _normal(K / L * i0, K, N_LINE, ddot, m, P, d0 + 0.5 * L * abs(kap))
     m1 = K / L * i1 if Q > 0.0 else 0.0
-    return Q, m1, _friction(vrel, nrm, mu * Q, P[V_S])
+    return Q, m1, _friction(vrel, nrm, mu * Q, P[V_S]), c
 
 
 @njit(inline="always", fastmath=True)
@@ -160,6 +163,39 @@ def _friction(v, nrm, muq, vs):
     vt = _lin(1.0, v, -vn, nrm)
     g = -muq / sqrt(_dot(vt, vt) + vs * vs)
     return _mul(g, vt)
+
+
+@njit(inline="always", fastmath=True)
+def _rates(sd, nrm, r, er, et, ey, ax, bx, Rr):
+    """Gradient of a contact's approach rate ``sd (v_roller(r) - ...) . nrm`` with respect to
+    the roller's rates ``(rho', phi', eta', theta_t', theta_s', omega_s)``, for a contact at
+    ``r`` from the roller centre."""
+    return (sd * _dot(er, nrm), sd * (Rr * _dot(et, nrm) + _dot(_cross(ey, r), nrm)),
+            sd * _dot(ey, nrm), sd * _dot(_cross(et, r), nrm), sd * _dot(_cross(bx, r), nrm),
+            sd * _dot(_cross(ax, r), nrm))
+
+
+@njit(inline="always", fastmath=True)
+def _cage_rates(sd, nrm, rel):
+    """The same gradient with respect to the cage's rates ``(v_x, v_y, v_z, omega_x, omega_z,
+    phi_c')`` for a contact at ``rel`` from the cage centre (the cage side of the contact)."""
+    m = _cross(rel, nrm)
+    return (-sd * nrm[0], -sd * nrm[1], -sd * nrm[2], -sd * m[0], -sd * m[2], -sd * m[1])
+
+
+@njit(inline="always", fastmath=True)
+def _damping_rows(G, j, k, nz, c, Jr, Jc, cage):
+    """Add the contact's damping ``c J^T J`` to row j's implicit-damping blocks: roller k's own
+    ``G[j, k, :, :6]``, its coupling to the cage ``G[j, k, :, 6:]`` and the cage's own
+    ``G[j, nz, :, :6]`` (a contact's damping force is ``-c J u``, u the rates)."""
+    for a in range(6):
+        ca = c * Jr[a]
+        for b in range(6):
+            G[j, k, a, b] += ca * Jr[b]
+        if cage:
+            for b in range(6):
+                G[j, k, a, 6 + b] += ca * Jc[b]
+                G[j, nz, a, b] += c * Jc[a] * Jc[b]
 
 
 @njit(cache=True, fastmath=True)
@@ -184,6 +220,18 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
     ring's centre (paper Eq. 16 plus moments).  ``Qc (2, Z, 6)``: normal contact forces
     (cup, cone, rib, pocket wall 1, pocket wall 2, side beams).
     """
+    dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, np.empty((0, 1, 6, 12)))
+
+
+@njit(cache=True, fastmath=True)
+def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
+    """:func:`dtrb_rhs`, and, when ``G`` has rows (``(2, Z + 1, 6, 12)``), the contacts'
+    damping in the rollers' and cages' rates (:func:`_damping_rows`): ``G[j, k]`` roller k's
+    own block and its coupling to the cage of row j, ``G[j, Z, :, :6]`` the cage's own, for a
+    step that treats the contact damping implicitly (:mod:`.implicit`)."""
+    acc = G.shape[0] > 0
+    if acc:
+        G[:, :, :, :] = 0.0
     nz = int(P[Z])
     R = P[R_M]
     rb = P[R_B]
@@ -276,8 +324,11 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
             Qo = 0.0
             if i0 > 0.0:
                 vrel = _sub(_add(Vc, _cross(wr, _mul(rb, no))), _add(vo, _cross(wo, _sub(po, uo))))
-                Qo, m1, f = _line_contact(i0, i1, P[K_O], Le, d0, kap, _dot(vrel, no), Mr, P[MU_R],
-                                          vrel, no, P)
+                Qo, m1, f, cdmp = _line_contact(i0, i1, P[K_O], Le, d0, kap, _dot(vrel, no), Mr,
+                                              P[MU_R], vrel, no, P)
+                if acc and cdmp > 0.0:
+                    Jr = _rates(1.0, no, _mul(rb, no), er, et, ey, ax, bx, R + rho)
+                    _damping_rows(G, j, k, nz, cdmp, Jr, Jr, False)
                 fr = _lin(-Qo, no, 1.0, f)
                 Fr = _add(Fr, fr)
                 Mr_ = _add(Mr_, _add(_mul(-s * m1, et), _cross(_mul(rb, no), f)))
@@ -292,8 +343,11 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
             Qi = 0.0
             if i0 > 0.0:
                 vrel = _sub(_add(Vc, _cross(wr, _mul(-rb, ni))), _add(vi, _cross(wi, _sub(pi_, ui))))
-                Qi, m1, f = _line_contact(i0, i1, P[K_I], Le, d0, kap, -_dot(vrel, ni), Mr, P[MU_R],
-                                          vrel, ni, P)
+                Qi, m1, f, cdmp = _line_contact(i0, i1, P[K_I], Le, d0, kap, -_dot(vrel, ni), Mr,
+                                              P[MU_R], vrel, ni, P)
+                if acc and cdmp > 0.0:
+                    Jr = _rates(-1.0, ni, _mul(-rb, ni), er, et, ey, ax, bx, R + rho)
+                    _damping_rows(G, j, k, nz, cdmp, Jr, Jr, False)
                 fr = _lin(Qi, ni, 1.0, f)
                 Fr = _add(Fr, fr)
                 Mr_ = _add(Mr_, _add(_mul(s * m1, et), _cross(_mul(-rb, ni), f)))
@@ -307,7 +361,10 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
             Qa = 0.0
             if d0 > 0.0:
                 vrel = _sub(_add(Vc, _cross(wr, ra)), _add(vi, _cross(wi, _sub(pa, ui))))
-                Qa = _normal(P[K_A] * d0 * sqrt(d0), P[K_A], N_POINT, -_dot(vrel, na), Mr, P, d0)
+                Qa, cdmp = _normal(P[K_A] * d0 * sqrt(d0), P[K_A], N_POINT, -_dot(vrel, na), Mr, P, d0)
+                if acc and cdmp > 0.0:
+                    Jr = _rates(-1.0, na, ra, er, et, ey, ax, bx, R + rho)
+                    _damping_rows(G, j, k, nz, cdmp, Jr, Jr, False)
                 f = _friction(vrel, na, P[MU_A] * Qa, vs)
                 fr = _lin(Qa, na, 1.0, f)
                 Fr = _add(Fr, fr)
@@ -333,8 +390,12 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
                 if i0 > 0.0:
                     pw = _lin(1.0, c, rb, nw)
                     vrel = _sub(_add(Vc, _cross(wr, _mul(rb, nw))), _add(vc, _cross(wc, _sub(pw, xc))))
-                    Qw, m1, f = _line_contact(i0, i1, P[K_CR], Lb, d0, kap, _dot(vrel, nw), m_cage,
-                                              P[MU_C], vrel, nw, P)
+                    Qw, m1, f, cdmp = _line_contact(i0, i1, P[K_CR], Lb, d0, kap, _dot(vrel, nw),
+                                                  m_cage, P[MU_C], vrel, nw, P)
+                    if acc and cdmp > 0.0:
+                        _damping_rows(G, j, k, nz, cdmp,
+                                      _rates(1.0, nw, _mul(rb, nw), er, et, ey, ax, bx, R + rho),
+                                      _cage_rates(1.0, nw, _sub(pw, xc)), True)
                     fr = _lin(-Qw, nw, 1.0, f)
                     couple = _mul(m1, _cross(ax, nw))
                     Fr = _add(Fr, fr)
@@ -352,7 +413,11 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
                 sw = 1.0 if w == 0 else -1.0
                 d0 = sw * chi - P[S_PA]
                 if d0 > 0.0:
-                    Q = _normal(P[K_CR] * d0 ** N_LINE, P[K_CR], N_LINE, sw * chid, m_cage, P, d0)
+                    Q, cdmp = _normal(P[K_CR] * d0 ** N_LINE, P[K_CR], N_LINE, sw * chid, m_cage, P, d0)
+                    if acc and cdmp > 0.0:
+                        _damping_rows(G, j, k, nz, cdmp,
+                                      _rates(sw, ey, (0.0, 0.0, 0.0), er, et, ey, ax, bx, R + rho),
+                                      _cage_rates(sw, ey, _sub(c, xc)), True)
                     fr = _mul(-sw * Q, ey)
                     pe = _lin(1.0, c, 0.5 * sw * Lb, ey)
                     Fr = _add(Fr, fr)

@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from axlebox.bearing.kernel import dtrb_rhs
+from axlebox.bearing.kernel import dtrb_rhs_damped
 
 from .kernel_body import BI_POS, BI_VEL
 
@@ -41,10 +41,11 @@ def _small_angles(R, out, o):
 
 
 @njit(cache=True)
-def bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, elout):
+def bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, elout, brG):
     """State derivatives of every bearing's rollers and cages, and their ring loads on the
     markers; bearing k's outputs fill ``BR_ROWS`` rows of ``elout`` from row
-    ``ne + BR_ROWS k`` (``ne``: the elements' rows)."""
+    ``ne + BR_ROWS k`` (``ne``: the elements' rows).  With rows in ``brG`` (one a bearing),
+    each bearing's contact damping blocks go there too (bearing/implicit.py)."""
     nbr = br_i.shape[0]
     if nbr == 0:
         return
@@ -54,21 +55,23 @@ def bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM,
     th = np.zeros((nbr, 6))
     for k in range(nbr):
         _ring_motion(k, y, bi, br_i, mkp, mkv, mkR, mkw, ring[k], th[k])
-    _all_dtrbs(t, y, dy, br_i, br_P, br_D, ring, F, Qc)
+    _all_dtrbs(t, y, dy, br_i, br_P, br_D, ring, F, Qc, brG)
     for k in range(nbr):
         _loads_back(k, y, br_i, mkF, mkM, elout, F[k], Qc[k], th[k])
 
 
 @njit(cache=True, parallel=True)
-def _all_dtrbs(t, y, dy, br_i, br_P, br_D, ring, F, Qc):
-    """:func:`axlebox.bearing.kernel.dtrb_rhs` of every bearing, in parallel (numba threads): each
-    writes only its own states and scratch rows, so the result does not depend on the number of
-    threads."""
+def _all_dtrbs(t, y, dy, br_i, br_P, br_D, ring, F, Qc, brG):
+    """:func:`axlebox.bearing.kernel.dtrb_rhs_damped` of every bearing, in parallel (numba
+    threads): each writes only its own states and scratch rows, so the result does not depend
+    on the number of threads."""
+    damped = brG.shape[0] > 0
     for k in prange(br_i.shape[0]):
         off, n = br_i[k, BR_OFF], br_i[k, BR_N]
         d0, nd = br_i[k, BR_D0], br_i[k, BR_ND]
-        dtrb_rhs(t, y[off:off + n], ring[k], br_P[k], br_D[d0:d0 + nd], dy[off:off + n], F[k],
-                 Qc[k])
+        G = brG[k] if damped else np.empty((0, 1, 6, 12))
+        dtrb_rhs_damped(t, y[off:off + n], ring[k], br_P[k], br_D[d0:d0 + nd], dy[off:off + n],
+                        F[k], Qc[k], G)
 
 
 @njit(cache=True)

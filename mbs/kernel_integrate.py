@@ -40,6 +40,7 @@ import math
 import numpy as np
 from numba import njit
 
+from axlebox.bearing.implicit import damped_kick
 from axlebox.bearing.layout import KINEMATIC, N_CAGE, N_ROLLER
 
 from .kernel_bearings import BR_N, BR_OFF
@@ -105,7 +106,7 @@ def _kick_drift(y, a, hk, h, S, W):
     (kick, by ``hk``: ``h``, or ``h / 2`` on the first step from ``u_0``), then positions at the
     new velocities (drift, by ``h``); ``a``'s position rows are reused."""
     bi, br_i, br_P = S[0], S[16], S[17]
-    Ab, rb, vb, omb, omfb = W[0], W[1], W[2], W[3], W[4]
+    Ab, rb, vb, omb, omfb, brG = W[0], W[1], W[2], W[3], W[4], W[16]
     for b in range(bi.shape[0]):
         iv = bi[b, BI_VEL]
         for i in range(iv, iv + 6 + bi[b, BI_N]):
@@ -119,10 +120,13 @@ def _kick_drift(y, a, hk, h, S, W):
         off, n = br_i[k, BR_OFF], br_i[k, BR_N]
         kin = br_P[k, KINEMATIC] != 0.0
         cages = off + n - 2 * N_CAGE
+        if brG.shape[0] > 0:                  # rates with the contacts' damping implicit
+            damped_kick(y[off:off + n], a[off:off + n], brG[k], br_P[k], hk)
         # rollers and cages alike: six positions, then their six rates (bearing/layout.py)
         for o in range(off, off + n, N_ROLLER):
-            for q in range(6):
-                y[o + 6 + q] += hk * a[o + 6 + q]
+            if brG.shape[0] == 0:
+                for q in range(6):
+                    y[o + 6 + q] += hk * a[o + 6 + q]
             for q in range(6):
                 # a kinematic cage drives the azimuths at the rate the right-hand side gave
                 if kin and ((o < cages and q == 1) or (o >= cages and q == 5)):

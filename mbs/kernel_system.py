@@ -26,7 +26,7 @@ from .kernel_wheels import G_GRAV, wheel_forces
 def rhs(t, y, dy, S, W):
     bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f, wtab, wpar, trk, sens, \
         br_i, br_P, br_D = S
-    Ab, rb, vb, omb, omfb, mku, mkp, mkv, mkR, mkw, mkF, mkM, gen, elout, whout, sensout = W
+    Ab, rb, vb, omb, omfb, mku, mkp, mkv, mkR, mkw, mkF, mkM, gen, elout, whout, sensout, brG = W
     nb = bi.shape[0]
     for b in range(nb):
         frame_kinematics(b, y, bi, Ab[b], rb[b], vb[b], omb[b], omfb[b])
@@ -35,7 +35,7 @@ def rhs(t, y, dy, S, W):
     mkF[:, :] = 0.0
     mkM[:, :] = 0.0
     element_forces(t, el_i, el_f, mkp, mkv, mkR, mkw, mkF, mkM, elout)
-    bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, elout)
+    bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, elout, brG)
     if wh_i.shape[0] > 0:
         wheel_forces(t, bi, wh_i, wh_f, wtab, wpar, trk, glob, Ab, omb, mkp, mkv, mkR, mkw,
                      mkF, mkM, whout)

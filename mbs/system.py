@@ -289,7 +289,7 @@ class Model:
                   z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3, 3)),
                   z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3)), z(ngen),
                   z((max(ne, 1), 6)), z((max(len(wheels), 1), N_OUT)),
-                  z((max(len(sensors), 1), 3)))
+                  z((max(len(sensors), 1), 3)), z((0, 2, 1, 6, 12)))
 
     @property
     def bodies(self) -> list[Body]:

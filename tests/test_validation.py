@@ -1,9 +1,10 @@
 """The paper's validation case, as shipped (configs/validation_48kmh.toml): the B-type car at
 48 km/h on FRA class 5 track, the front bogie flexible, eight DTRBs, a 50.4 x 2 x 2 mm outer-ring
-defect in row 2 of wheelset 2's gearbox-side (right) bearing.  The paper's Fig. 8 and its text:
-impulses every 0.023 s on the defect side (43.48 Hz against a BPFO of 43.93 Hz), the same
-period on the healthy side at a lower amplitude and later, amplitudes of about 20 m/s^2, and a
-roller contact force that turns with the cage (0.456 s, 2.193 Hz against an FTF of 2.196 Hz).
+defect in row 2 of wheelset 2's gearbox-side (right) bearing; its contact damping calibrated on
+the paper's field test (Fig. 8a), the rest predicted.  The paper's Fig. 8 and its text: impulses
+every 0.023 s on the defect side (43.48 Hz against a BPFO of 43.93 Hz), the same period on the
+healthy side at a lower amplitude and later, impulses of about 20 m/s^2, and a roller contact
+force that turns with the cage (0.456 s, 2.193 Hz against an FTF of 2.196 Hz).
 
 One run of 1.5 s (2.0 s with AXLEBOX_FULL=1): after the 0.5 s fade-in 1 s is left, 44 fault
 periods and 2.2 cage periods.
@@ -15,7 +16,7 @@ import pytest
 
 from axlebox import configs
 from axlebox.bearing.diagnostics.envelope import envelope
-from axlebox.bearing.diagnostics.lag import time_lag
+from axlebox.bearing.diagnostics.lag import impulse_lag
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.params import BearingParams
 from axlebox.pipelines import readers
@@ -57,28 +58,28 @@ def test_impulses_every_bpfo_period_on_both_sides_later_and_weaker_on_the_health
     """Defect side (right): envelope period 1/BPFO within 3 % (the paper: 0.023 s, 1 % from its
     BPFO; the rest is roller slip).  Healthy side (left): the same period, found in the
     wheelset-bending band 300-800 Hz through which it arrives, at a lower RMS and peak.  The
-    healthy side's envelope trails the defect side's by 0.5-5 ms (the paper: 1.1-4.2 ms)."""
+    healthy side's impulses arrive 0.5-5 ms after the defect side's (the paper: 1.1-4.2 ms)."""
     _, rec, bpfo, _ = run
     T_d, r_d = envelope_period(rec.right, rec.fs, bpfo)
     T_h, r_h = envelope_period(rec.left, rec.fs, bpfo, band=(300.0, 800.0))
     assert abs(T_d * bpfo - 1.0) < 0.03 and r_d > 0.5, (T_d, r_d)
     assert abs(T_h * bpfo - 1.0) < 0.03 and r_h > 0.5, (T_h, r_h)
     assert rec.left.std() < rec.right.std() and np.abs(rec.left).max() < np.abs(rec.right).max()
-    lag = time_lag(rec.right, rec.left, rec.fs, max_lag_s=0.5 / bpfo)
+    lag = impulse_lag(rec.right, rec.left, rec.fs, 1 / bpfo)
     assert lag.leading == "a" and 0.5e-3 < lag.lag_s < 5e-3, lag
 
 
 @pytest.mark.slow
-def test_peak_accelerations_are_of_the_papers_order(run):
-    """The paper reads about 20 m/s^2 on the defect side (Fig. 8a, measured and simulated).  Ours
-    is within a factor of 10 of it (91 % of the defect side's power is the axle-box's 2.7 kHz
-    mode, converged with the mesh, at the assumed 1 % modal damping, so its peaks are about 5x
-    the paper's; README), and the healthy side's peaks are between a tenth and the whole of
-    the defect side's."""
-    _, rec, _, _ = run
-    peak_d, peak_h = np.abs(rec.right).max(), np.abs(rec.left).max()
-    assert 2.0 < peak_d < 200.0, peak_d
-    assert 0.1 * peak_d < peak_h < peak_d, (peak_h, peak_d)
+def test_impulses_are_of_the_field_tests_size(run):
+    """The paper's field test reads impulses of about 20 m/s^2 on the defect side (Fig. 8a; the
+    contact damping is calibrated on it): the median over the fault periods of each period's
+    largest |a| lies in 10-40 m/s^2, and the healthy side's is below it."""
+    _, rec, bpfo, _ = run
+    n = int(round(rec.fs / bpfo))
+    peaks = [np.median(np.abs(x[:x.size // n * n]).reshape(-1, n).max(axis=1))
+             for x in (rec.right, rec.left)]
+    assert 10.0 < peaks[0] < 40.0, peaks
+    assert peaks[1] < peaks[0], peaks
 
 
 @pytest.mark.slow

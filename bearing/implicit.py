@@ -1,0 +1,142 @@
+"""The rollers' and cages' rates of one DTRB advanced with their contact damping taken implicitly.
+
+Why: a contact damping coefficient ``c`` on a body of mass ``m`` limits an explicit step to
+about ``2 m / c``.  In the range the paper cites for bearing contacts (damping 2.5e-5 to 0.25 s
+times the stiffness, below its Eq. 4) that is 1e-6 s and less on the rollers' tilt and the
+cages (benchmarks/README.md), while the rings, two bodies of tens of kilograms, stay far from it.
+
+The step: the leapfrog's velocity kick ``u+ = u- + h a(q, u-)`` becomes, for these rates,
+
+    (M + h C) du = h M a(q, u-)
+
+with ``M`` the rates' masses (roller: ``M_r``, ``M_r (R + rho)^2``, ``M_r``, ``J_d``, ``J_d``,
+``J_a``; cage: ``M_c`` three times, ``J_cd``, ``J_cd``, ``J_cp``) and ``C = sum c J^T J`` over
+the contacts in action, ``J`` the gradient of a contact's approach rate with respect to the
+rates (:func:`axlebox.bearing.kernel.dtrb_rhs_damped`).  This is the linearly implicit Euler
+step on the damping forces (``-c J u``, with ``u+`` in place of ``u-``): unconditionally stable for
+them, first order like the leapfrog's own velocity forces.  The rings' rates stay explicit (they
+are bodies of the vehicle).  A row's 20 rollers couple only through its cage, so ``M + h C`` is
+block-arrowhead: each roller's 6 x 6 block is eliminated onto the cage's (a Schur complement),
+the cage's 6 x 6 system solved, and the rollers recovered; every block is symmetric positive
+definite (``M`` > 0, ``C`` >= 0), solved by Cholesky.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .layout import J_CD, J_CP, J_RA, J_RD, KINEMATIC, M_C, M_R, N_CAGE, N_ROLLER, R_M, RHO, Z
+
+
+@njit(inline="always", fastmath=True)
+def _cholesky(A, L):
+    """``L L^T = A`` (6 x 6, lower triangle of L)."""
+    for i in range(6):
+        for j in range(i + 1):
+            s = A[i, j]
+            for q in range(j):
+                s -= L[i, q] * L[j, q]
+            L[i, j] = math.sqrt(s) if i == j else s / L[j, j]
+
+
+@njit(inline="always", fastmath=True)
+def _solve(L, b, x):
+    """``x = A^-1 b`` from the Cholesky factor (``x`` may be ``b``)."""
+    for i in range(6):
+        s = b[i]
+        for q in range(i):
+            s -= L[i, q] * x[q]
+        x[i] = s / L[i, i]
+    for i in range(5, -1, -1):
+        s = x[i]
+        for q in range(i + 1, 6):
+            s -= L[q, i] * x[q]
+        x[i] = s / L[i, i]
+
+
+@njit(cache=True, fastmath=True)
+def damped_kick(y, a, G, P, hk):
+    """Advance the rates of one bearing's rollers and cages in ``y`` (its state, bearing/layout.py)
+    by the kick ``hk`` from their explicit accelerations ``a`` (same layout) and the damping
+    blocks ``G`` the right-hand side left (module docstring).  A kinematic cage's azimuths are
+    not rates of the system: their rows stay explicit."""
+    nz = int(P[Z])
+    nr = 2 * nz * N_ROLLER
+    kin = P[KINEMATIC] != 0.0
+    mr = np.empty(6)
+    mc = np.array([P[M_C], P[M_C], P[M_C], P[J_CD], P[J_CD], P[J_CP]])
+    A = np.empty((6, 6))
+    L = np.empty((6, 6))
+    S = np.empty((6, 6))
+    X = np.empty((nz, 6, 6))
+    Yr = np.empty((nz, 6))
+    coupled = np.zeros(nz, np.bool_)
+    g = np.empty(6)
+    col = np.empty(6)
+    for j in range(2):
+        cb = nr + j * N_CAGE
+        for p in range(6):
+            g[p] = hk * mc[p] * a[cb + 6 + p]
+            for q in range(6):
+                S[p, q] = hk * G[j, nz, p, q]
+            S[p, p] += mc[p]
+        for k in range(nz):
+            b0 = (j * nz + k) * N_ROLLER
+            Rr = P[R_M] + y[b0 + RHO]
+            mr[0], mr[1], mr[2] = P[M_R], P[M_R] * Rr * Rr, P[M_R]
+            mr[3], mr[4], mr[5] = P[J_RD], P[J_RD], P[J_RA]
+            for p in range(6):
+                for q in range(6):
+                    A[p, q] = hk * G[j, k, p, q]
+                A[p, p] += mr[p]
+                Yr[k, p] = hk * mr[p] * a[b0 + 6 + p]
+            if kin:                           # the azimuth follows the cage: not a rate here
+                for q in range(6):
+                    A[1, q] = 0.0
+                    A[q, 1] = 0.0
+                A[1, 1] = mr[1]
+            _cholesky(A, L)
+            _solve(L, Yr[k], Yr[k])
+            coupled[k] = False
+            for p in range(6):
+                for q in range(6):
+                    if G[j, k, p, 6 + q] != 0.0:
+                        coupled[k] = True
+            if not coupled[k]:
+                continue
+            for q in range(6):                # X = A^-1 B, B = hk G[j, k, :, 6:]
+                for p in range(6):
+                    col[p] = 0.0 if (kin and (p == 1 or q == 5)) else hk * G[j, k, p, 6 + q]
+                _solve(L, col, col)
+                for p in range(6):
+                    X[k, p, q] = col[p]
+            for p in range(6):                # S -= B^T X, g -= B^T y
+                for q in range(6):
+                    s = 0.0
+                    for r in range(6):
+                        s += hk * G[j, k, r, 6 + p] * X[k, r, q]
+                    S[p, q] -= s
+                s = 0.0
+                for r in range(6):
+                    s += hk * G[j, k, r, 6 + p] * Yr[k, r]
+                g[p] -= s
+        if kin:
+            for q in range(6):
+                S[5, q] = 0.0
+                S[q, 5] = 0.0
+            S[5, 5] = mc[5]
+            g[5] = hk * mc[5] * a[cb + 11]
+        _cholesky(S, L)
+        _solve(L, g, g)                       # the cage's rate increments
+        for p in range(6):
+            y[cb + 6 + p] += g[p]
+        for k in range(nz):
+            b0 = (j * nz + k) * N_ROLLER
+            for p in range(6):
+                d = Yr[k, p]
+                if coupled[k]:
+                    for q in range(6):
+                        d -= X[k, p, q] * g[q]
+                y[b0 + 6 + p] += d
