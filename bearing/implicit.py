@@ -42,15 +42,20 @@ def _cholesky(A, L):
 
 
 @njit(inline="always", fastmath=True)
-def _solve(L, b, x):
-    """``x = A^-1 b`` from the Cholesky factor (``x`` may be ``b``)."""
+def _forward(L, b, x):
+    """``x = L^-1 b`` (``x`` may be ``b``)."""
     for i in range(6):
         s = b[i]
         for q in range(i):
             s -= L[i, q] * x[q]
         x[i] = s / L[i, i]
+
+
+@njit(inline="always", fastmath=True)
+def _backward(L, b, x):
+    """``x = L^-T b`` (``x`` may be ``b``)."""
     for i in range(5, -1, -1):
-        s = x[i]
+        s = b[i]
         for q in range(i + 1, 6):
             s -= L[q, i] * x[q]
         x[i] = s / L[i, i]
@@ -61,20 +66,25 @@ def damped_kick(y, a, G, P, hk):
     """Advance the rates of one bearing's rollers and cages in ``y`` (its state, bearing/layout.py)
     by the kick ``hk`` from their explicit accelerations ``a`` (same layout) and the damping
     blocks ``G`` the right-hand side left (module docstring).  A kinematic cage's azimuths are
-    not rates of the system: their rows stay explicit."""
+    not rates of the system: their rows stay explicit.
+
+    Per roller k of a row, with ``A_k = M_k + hk C_k`` (its own block, ``L_k L_k^T``), ``B_k``
+    its coupling to the cage and ``r_k`` its right-hand side: ``W_k = L_k^-1 B_k``,
+    ``z_k = L_k^-1 r_k``; the cage's ``(D - sum W_k^T W_k) du_c = r_c - sum W_k^T z_k``; then
+    ``du_k = L_k^-T (z_k - W_k du_c)``."""
     nz = int(P[Z])
     nr = 2 * nz * N_ROLLER
     kin = P[KINEMATIC] != 0.0
     mr = np.empty(6)
     mc = np.array([P[M_C], P[M_C], P[M_C], P[J_CD], P[J_CD], P[J_CP]])
     A = np.empty((6, 6))
-    L = np.empty((6, 6))
     S = np.empty((6, 6))
-    X = np.empty((nz, 6, 6))
-    Yr = np.empty((nz, 6))
+    Ls = np.empty((nz, 6, 6))
+    Ws = np.empty((nz, 6, 6))
+    Zr = np.empty((nz, 6))
     coupled = np.zeros(nz, np.bool_)
+    Lc = np.empty((6, 6))
     g = np.empty(6)
-    col = np.empty(6)
     for j in range(2):
         cb = nr + j * N_CAGE
         for p in range(6):
@@ -91,14 +101,14 @@ def damped_kick(y, a, G, P, hk):
                 for q in range(6):
                     A[p, q] = hk * G[j, k, p, q]
                 A[p, p] += mr[p]
-                Yr[k, p] = hk * mr[p] * a[b0 + 6 + p]
+                Zr[k, p] = hk * mr[p] * a[b0 + 6 + p]
             if kin:                           # the azimuth follows the cage: not a rate here
                 for q in range(6):
                     A[1, q] = 0.0
                     A[q, 1] = 0.0
                 A[1, 1] = mr[1]
-            _cholesky(A, L)
-            _solve(L, Yr[k], Yr[k])
+            _cholesky(A, Ls[k])
+            _forward(Ls[k], Zr[k], Zr[k])
             coupled[k] = False
             for p in range(6):
                 for q in range(6):
@@ -106,21 +116,26 @@ def damped_kick(y, a, G, P, hk):
                         coupled[k] = True
             if not coupled[k]:
                 continue
-            for q in range(6):                # X = A^-1 B, B = hk G[j, k, :, 6:]
+            W = Ws[k]
+            for q in range(6):                # W = L^-1 B, B = hk G[j, k, :, 6:], column by column
                 for p in range(6):
-                    col[p] = 0.0 if (kin and (p == 1 or q == 5)) else hk * G[j, k, p, 6 + q]
-                _solve(L, col, col)
+                    W[p, q] = 0.0 if (kin and (p == 1 or q == 5)) else hk * G[j, k, p, 6 + q]
                 for p in range(6):
-                    X[k, p, q] = col[p]
-            for p in range(6):                # S -= B^T X, g -= B^T y
-                for q in range(6):
+                    s = W[p, q]
+                    for r in range(p):
+                        s -= Ls[k, p, r] * W[r, q]
+                    W[p, q] = s / Ls[k, p, p]
+            for p in range(6):                # S -= W^T W, g -= W^T z
+                for q in range(p + 1):
                     s = 0.0
                     for r in range(6):
-                        s += hk * G[j, k, r, 6 + p] * X[k, r, q]
+                        s += W[r, p] * W[r, q]
                     S[p, q] -= s
+                    if q != p:
+                        S[q, p] -= s
                 s = 0.0
                 for r in range(6):
-                    s += hk * G[j, k, r, 6 + p] * Yr[k, r]
+                    s += W[r, p] * Zr[k, r]
                 g[p] -= s
         if kin:
             for q in range(6):
@@ -128,15 +143,19 @@ def damped_kick(y, a, G, P, hk):
                 S[q, 5] = 0.0
             S[5, 5] = mc[5]
             g[5] = hk * mc[5] * a[cb + 11]
-        _cholesky(S, L)
-        _solve(L, g, g)                       # the cage's rate increments
+        _cholesky(S, Lc)
+        _forward(Lc, g, g)
+        _backward(Lc, g, g)                   # the cage's rate increments
         for p in range(6):
             y[cb + 6 + p] += g[p]
         for k in range(nz):
             b0 = (j * nz + k) * N_ROLLER
-            for p in range(6):
-                d = Yr[k, p]
-                if coupled[k]:
+            if coupled[k]:
+                for p in range(6):
+                    s = 0.0
                     for q in range(6):
-                        d -= X[k, p, q] * g[q]
-                y[b0 + 6 + p] += d
+                        s += Ws[k, p, q] * g[q]
+                    Zr[k, p] -= s
+            _backward(Ls[k], Zr[k], Zr[k])
+            for p in range(6):
+                y[b0 + 6 + p] += Zr[k, p]

@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from axlebox.bearing.implicit import damped_kick
 from axlebox.bearing.kernel import dtrb_rhs_damped
 
 from .kernel_body import BI_POS, BI_VEL
@@ -72,6 +73,15 @@ def _all_dtrbs(t, y, dy, br_i, br_P, br_D, ring, F, Qc, brG):
         G = brG[k] if damped else np.empty((0, 1, 6, 12))
         dtrb_rhs_damped(t, y[off:off + n], ring[k], br_P[k], br_D[d0:d0 + nd], dy[off:off + n],
                         F[k], Qc[k], G)
+
+
+@njit(cache=True, parallel=True)
+def damped_kicks(y, a, br_i, br_P, brG, hk):
+    """:func:`axlebox.bearing.implicit.damped_kick` of every bearing, in parallel (each writes
+    only its own rates)."""
+    for k in prange(br_i.shape[0]):
+        off, n = br_i[k, BR_OFF], br_i[k, BR_N]
+        damped_kick(y[off:off + n], a[off:off + n], brG[k], br_P[k], hk)
 
 
 @njit(cache=True)

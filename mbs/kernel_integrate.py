@@ -40,10 +40,9 @@ import math
 import numpy as np
 from numba import njit
 
-from axlebox.bearing.implicit import damped_kick
 from axlebox.bearing.layout import KINEMATIC, N_CAGE, N_ROLLER
 
-from .kernel_bearings import BR_N, BR_OFF
+from .kernel_bearings import BR_N, BR_OFF, damped_kicks
 from .kernel_body import BI_N, BI_POS, BI_SPIN, BI_VEL, frame_kinematics, position_rates
 from .kernel_system import rhs
 
@@ -116,12 +115,12 @@ def _kick_drift(y, a, hk, h, S, W):
         ip = bi[b, BI_POS]
         for i in range(ip, ip + 7 + bi[b, BI_SPIN] + bi[b, BI_N]):
             y[i] += h * a[i]
+    if brG.shape[0] > 0:                      # rates with the contacts' damping implicit
+        damped_kicks(y, a, br_i, br_P, brG, hk)
     for k in range(br_i.shape[0]):
         off, n = br_i[k, BR_OFF], br_i[k, BR_N]
         kin = br_P[k, KINEMATIC] != 0.0
         cages = off + n - 2 * N_CAGE
-        if brG.shape[0] > 0:                  # rates with the contacts' damping implicit
-            damped_kick(y[off:off + n], a[off:off + n], brG[k], br_P[k], hk)
         # rollers and cages alike: six positions, then their six rates (bearing/layout.py)
         for o in range(off, off + n, N_ROLLER):
             if brG.shape[0] == 0:

@@ -84,8 +84,8 @@ def _cmd_configs(a) -> None:
 
 
 def _cmd_demo(a) -> None:
-    from .demo import demo
-    demo(a.out, duration=a.duration)
+    from .demo import DURATION, demo
+    demo(a.out, duration=DURATION if a.duration is None else a.duration)
 
 
 def _cmd_bearing_simulate(a) -> None:
@@ -156,7 +156,7 @@ def _analysis_options(a) -> dict:
     crit = Criterion(mode="relative" if a.relative else "absolute",
                      **({"vf_range": parse_pair(a.vf_range, "--vf-range")} if a.vf_range else {}),
                      **({"rel_range": parse_pair(a.rel_range, "--rel-range")} if a.rel_range else {}),
-                     lag_veto=a.lag_veto)
+                     lag_veto=not a.no_lag, lag_ties=not a.no_lag)
     return dict(left=a.left, right=a.right, fs=a.fs, column=a.column, scale=a.scale,
                 shaft=a.shaft_hz, speed_kmh=a.speed_kmh, wheel_radius=a.wheel_radius, rpm=a.rpm,
                 orders_text=a.orders, bore=a.bore,
@@ -238,8 +238,10 @@ def _add_analysis_options(dg) -> None:
     dg.add_argument("--relative", action="store_true", help="compare |VF_L - VF_R| / max(VF) "
                     "instead (machine-independent; default range 0.14,1)")
     dg.add_argument("--rel-range", metavar="LO,HI", help="range of the relative VF difference")
-    dg.add_argument("--lag-veto", action="store_true",
-                    help="undecided when the leading side contradicts RMS and SPM")
+    dg.add_argument("--no-lag", action="store_true",
+                    help="the paper's RMS and SPM alone (default: a leading side that contradicts "
+                         "them makes the verdict undecided, and names the real side where they "
+                         "disagree)")
 
 
 def parser() -> argparse.ArgumentParser:
@@ -250,7 +252,7 @@ def parser() -> argparse.ArgumentParser:
     d = sub.add_parser("demo", help="the main job: modal bodies, the paper's validation case with "
                                     "its DTRBs, diagnosis of both sides and the HTML report")
     d.add_argument("--out", default="axlebox-demo", help="output folder (default: axlebox-demo)")
-    d.add_argument("--duration", type=float, default=1.6, metavar="S",
+    d.add_argument("--duration", type=float, default=None, metavar="S",
                    help="simulated time of the validation case (default 1.6, at least 1.41: "
                         "the track's fade-in and two cage periods)")
     d.set_defaults(func=_cmd_demo)

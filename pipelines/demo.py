@@ -22,6 +22,7 @@ from axlebox.bearing.diagnostics.criterion import PAPER, Criterion, verdict
 from .bodies import BODIES, build_body
 
 N_MODES = 12
+DURATION = 1.6          # s of the validation case: decisive (tests/test_validation.py), and quick
 
 
 def min_duration() -> float:
@@ -37,7 +38,7 @@ def min_duration() -> float:
     return math.ceil(100 * (TRACK_FADE_IN_S + 2.0 / ftf)) / 100
 
 
-def demo(out="axlebox-demo", duration: float = 1.6, log=print) -> Path:
+def demo(out="axlebox-demo", duration: float = DURATION, log=print) -> Path:
     """Run the four steps into ``out``; returns the report page.  ``duration`` (s) of the
     validation case: at least :func:`min_duration`."""
     from . import diagnose, render, report, simulate

@@ -247,15 +247,26 @@ def test_decision_table(left, right, expect, words):
     assert words in v["left"][1] and words in v["right"][1]
 
 
-def test_lag_is_supporting_evidence_and_may_veto():
+def test_lag_vetoes_a_contradicted_call_and_breaks_a_tie():
+    """By default a leading side that contradicts RMS and SPM leaves both undecided (a call the
+    lag contradicts is not made), and where RMS and SPM disagree the leading side is named real
+    (the paper's conclusion 2); ``lag_veto=False, lag_ties=False`` (``--no-lag``) is the paper's
+    criterion alone.  A lag by correlation below ``lag_min_peak`` is not quoted."""
     left, right = side(2e4, 2.0, 40), side(5e4, 1.0, 30)
     wrong = SimpleNamespace(leading="b", lag_s=1.2e-3, peak=0.8)
     v = verdict(left, right, wrong, Criterion())
-    assert v["left"][0] == "real fault" and "contradicts" in v["left"][1]
-    v = verdict(left, right, wrong, Criterion(lag_veto=True))
     assert v["left"][0] == v["right"][0] == "undecided" and "right leads" in v["left"][1]
+    paper = Criterion(lag_veto=False, lag_ties=False)
+    v = verdict(left, right, wrong, paper)
+    assert v["left"][0] == "real fault" and "contradicts" in v["left"][1]
     weak = SimpleNamespace(leading="b", lag_s=1.2e-3, peak=0.1)   # below lag_min_peak: ignored
-    assert verdict(left, right, weak, Criterion(lag_veto=True))["left"][0] == "real fault"
+    assert verdict(left, right, weak, Criterion())["left"][0] == "real fault"
+    split_l, split_r = side(2e4, 2.0, 30), side(5e4, 1.0, 40)   # RMS says left, SPM right
+    for lead, real in (("a", "left"), ("b", "right")):
+        lag = SimpleNamespace(leading=lead, lag_s=1.2e-3, peak=0.5, method="impulses")
+        v = verdict(split_l, split_r, lag, Criterion())
+        assert v[real][0] == "real fault" and "names the real side" in v[real][1], v
+        assert verdict(split_l, split_r, lag, paper)["left"][0] == "undecided"
 
 
 def test_relative_mode_is_invariant_to_a_frequency_scale():

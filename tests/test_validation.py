@@ -6,8 +6,8 @@ every 0.023 s on the defect side (43.48 Hz against a BPFO of 43.93 Hz), the same
 healthy side at a lower amplitude and later, impulses of about 20 m/s^2, and a roller contact
 force that turns with the cage (0.456 s, 2.193 Hz against an FTF of 2.196 Hz).
 
-One run of 1.5 s (2.0 s with AXLEBOX_FULL=1): after the 0.5 s fade-in 1 s is left, 44 fault
-periods and 2.2 cage periods.
+One run of the demo's 1.6 s (2.0 s with AXLEBOX_FULL=1): after the 0.5 s fade-in 1.1 s is
+left, 48 fault periods and 2.4 cage periods.
 """
 
 import h5py
@@ -21,6 +21,7 @@ from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.params import BearingParams
 from axlebox.pipelines import readers
 from axlebox.pipelines import simulate as psim
+from axlebox.pipelines.demo import DURATION, conclusion
 
 from conftest import full_size
 
@@ -30,7 +31,7 @@ FADE = readers.TRACK_FADE_IN_S
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
     out = tmp_path_factory.mktemp("validation") / "validation.h5"
-    psim.run(configs.path("validation_48kmh"), out, duration=2.0 if full_size() else 1.5,
+    psim.run(configs.path("validation_48kmh"), out, duration=2.0 if full_size() else DURATION,
              log=lambda *_: None)
     o = orders(BearingParams())
     f_r = shaft_hz(48.0, 0.42)
@@ -96,3 +97,19 @@ def test_roller_contact_force_turns_with_the_cage(run):
     for row in (0, 1):
         T, _ = period(F[:, row], fs, ftf)
         assert abs(T * ftf - 1.0) < 0.03, (row, T, 1 / ftf)
+
+
+@pytest.mark.slow
+def test_the_demo_concludes_as_the_paper(run):
+    """What ``axlebox demo`` prints, on its own case and duration: the defect side (ws2_R) a real
+    fault, the healthy side (ws2_L) a pseudo-fault by the relative criterion, the healthy side's
+    impulses later with ws2_R named as leading; and where the paper's absolute range stands."""
+    from axlebox.bearing.diagnostics.criterion import Criterion
+    from axlebox.pipelines.diagnose import analyse_file
+    path, _, _, _ = run
+    _, _, pair = analyse_file(path, criterion=Criterion(mode="relative"))
+    assert (pair.verdicts["right"][0], pair.verdicts["left"][0]) == ("real fault", "pseudo-fault")
+    assert pair.lag.leading == "b" and 0.5e-3 < pair.lag.lag_s < 5e-3, pair.lag
+    lines = conclusion(pair)
+    assert lines[0].startswith("defect side ws2_R: real fault; healthy side ws2_L: pseudo-fault")
+    assert "ws2_R leads" in lines[1] and "the paper's absolute range" in lines[2]

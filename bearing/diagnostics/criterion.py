@@ -21,10 +21,14 @@ criterion was found on.
 3. in the range (paper): the side where every indicator of ``Criterion.compare`` (RMS and SPM)
    is larger is the real fault, the other the pseudo-fault; if they disagree -> undecided.  If
    the larger side shows no fault line while the other does -> undecided.
-4. supporting evidence, reported in the reason: the lag (the paper, Fig. 13 and conclusion 2:
-   the healthy side lags by 1.1-4.2 ms, so the real side leads) when the envelope correlation
-   reaches ``lag_min_peak``; with ``lag_veto`` a leading side that contradicts step 3 makes both
-   undecided.  And which side is more dispersed (the paper's healthy side has the larger VF).
+4. the lag (the paper, Fig. 13 and conclusion 2: the healthy side lags by 1.1-4.2 ms, so the
+   real side leads), where it names a side (:func:`.lag.impulse_lag`; a lag by correlation
+   when its correlation reaches ``lag_min_peak``): with ``lag_veto`` (default) a leading side
+   that contradicts step 3 makes both undecided rather than a wrong call; with ``lag_ties``
+   (default) it names the real side where RMS and SPM disagree.  Both are ours: the paper
+   states the lag as a finding, not as part of its criterion; ``--no-lag`` leaves them out.
+   And, in the reason, which side is more dispersed (the paper's healthy side has the larger
+   VF).
 
 Carrying the range to another machine.  VF is in Hz^2, so the paper's range belongs to the metro
 car's frequencies: a machine whose resonances sit k times higher has VF (and VF differences) k^2
@@ -71,8 +75,10 @@ class Criterion:
     """Thresholds of the criterion (module docstring).  ``vf_range``: Hz^2, used in absolute
     mode; ``rel_range``: dimensionless, used in relative mode; ``compare``: ChannelResult fields
     that must all be larger on the real side; ``lines``: fault lines whose detection counts as a
-    fault; ``lag_min_peak``: envelope correlation needed to quote the lag; ``lag_veto``: a lag
-    that contradicts the indicators makes the verdict undecided."""
+    fault; ``lag_min_peak``: envelope correlation needed to quote a lag read by correlation
+    (one read on the impulses is quoted when it names a side); ``lag_veto``: a lag that
+    contradicts the indicators makes the verdict undecided; ``lag_ties``: where the indicators
+    disagree, the leading side is the real one (the paper's conclusion 2)."""
 
     mode: str = "absolute"
     vf_range: tuple[float, float] = VF_RANGE_PAPER
@@ -80,7 +86,8 @@ class Criterion:
     compare: tuple[str, ...] = ("rms", "spm_db")
     lines: tuple[str, ...] = ("BPFO",)
     lag_min_peak: float = 0.3
-    lag_veto: bool = False
+    lag_veto: bool = True
+    lag_ties: bool = True
 
     def __post_init__(self):
         if self.mode not in MODES:
@@ -164,21 +171,29 @@ def verdict(left, right, lag=None, criterion: Criterion = PAPER) -> dict[str, tu
               for c in criterion.compare}
     vals = ", ".join(f"{_LABEL[c]} {_fmt(getattr(left, c))} / {_fmt(getattr(right, c))}"
                      for c in criterion.compare)
+    lead = None                 # the side the lag names, where it is sure enough to quote
+    if lag is not None and lag.leading in ("a", "b") and (
+            getattr(lag, "method", "correlation") == "impulses" or lag.peak >= criterion.lag_min_peak):
+        lead = "left" if lag.leading == "a" else "right"
+        lag_txt = (f"{lead} leads by {lag.lag_s * 1e3:.3g} ms (envelope correlation "
+                   f"{lag.peak:.2f}")
+    notes = []
     if len(set(larger.values())) > 1:
         split = "; ".join(f"{_LABEL[c]} larger on {s}" for c, s in larger.items())
-        return both("undecided", f"{m_txt} in {rng_txt} (a pseudo-fault is present), but the "
-                                 f"indicators disagree: {split} (left / right: {vals})")
-    real = next(iter(larger.values()))
+        if not (criterion.lag_ties and lead is not None and seen[lead]):
+            return both("undecided", f"{m_txt} in {rng_txt} (a pseudo-fault is present), but the "
+                                     f"indicators disagree: {split} (left / right: {vals})")
+        real = lead             # the paper's conclusion (2): the real side's impulses come first
+        notes.append(f"the indicators disagree ({split}), {lag_txt}) names the real side")
+    else:
+        real = next(iter(larger.values()))
     pseudo = other[real]
     if not seen[real]:
         return both("undecided", f"{m_txt} in {rng_txt} and {vals} (left / right) point to {real}, "
                                  f"but only {pseudo} shows fault lines")
-    notes = []
-    if lag is not None and lag.peak >= criterion.lag_min_peak and lag.leading in ("a", "b"):
-        lead = "left" if lag.leading == "a" else "right"
+    if lead is not None and not notes:
         agree = lead == real
-        notes.append(f"{lead} leads by {lag.lag_s * 1e3:.3g} ms (envelope correlation "
-                     f"{lag.peak:.2f}; {'agrees' if agree else 'contradicts'})")
+        notes.append(f"{lag_txt}; {'agrees' if agree else 'contradicts'})")
         if not agree and criterion.lag_veto:
             return both("undecided", f"{m_txt} in {rng_txt} and {vals} (left / right) point to "
                                      f"{real}, but {notes[-1]}")
