@@ -150,12 +150,16 @@ def test_paper_damping_rule_is_overdamped_default_is_not():
     zeta_paper = p.c_rule * K / (2 * np.sqrt(p.M_r * k_lin))
     assert zeta_paper > 10
     # the kernel's law 0 reproduces zeta: damping force / (2 sqrt(m k) v) at a known rate
-    c0 = kernel._normal(Q, K, n, 1.0, p.M_r, layout.pack(p), (Q / K) ** (1 / n)) - Q
+    q0, c0_law = kernel._normal(Q, K, n, 1.0, p.M_r, layout.pack(p), (Q / K) ** (1 / n))
+    c0 = q0 - Q                                   # the rate is 1 m/s: the force is c
+    assert c0_law == pytest.approx(c0, rel=1e-9)  # and the coefficient the implicit step uses
     assert c0 / (2 * np.sqrt(p.M_r * k_lin)) == pytest.approx(p.zeta, rel=1e-12)
     # law 2, the rule made dimensionally consistent: c = beta x the tangent stiffness, and at the
     # low end of the range the paper cites (2.5e-5 s) the contact is near critical, not 100x over
     ps = BearingParams(damping="stiffness", beta=2.5e-5)
-    c2 = kernel._normal(Q, K, n, 1.0, ps.M_r, layout.pack(ps), (Q / K) ** (1 / n)) - Q
+    q2, c2_law = kernel._normal(Q, K, n, 1.0, ps.M_r, layout.pack(ps), (Q / K) ** (1 / n))
+    c2 = q2 - Q
+    assert c2_law == pytest.approx(c2, rel=1e-9)
     assert c2 == pytest.approx(ps.beta * k_lin, rel=1e-12)
     assert 0.5 < c2 / (2 * np.sqrt(ps.M_r * k_lin)) < 2
 

@@ -64,6 +64,17 @@ class LagResult:
         return asdict(self)
 
 
+def _pair(a, b, fs) -> tuple[np.ndarray, np.ndarray, float]:
+    """Two 1-D channels of one length (>= 3) and their sampling rate, or a ParameterError."""
+    a = np.asarray(a, float)
+    b = np.asarray(b, float)
+    fs = check_fs(fs)
+    if a.ndim != 1 or a.shape != b.shape or a.size < 3:
+        raise ParameterError(f"channels of shapes {a.shape} and {b.shape} are not allowed: expected "
+                             "two 1-D channels of the same length >= 3")
+    return a, b, fs
+
+
 def _refine(X: np.ndarray, nfft: int, k0: int) -> tuple[float, float]:
     """``(tau, r)``: the lag (samples) maximising the band-limited interpolant ``r`` of
     ``irfft(X, nfft)`` within one sample of ``k0``, and ``r`` there."""
@@ -94,12 +105,7 @@ def time_lag(a, b, fs: float, band: tuple[float, float] | None = None,
     periodic in the impulse period, so the lag is only defined modulo it: pass at most half the
     fault period (pair analysis passes ``0.5 / BPFO``).  Default: the whole record.
     """
-    a = np.asarray(a, float)
-    b = np.asarray(b, float)
-    fs = check_fs(fs)
-    if a.ndim != 1 or a.shape != b.shape or a.size < 3:
-        raise ParameterError(f"channels of shapes {a.shape} and {b.shape} are not allowed: expected "
-                             "two 1-D channels of the same length >= 3")
+    a, b, fs = _pair(a, b, fs)
     band_b = band if band_b is None else band_b
     ea = envelope(a, fs, band)
     eb = envelope(b, fs, band_b)
@@ -172,12 +178,7 @@ def impulse_lag(a, b, fs: float, period_s: float, band: tuple[float, float] | No
     the spread (half their interquartile range) and the agreement (the share with the same
     sign).  ``leading`` is named only with at least ``min_impulses`` impulses,
     ``min_agreement`` and a delay of at least one sample."""
-    a = np.asarray(a, float)
-    b = np.asarray(b, float)
-    fs = check_fs(fs)
-    if a.ndim != 1 or a.shape != b.shape or a.size < 3:
-        raise ParameterError(f"channels of shapes {a.shape} and {b.shape} are not allowed: expected "
-                             "two 1-D channels of the same length >= 3")
+    a, b, fs = _pair(a, b, fs)
     if not (np.isfinite(period_s) and period_s > 0):
         raise ParameterError(f"period_s = {period_s!r} s is not allowed: expected a fault period > 0")
     band_b = band if band_b is None else band_b
