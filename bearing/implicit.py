@@ -30,7 +30,7 @@ from numba import njit
 from .layout import J_CD, J_CP, J_RA, J_RD, KINEMATIC, M_C, M_R, N_CAGE, N_ROLLER, R_M, RHO, Z
 
 
-@njit(inline="always", fastmath=True)
+@njit(inline="always")
 def _cholesky(A, L):
     """``L L^T = A`` (6 x 6, lower triangle of L)."""
     for i in range(6):
@@ -41,7 +41,7 @@ def _cholesky(A, L):
             L[i, j] = math.sqrt(s) if i == j else s / L[j, j]
 
 
-@njit(inline="always", fastmath=True)
+@njit(inline="always")
 def _forward(L, b, x):
     """``x = L^-1 b`` (``x`` may be ``b``)."""
     for i in range(6):
@@ -51,7 +51,7 @@ def _forward(L, b, x):
         x[i] = s / L[i, i]
 
 
-@njit(inline="always", fastmath=True)
+@njit(inline="always")
 def _backward(L, b, x):
     """``x = L^-T b`` (``x`` may be ``b``)."""
     for i in range(5, -1, -1):
@@ -61,7 +61,7 @@ def _backward(L, b, x):
         x[i] = s / L[i, i]
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True)
 def damped_kick(y, a, G, P, hk):
     """Advance the rates of one bearing's rollers and cages in ``y`` (its state, bearing/layout.py)
     by the kick ``hk`` from their explicit accelerations ``a`` (same layout) and the damping

@@ -32,6 +32,12 @@ What the paper's equations become here (one vector form for both rows and both s
 * Eq. (2): with ``KINEMATIC`` the cage turns at ``omega_c = (1 - D_b/D_m) omega_w / 2`` and each
   roller sits at its pocket centre ``2 pi (k - 1) / Z + phi_c``; otherwise the cage angle and
   every roller's azimuth are dynamic states and cage slip follows from the contacts.
+
+IEEE arithmetic, no ``fastmath``: with it, LLVM fuses multiply-adds where the inlined callees
+happen to meet, and a kernel compiled in this process and the same kernel loaded from numba's
+cache differed in the last bit of some roller accelerations; the quasi-static start's 1e-12 m
+difference steps and the contacts' chaos grow that to a different run (tests/test_sweep.py).
+It cost 10-20 % of the kernel's time (benchmarks/README.md).
 """
 from __future__ import annotations
 
@@ -51,38 +57,38 @@ TWO_PI = 2.0 * pi
 
 
 # --- small vector algebra on tuples --------------------------------------------------------
-@njit(inline="always", fastmath=True)
+@njit(inline="always")
 def _add(a, b):
     return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
 
 
-@njit(inline="always", fastmath=True)
+@njit(inline="always")
 def _sub(a, b):
     return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
 
 
-@njit(inline="always", fastmath=True)
+@njit(inline="always")
 def _mul(k, a):
     return (k * a[0], k * a[1], k * a[2])
 
 
-@njit(inline="always", fastmath=True)
+@njit(inline="always")
 def _dot(a, b):
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-@njit(inline="always", fastmath=True)
+@njit(inline="always")
 def _cross(a, b):
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
-@njit(inline="always", fastmath=True)
+@njit(inline="always")
 def _lin(ka, a, kb, b):
     return (ka * a[0] + kb * b[0], ka * a[1] + kb * b[1], ka * a[2] + kb * b[2])
 
 
 # --- contact laws ---------------------------------------------------------------------------
-@njit(cache=True, fastmath=True)
+@njit(cache=True)
 def line_integrals(d0, kap, a, b, n):
     """``(int u^n ds, int s u^n ds)`` over ``[a, b]`` where ``u = d0 + kap s > 0``.
 
@@ -121,7 +127,7 @@ def line_integrals(d0, kap, a, b, n):
     return i0, i1
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True)
 def _normal(q_el, K, n, ddot, m, P, dmax):
     """Normal force from the elastic part ``q_el`` and the approach rate ``ddot``.
 
@@ -146,7 +152,7 @@ def _normal(q_el, K, n, ddot, m, P, dmax):
     return (q, c) if q > 0.0 else (0.0, 0.0)
 
 
-@njit(inline="always", fastmath=True)
+@njit(inline="always")
 def _line_contact(i0, i1, K, L, d0, kap, ddot, m, mu, vrel, nrm, P):
     """A line contact (Eqs. 4a, 9) from its integrals ``i0, i1`` over the line of length L:
     normal force Q, elastic couple ``m1 = (K/L) int s delta^n`` (none once Q is clipped to 0),
@@ -156,7 +162,7 @@ def _line_contact(i0, i1, K, L, d0, kap, ddot, m, mu, vrel, nrm, P):
     return Q, m1, _friction(vrel, nrm, mu * Q, P[V_S]), c
 
 
-@njit(inline="always", fastmath=True)
+@njit(inline="always")
 def _friction(v, nrm, muq, vs):
     """Regularised Coulomb friction on the body whose relative slip velocity is ``v``."""
     vn = _dot(v, nrm)
@@ -165,7 +171,7 @@ def _friction(v, nrm, muq, vs):
     return _mul(g, vt)
 
 
-@njit(inline="always", fastmath=True)
+@njit(inline="always")
 def _rates(sd, nrm, r, er, et, ey, ax, bx, Rr):
     """Gradient of a contact's approach rate ``sd (v_roller(r) - ...) . nrm`` with respect to
     the roller's rates ``(rho', phi', eta', theta_t', theta_s', omega_s)``, for a contact at
@@ -175,7 +181,7 @@ def _rates(sd, nrm, r, er, et, ey, ax, bx, Rr):
             sd * _dot(_cross(ax, r), nrm))
 
 
-@njit(inline="always", fastmath=True)
+@njit(inline="always")
 def _cage_rates(sd, nrm, rel):
     """The same gradient with respect to the cage's rates ``(v_x, v_y, v_z, omega_x, omega_z,
     phi_c')`` for a contact at ``rel`` from the cage centre (the cage side of the contact)."""
@@ -183,7 +189,7 @@ def _cage_rates(sd, nrm, rel):
     return (-sd * nrm[0], -sd * nrm[1], -sd * nrm[2], -sd * m[0], -sd * m[2], -sd * m[1])
 
 
-@njit(inline="always", fastmath=True)
+@njit(inline="always")
 def _damping_rows(G, j, k, nz, c, Jr, Jc, cage):
     """Add the contact's damping ``c J^T J`` to row j's implicit-damping blocks: roller k's own
     ``G[j, k, :, :6]``, its coupling to the cage ``G[j, k, :, 6:]`` and the cage's own
@@ -198,7 +204,7 @@ def _damping_rows(G, j, k, nz, c, Jr, Jc, cage):
                 G[j, nz, a, b] += c * Jc[a] * Jc[b]
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True)
 def _outer_defect(D, j, phi, theta_oy):
     """Depth ``h_o`` of an outer-ring defect under a roller of row j at azimuth phi, Eq. (14),
     and the stretch ``[s1, s2]`` of the contact line it covers.  Defects turn with the ring."""
@@ -212,7 +218,7 @@ def _outer_defect(D, j, phi, theta_oy):
     return 0.0, 0.0, 0.0
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True)
 def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
     """State derivative ``ydot`` and ring loads ``F (2, 6)`` of one DTRB.
 
@@ -223,7 +229,7 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
     dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, np.empty((0, 1, 6, 12)))
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True)
 def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
     """:func:`dtrb_rhs`, and, when ``G`` has rows (``(2, Z + 1, 6, 12)``), the contacts'
     damping in the rollers' and cages' rates (:func:`_damping_rows`): ``G[j, k]`` roller k's

@@ -156,7 +156,7 @@ def _analysis_options(a) -> dict:
     crit = Criterion(mode="relative" if a.relative else "absolute",
                      **({"vf_range": parse_pair(a.vf_range, "--vf-range")} if a.vf_range else {}),
                      **({"rel_range": parse_pair(a.rel_range, "--rel-range")} if a.rel_range else {}),
-                     lag_veto=not a.no_lag, lag_ties=not a.no_lag)
+                     lag="off" if a.no_lag else a.lag)
     return dict(left=a.left, right=a.right, fs=a.fs, column=a.column, scale=a.scale,
                 shaft=a.shaft_hz, speed_kmh=a.speed_kmh, wheel_radius=a.wheel_radius, rpm=a.rpm,
                 orders_text=a.orders, bore=a.bore,
@@ -238,10 +238,13 @@ def _add_analysis_options(dg) -> None:
     dg.add_argument("--relative", action="store_true", help="compare |VF_L - VF_R| / max(VF) "
                     "instead (machine-independent; default range 0.14,1)")
     dg.add_argument("--rel-range", metavar="LO,HI", help="range of the relative VF difference")
-    dg.add_argument("--no-lag", action="store_true",
-                    help="the paper's RMS and SPM alone (default: a leading side that contradicts "
-                         "them makes the verdict undecided, and names the real side where they "
-                         "disagree)")
+    lg = dg.add_mutually_exclusive_group()
+    lg.add_argument("--lag", choices=("decide", "veto", "off"), default="decide",
+                    help="how the lag between the sides enters the verdict: decide (default: a "
+                         "lag read on the impulses names the real side), veto (a lag that "
+                         "contradicts RMS and SPM leaves both undecided; it breaks their ties), "
+                         "off (the paper's RMS and SPM alone)")
+    lg.add_argument("--no-lag", action="store_true", help="the same as --lag off")
 
 
 def parser() -> argparse.ArgumentParser:

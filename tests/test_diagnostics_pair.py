@@ -182,6 +182,23 @@ def test_noise_on_both_sides_is_healthy(synthetic, name):
     assert vf_difference(res.left.VF, res.right.VF, Criterion(mode="relative")) < 0.5 * REL_RANGE_DEFAULT[0]
 
 
+def test_a_louder_transmitted_side_is_named_by_its_lag():
+    """The study's 1 mm, 40 km/h case (README): the transmitted copy arrives 1.2 ms later but
+    1.5 times as strong (the healthy journal carrying more of the wheelset's bending), so RMS
+    and SPM are larger on the healthy side.  The paper's RMS and SPM alone (``lag="off"``) name
+    the wrong side; ``veto`` leaves both undecided; ``decide`` (the default) names A, whose
+    impulses lead in every bootstrap resample."""
+    a, b, _, _ = pair(seed=3, gain_b=1.5)
+    got = {}
+    for policy in ("decide", "veto", "off"):
+        res = analyse_pair(a, b, FS, SHAFT, ORDERS, BORE, Criterion(mode="relative", lag=policy))
+        got[policy] = (res.verdicts["left"][0], res.verdicts["right"][0])
+    assert res.right.rms > res.left.rms and res.right.spm_db > res.left.spm_db
+    assert res.lag.leading == "a" and res.lag.agreement == 1.0 and res.lag.n_impulses > 100
+    assert got == {"decide": ("real fault", "pseudo-fault"), "veto": ("undecided", "undecided"),
+                   "off": ("pseudo-fault", "real fault")}
+
+
 def test_pair_figure_is_written(synthetic, tmp_path):
     from PIL import Image
     _, (a, b, _, _) = synthetic
@@ -247,26 +264,47 @@ def test_decision_table(left, right, expect, words):
     assert words in v["left"][1] and words in v["right"][1]
 
 
-def test_lag_vetoes_a_contradicted_call_and_breaks_a_tie():
-    """By default a leading side that contradicts RMS and SPM leaves both undecided (a call the
-    lag contradicts is not made), and where RMS and SPM disagree the leading side is named real
-    (the paper's conclusion 2); ``lag_veto=False, lag_ties=False`` (``--no-lag``) is the paper's
-    criterion alone.  A lag by correlation below ``lag_min_peak`` is not quoted."""
+def impulses_lag(leading, n=40, agreement=1.0):
+    """A stand-in LagResult read on the impulses (what :func:`.lag.impulse_lag` returns when it
+    names a side)."""
+    return SimpleNamespace(leading=leading, lag_s=1.2e-3, peak=0.5, method="impulses",
+                           n_impulses=n, agreement=agreement)
+
+
+def test_the_lag_policies():
+    """RMS and SPM larger on the left while the right side's impulses come first (the study's
+    1 mm, 40 km/h case, README): ``decide`` (default) names the leading side real and says the
+    indicators point the other way; ``veto`` leaves both undecided; ``off`` is the paper's RMS
+    and SPM alone and only quotes the lag.  Where RMS and SPM disagree, ``decide`` and ``veto``
+    name the leading side, ``off`` stays undecided.  A lag by correlation never decides against
+    the indicators (it vetoes) and below ``lag_min_peak`` it is not used at all."""
     left, right = side(2e4, 2.0, 40), side(5e4, 1.0, 30)
-    wrong = SimpleNamespace(leading="b", lag_s=1.2e-3, peak=0.8)
-    v = verdict(left, right, wrong, Criterion())
+    lag = impulses_lag("b")
+    v = verdict(left, right, lag, Criterion())
+    assert (v["left"][0], v["right"][0]) == ("pseudo-fault", "real fault"), v
+    assert "right leads" in v["right"][1] and "point to the other" in v["right"][1]
+    v = verdict(left, right, lag, Criterion(lag="veto"))
     assert v["left"][0] == v["right"][0] == "undecided" and "right leads" in v["left"][1]
-    paper = Criterion(lag_veto=False, lag_ties=False)
-    v = verdict(left, right, wrong, paper)
+    v = verdict(left, right, lag, Criterion(lag="off"))
     assert v["left"][0] == "real fault" and "contradicts" in v["left"][1]
-    weak = SimpleNamespace(leading="b", lag_s=1.2e-3, peak=0.1)   # below lag_min_peak: ignored
+    # the leading side shows no fault line: the lag cannot name it; the indicators' call is vetoed
+    v = verdict(left, side(5e4, 1.0, 30, ()), lag, Criterion())
+    assert v["left"][0] == v["right"][0] == "undecided"
+    # by correlation: a veto, never a decision against the indicators
+    corr = SimpleNamespace(leading="b", lag_s=1.2e-3, peak=0.8, method="correlation")
+    assert verdict(left, right, corr, Criterion())["left"][0] == "undecided"
+    weak = SimpleNamespace(leading="b", lag_s=1.2e-3, peak=0.1, method="correlation")
     assert verdict(left, right, weak, Criterion())["left"][0] == "real fault"
     split_l, split_r = side(2e4, 2.0, 30), side(5e4, 1.0, 40)   # RMS says left, SPM right
     for lead, real in (("a", "left"), ("b", "right")):
-        lag = SimpleNamespace(leading=lead, lag_s=1.2e-3, peak=0.5, method="impulses")
-        v = verdict(split_l, split_r, lag, Criterion())
-        assert v[real][0] == "real fault" and "names the real side" in v[real][1], v
-        assert verdict(split_l, split_r, lag, paper)["left"][0] == "undecided"
+        for policy in ("decide", "veto"):
+            v = verdict(split_l, split_r, impulses_lag(lead), Criterion(lag=policy))
+            assert v[real][0] == "real fault" and "names the real side" in v[real][1], v
+        assert verdict(split_l, split_r, impulses_lag(lead), Criterion(lag="off"))["left"][0] == "undecided"
+    # agreeing: the same call under every policy, the agreement said
+    for policy in ("decide", "veto", "off"):
+        v = verdict(left, right, impulses_lag("a"), Criterion(lag=policy))
+        assert v["left"][0] == "real fault" and "agrees" in v["left"][1]
 
 
 def test_relative_mode_is_invariant_to_a_frequency_scale():
@@ -286,7 +324,8 @@ def test_relative_mode_is_invariant_to_a_frequency_scale():
 
 @pytest.mark.parametrize("kw,field", [({"mode": "ratio"}, "mode"), ({"vf_range": (7e4, 8e3)}, "vf_range"),
                                       ({"rel_range": (-0.1, 1)}, "rel_range"),
-                                      ({"compare": ("loudness",)}, "compare"), ({"lines": ()}, "lines")])
+                                      ({"compare": ("loudness",)}, "compare"), ({"lines": ()}, "lines"),
+                                      ({"lag": "trust"}, "lag")])
 def test_criterion_refuses_bad_settings(kw, field):
     with pytest.raises(ParameterError, match=f"Criterion.{field}"):
         Criterion(**kw)

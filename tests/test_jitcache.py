@@ -48,3 +48,28 @@ def test_mesh_key_moves_with_any_geometry_source(tmp_path):
         assert mesh.geometry_hash(geo) != h0
         h0 = mesh.geometry_hash(geo)
 
+
+
+_RIG_BITS = """
+import hashlib
+from axlebox.bearing.defects import Defect
+from axlebox.bearing.rig import RigConfig, simulate
+r = simulate(RigConfig(duration=0.02, defects=(Defect(W=2e-3),)))
+print(hashlib.sha1(r.acceleration.tobytes() + r.Q.tobytes()).hexdigest())
+"""
+
+
+def test_a_kernel_compiled_here_and_one_loaded_from_the_cache_give_the_same_bits(tmp_path):
+    """The same rig run in two fresh processes sharing an empty cache: the first compiles the
+    bearing kernels (and writes them), the second loads them.  Their accelerations and contact
+    forces agree to the bit.  With ``fastmath`` they did not (a last-bit difference in some
+    roller accelerations, grown by the quasi-static start's 1e-12 m Newton steps into a rig
+    RMS 5 % apart): bearing/kernel.py's docstring."""
+    import subprocess
+    import sys
+    env = {**os.environ, "AXLEBOX_CACHE": str(tmp_path / "cache")}
+    env.pop("NUMBA_CACHE_DIR", None)
+    bits = [subprocess.run([sys.executable, "-c", _RIG_BITS], env=env, capture_output=True,
+                           text=True, check=True).stdout.split()[-1] for _ in range(2)]
+    assert any((tmp_path / "cache" / "numba").rglob("*.nbi"))       # the second one did load
+    assert bits[0] == bits[1]

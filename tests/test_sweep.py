@@ -113,11 +113,10 @@ def _arrays(path):
 
 def test_same_config_and_seed_give_identical_arrays(tmp_path):
     """The same case swept twice (each time in a fresh dask worker) and run twice in this
-    process: every dataset of signals/ and bearing/ bit for bit equal within each pair (RK4 with
-    a fixed step is deterministic); a different seed turns the rollers and changes them, so the
-    equality is not vacuous.  (A worker's result against this process's is not compared: on a
-    clean checkout the two compiled the fastmath kernels separately, and once, in CI, a contact
-    force deep in the run differed in its last bits; see the closing note of issue 7.)"""
+    process: every dataset of signals/ and bearing/ bit for bit equal across all four (RK4 with
+    a fixed step is deterministic, and the kernels are IEEE-exact whether compiled in a process
+    or loaded from the cache: test_jitcache.py); a different seed turns the rollers and changes
+    them, so the equality is not vacuous."""
     cfg = _config(tmp_path, duration=0.05, seed=3)
     case = matrix(*load_config(cfg), speeds=[48.0], widths=[2.0])[0]
     for d in ("a", "a2"):
@@ -128,7 +127,7 @@ def test_same_config_and_seed_give_identical_arrays(tmp_path):
     runs = {n: _arrays(p) for n, p in (("a", tmp_path / "a" / "v48_w2.h5"),
                                        ("a2", tmp_path / "a2" / "v48_w2.h5"),
                                        ("b", tmp_path / "b.h5"), ("b2", tmp_path / "b2.h5"))}
-    for x, y in (("a", "a2"), ("b", "b2")):
+    for x, y in (("a", "a2"), ("b", "b2"), ("a", "b")):
         (a, cfg_a), (b, cfg_b) = runs[x], runs[y]
         assert cfg_a == cfg_b == case.toml and "W = 0.002" in cfg_a
         assert sorted(a) == sorted(b) and "signals/outer_ring/acceleration" in a

@@ -22,13 +22,23 @@ criterion was found on.
    is larger is the real fault, the other the pseudo-fault; if they disagree -> undecided.  If
    the larger side shows no fault line while the other does -> undecided.
 4. the lag (the paper, Fig. 13 and conclusion 2: the healthy side lags by 1.1-4.2 ms, so the
-   real side leads), where it names a side (:func:`.lag.impulse_lag`; a lag by correlation
-   when its correlation reaches ``lag_min_peak``): with ``lag_veto`` (default) a leading side
-   that contradicts step 3 makes both undecided rather than a wrong call; with ``lag_ties``
-   (default) it names the real side where RMS and SPM disagree.  Both are ours: the paper
-   states the lag as a finding, not as part of its criterion; ``--no-lag`` leaves them out.
-   And, in the reason, which side is more dispersed (the paper's healthy side has the larger
-   VF).
+   real side leads), by ``Criterion.lag`` (ours: the paper states the lag as a finding, not as
+   part of its criterion):
+
+   * ``"decide"`` (default): a lag read on the impulses (:func:`.lag.impulse_lag`, which names
+     a side only with at least five impulses and 90 % of its bootstrap resamples agreeing)
+     names the real side, on the side that shows fault lines, whatever RMS and SPM say; where
+     they point the other way the reason says so.  The paper's conclusion (1) is that
+     amplitude indicators alone cannot tell the two apart; the lag is the causal evidence:
+     the impulses start at the defect.  A lag read by envelope correlation (records without
+     separable impulses) only vetoes, as below;
+   * ``"veto"``: a leading side that contradicts step 3 makes both undecided rather than a
+     wrong call, and where RMS and SPM disagree the leading side is named real;
+   * ``"off"`` (``--lag off``, ``--no-lag``): the paper's RMS and SPM alone; the lag is only
+     quoted.
+
+   A lag by correlation is used only when its correlation reaches ``lag_min_peak``.  And, in
+   the reason, which side is more dispersed (the paper's healthy side has the larger VF).
 
 Carrying the range to another machine.  VF is in Hz^2, so the paper's range belongs to the metro
 car's frequencies: a machine whose resonances sit k times higher has VF (and VF differences) k^2
@@ -63,6 +73,7 @@ VF_RANGE_PAPER = (0.8e4, 7.49e4)        # Hz^2, paper Fig. 14 and conclusion (3)
 VF_METRO = 5.72e4                       # Hz^2, VF of a flat PSD on 0-200 and 300-800 Hz (Fig. 12)
 REL_RANGE_DEFAULT = (round(VF_RANGE_PAPER[0] / VF_METRO, 2), 1.0)
 MODES = ("absolute", "relative")
+LAG_POLICIES = ("decide", "veto", "off")
 COMPARABLE = ("rms", "spm_db", "peak", "kurtosis", "crest", "SV")
 VERDICTS = ("real fault", "pseudo-fault", "healthy", "undecided")
 SIDES = ("left", "right")
@@ -75,19 +86,17 @@ class Criterion:
     """Thresholds of the criterion (module docstring).  ``vf_range``: Hz^2, used in absolute
     mode; ``rel_range``: dimensionless, used in relative mode; ``compare``: ChannelResult fields
     that must all be larger on the real side; ``lines``: fault lines whose detection counts as a
-    fault; ``lag_min_peak``: envelope correlation needed to quote a lag read by correlation
-    (one read on the impulses is quoted when it names a side); ``lag_veto``: a lag that
-    contradicts the indicators makes the verdict undecided; ``lag_ties``: where the indicators
-    disagree, the leading side is the real one (the paper's conclusion 2)."""
+    fault; ``lag``: how the lag between the sides enters (one of ``LAG_POLICIES``, module
+    docstring, step 4); ``lag_min_peak``: envelope correlation needed to use a lag read by
+    correlation (one read on the impulses carries its own test)."""
 
     mode: str = "absolute"
     vf_range: tuple[float, float] = VF_RANGE_PAPER
     rel_range: tuple[float, float] = REL_RANGE_DEFAULT
     compare: tuple[str, ...] = ("rms", "spm_db")
     lines: tuple[str, ...] = ("BPFO",)
+    lag: str = "decide"
     lag_min_peak: float = 0.3
-    lag_veto: bool = True
-    lag_ties: bool = True
 
     def __post_init__(self):
         if self.mode not in MODES:
@@ -106,6 +115,9 @@ class Criterion:
         if not self.lines:
             raise ParameterError("Criterion.lines = () is not allowed: expected at least one line "
                                  "name (e.g. BPFO)")
+        if self.lag not in LAG_POLICIES:
+            raise ParameterError(f"Criterion.lag = {self.lag!r} is not allowed: expected one of "
+                                 + ", ".join(LAG_POLICIES))
         if not 0 <= self.lag_min_peak <= 1:
             raise ParameterError(f"Criterion.lag_min_peak = {self.lag_min_peak!r} is not allowed: "
                                  "expected a correlation in [0, 1]")
@@ -171,38 +183,49 @@ def verdict(left, right, lag=None, criterion: Criterion = PAPER) -> dict[str, tu
               for c in criterion.compare}
     vals = ", ".join(f"{_LABEL[c]} {_fmt(getattr(left, c))} / {_fmt(getattr(right, c))}"
                      for c in criterion.compare)
-    lead = None                 # the side the lag names, where it is sure enough to quote
-    if lag is not None and lag.leading in ("a", "b") and (
-            getattr(lag, "method", "correlation") == "impulses" or lag.peak >= criterion.lag_min_peak):
-        lead = "left" if lag.leading == "a" else "right"
-        lag_txt = (f"{lead} leads by {lag.lag_s * 1e3:.3g} ms (envelope correlation "
-                   f"{lag.peak:.2f}")
+    lead, sure = None, False    # the side the lag names, where it is sure enough to quote
+    if lag is not None and lag.leading in ("a", "b"):
+        sure = getattr(lag, "method", "correlation") == "impulses"
+        if sure or lag.peak >= criterion.lag_min_peak:
+            lead = "left" if lag.leading == "a" else "right"
+            how = (f"{lag.n_impulses} impulses, {100 * lag.agreement:.0f} % of resamples agree"
+                   if sure else f"envelope correlation {lag.peak:.2f}")
+            lag_txt = f"{lead} leads by {lag.lag_s * 1e3:.3g} ms ({how})"
+    split = len(set(larger.values())) > 1
+    by_indicators = None if split else next(iter(larger.values()))
+    split_txt = "; ".join(f"{_LABEL[c]} larger on {s}" for c, s in larger.items())
     notes = []
-    if len(set(larger.values())) > 1:
-        split = "; ".join(f"{_LABEL[c]} larger on {s}" for c, s in larger.items())
-        if not (criterion.lag_ties and lead is not None and seen[lead]):
-            return both("undecided", f"{m_txt} in {rng_txt} (a pseudo-fault is present), but the "
-                                     f"indicators disagree: {split} (left / right: {vals})")
+    if lead is not None and criterion.lag != "off" and seen[lead] and (
+            (sure and criterion.lag == "decide") or split):
         real = lead             # the paper's conclusion (2): the real side's impulses come first
-        notes.append(f"the indicators disagree ({split}), {lag_txt}) names the real side")
+        if split:
+            notes.append(f"the indicators disagree ({split_txt}); {lag_txt} names the real side")
+        elif by_indicators != real:
+            notes.append(f"{lag_txt} names the real side; "
+                         f"{' and '.join(_LABEL[c] for c in criterion.compare)} point to the other "
+                         "(the transmitted response can be the larger: the paper's conclusion 1)")
+        else:
+            notes.append(f"{lag_txt}; agrees")
+    elif split:
+        return both("undecided", f"{m_txt} in {rng_txt} (a pseudo-fault is present), but the "
+                                 f"indicators disagree: {split_txt} (left / right: {vals})")
     else:
-        real = next(iter(larger.values()))
+        real = by_indicators
+        if lead is not None:
+            agree = lead == real
+            notes.append(f"{lag_txt}; {'agrees' if agree else 'contradicts'}")
+            if not agree and criterion.lag != "off":
+                return both("undecided", f"{m_txt} in {rng_txt} and {vals} (left / right) point "
+                                         f"to {real}, but {notes[-1]}")
     pseudo = other[real]
     if not seen[real]:
         return both("undecided", f"{m_txt} in {rng_txt} and {vals} (left / right) point to {real}, "
                                  f"but only {pseudo} shows fault lines")
-    if lead is not None and not notes:
-        agree = lead == real
-        notes.append(f"{lag_txt}; {'agrees' if agree else 'contradicts'})")
-        if not agree and criterion.lag_veto:
-            return both("undecided", f"{m_txt} in {rng_txt} and {vals} (left / right) point to "
-                                     f"{real}, but {notes[-1]}")
     wider = "left" if left.VF > right.VF else "right"
     notes.append(f"{wider} more dispersed (VF {_fmt(left.VF)} / {_fmt(right.VF)} Hz^2; the paper's "
                  f"pseudo-fault side is: {'agrees' if wider == pseudo else 'contradicts'})")
     common = f"{m_txt} in {rng_txt}: a pseudo-fault is present (paper, conclusion 3); " \
-             f"{' and '.join(_LABEL[c] for c in criterion.compare)} larger on {real} ({vals}, " \
-             f"left / right); " + "; ".join(notes)
+             f"{vals} (left / right); " + "; ".join(notes)
     own = {real: f"{', '.join(seen[real])} detected",
            pseudo: f"{', '.join(seen[pseudo])} detected here too" if seen[pseudo]
            else "no fault line found here"}
