@@ -26,7 +26,7 @@ WHY = {
     "1b": "which width carries across best depends on where the impacts' energy lies against "
           "the wheelset's bending modes: ours (coarse mesh, S1002 wheel, the calibrated contact "
           "damping) are not the paper's (LM wheel, its FE wheelset); 1 mm and 3 mm are within "
-          "half a decibel of each other",
+          "two decibels of each other",
     "1c": "at 1 mm and 20-40 km/h the two sides' RMS and peaks are within a few per cent: the "
           "calibrated contact damping keeps a 1 mm defect's impacts small, and the healthy side "
           "carries the wheelset's bending and its own wheel-rail noise",
@@ -42,7 +42,7 @@ WHY = {
           "about a millisecond, and the impacts' lobes repeat every 1.1 kHz up to the "
           "acquisition's band edge, so its VF (about 1e6 Hz^2) is far above the healthy side's, "
           "whose energy lies in 0-200 and 300-800 Hz as the paper's (benchmarks/README.md)",
-    "3": "the defect side's VF is set by its impacts' spectrum (2c): the VF difference is ten to "
+    "3": "the defect side's VF is set by its impacts' spectrum (2c): the VF difference is five to "
          "twenty times the top of the paper's range in every case, and no modelling choice "
          "within published ranges brings it in (benchmarks/README.md, sensitivity); the relative "
          "form (--relative) is the portable one",
