@@ -9,9 +9,13 @@ Run: ``python benchmarks/bearing.py``.
 """
 from __future__ import annotations
 
+import importlib.util
 import platform
 import resource
+import sys
+import tempfile
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -54,6 +58,50 @@ def rhs_timings():
     return rows
 
 
+def fastmath_kernel():
+    """The shipped kernel's source compiled again with ``fastmath=True`` (what it was before
+    the in-process / cached bit difference, bearing/kernel.py's docstring), as a sibling module
+    so that both run side by side in this process."""
+    src = Path(kernel.__file__).read_text()
+    src = src.replace('@njit(inline="always")', '@njit(inline="always", fastmath=True)')
+    src = src.replace("@njit(cache=True)", "@njit(fastmath=True)")
+    path = Path(tempfile.mkdtemp()) / "kernel_fastmath.py"
+    path.write_text(src)
+    name = "axlebox.bearing.kernel_fastmath"
+    spec = importlib.util.spec_from_file_location(name, path)
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules[name] = mod
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def fastmath_cost(repeats=7, n=20000):
+    """Best of ``repeats`` timings of ``n`` calls at the running state, IEEE against fastmath,
+    interleaved so that the shared machine's load falls on both alike."""
+    p = BearingParams()
+    cfg = RigConfig(defects=(Defect(W=2e-3),))
+    Y, P, D, rig = initial_state(cfg)
+    n_s = layout.n_state(p.Z)
+    every = cfg.fs_out_every
+    m = 10000 // every
+    run_rk4(Y, 0.0, cfg.dt, 10000, every, P, D, rig, np.zeros((10000, 3)), np.zeros((m, 2, 6)),
+            np.zeros((m, 2, p.Z, 6)), np.zeros((m, 2, 2)))
+    y = Y[:n_s].copy()
+    ring = equilibrium.ring_motion(cfg.omega_w, Y[n_s:n_s + 3])
+    ring[1, 6:9] = Y[n_s + 3:n_s + 6]
+    fm = fastmath_kernel()
+    best = {"IEEE (shipped)": np.inf, "fastmath": np.inf}
+    out = {}
+    for _ in range(repeats):
+        for label, mod in (("IEEE (shipped)", kernel), ("fastmath", fm)):
+            yd, F, Q = np.zeros(n_s), np.zeros((2, 6)), np.zeros((2, p.Z, 6))
+            best[label] = min(best[label], per_call(mod.dtrb_rhs, n, 0.0, y, ring, P, D, yd, F, Q))
+            out[label] = yd
+    diff = np.max(np.abs(out["fastmath"] - out["IEEE (shipped)"]) /
+                  (np.abs(out["IEEE (shipped)"]) + 1e-300))
+    return best, diff
+
+
 def rig_speed(duration=1.0):
     rows = []
     for label, defects in (("healthy", ()), ("2 mm defect", (Defect(W=2e-3),))):
@@ -93,6 +141,12 @@ def main():
           "| --- | --- | --- | --- | --- |")
     for name, nc, a, b, s in rhs_timings():
         print(f"| {name} | {nc} | {a:.1f} | {b:.0f} | {s:.0f}x |")
+    best, diff = fastmath_cost()
+    print("\n| kernel flags (running rig, t = 0.1 s) | us/call, best of 7 |\n| --- | --- |")
+    for label, t in best.items():
+        print(f"| {label} | {t * 1e6:.2f} |")
+    print(f"fastmath / IEEE: {best['fastmath'] / best['IEEE (shipped)']:.3f}; "
+          f"largest relative difference of the state derivative {diff:.1e}")
     print("\n| rig run | dt s | simulated s | wall s | simulated s per wall s |\n"
           "| --- | --- | --- | --- | --- |")
     for label, dt, dur, wall, rate in rig_speed():
