@@ -19,6 +19,13 @@ are bodies of the vehicle).  A row's 20 rollers couple only through its cage, so
 block-arrowhead: each roller's 6 x 6 block is eliminated onto the cage's (a Schur complement),
 the cage's 6 x 6 system solved, and the rollers recovered; every block is symmetric positive
 definite (``M`` > 0, ``C`` >= 0), solved by Cholesky.
+
+``"imex2"`` puts more in ``C``, with the same solve: ``P[H_K] K`` (``H_K = h / 4``, K the
+contacts' normal stiffness ``k J^T J`` and the line contacts' tilt stiffness ``k L^2 / 12``),
+which turns the kick into Newmark's average acceleration on the contact stiffness
+(``(M + h^2 K / 4) du = h F(q_n)`` is ``q_{n+1} - 2 q_n + q_{n-1} = h^2 M^-1 F((q_{n+1} + 2 q_n +
+q_{n-1}) / 4)`` linearised: unconditionally stable, second order, no numerical damping), and the
+friction's secant damping ``mu Q / sqrt(|v_t|^2 + v_s^2)`` in each contact plane.
 """
 from __future__ import annotations
 

@@ -15,10 +15,12 @@ import numpy as np
 
 from axlebox._params import ParameterError, check_ranges, param
 
+from axlebox.bearing.layout import H_K
+
 from . import kernel_integrate as ki
 from .system import Model
 
-METHODS = ("rk4", "leapfrog", "imex", "galpha")
+METHODS = ("rk4", "leapfrog", "imex", "imex2", "galpha")
 
 
 @dataclass(frozen=True)
@@ -26,7 +28,10 @@ class Settings:
     """Integrator settings; ``dt`` must divide the output period."""
 
     method: str = field(default="rk4", metadata={"doc": "'rk4', 'leapfrog', 'imex' (the leapfrog with "
-                                                    "the bearings' contact damping implicit) or "
+                                                    "the bearings' contact damping implicit), "
+                                                    "'imex2' (their contact stiffness, by Newmark's "
+                                                    "average acceleration, and friction too: "
+                                                    "experimental, benchmarks/README.md) or "
                                                     "'galpha'"})
     dt: float = param(2e-5, 1e-8, 1e-2, unit="s", doc="fixed step")
     output_rate_hz: float = param(10_000.0, 1.0, 1e7, unit="Hz", doc="sensor output rate")
@@ -99,10 +104,15 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
     n_out = int(round(duration * s.output_rate_hz)) + 1
     y = np.array(model.y0 if y0 is None else y0, float)
     W = model.W
-    if s.method == "imex" and model.bearing_names:
+    S = model.S
+    if s.method in ("imex", "imex2") and model.bearing_names:
         # the bearings' contact damping blocks, filled by the right-hand side, used by the kick
         Z = int(model.S[17][0, 0])
         W = W[:16] + (np.zeros((len(model.bearing_names), 2, Z + 1, 6, 12)),)
+        if s.method == "imex2":           # and their stiffness, h^2 / 4 K: Newmark's average
+            br_P = S[17].copy()           # acceleration on the contacts
+            br_P[:, H_K] = 0.25 * h
+            S = S[:17] + (br_P,) + S[18:]
     nw, ne = len(model.wheel_names), model.S[7].shape[0]
     out_t = np.zeros(n_out)
     out_sens = np.zeros((n_out, W[15].shape[0], 3))
@@ -127,9 +137,9 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
         k1 = min(n_out, k + per)
         tk = t0 + k * s.n_sub * h
         try:
-            if s.method in ("rk4", "leapfrog", "imex"):
+            if s.method in ("rk4", "leapfrog", "imex", "imex2"):
                 status, k_done, bad = ki.run_explicit(s.method != "rk4", y, tk, h, s.n_sub, k1, k,
-                                                      n_out - 1, model.S, W, model.nq, nend, s.vmax,
+                                                      n_out - 1, S, W, model.nq, nend, s.vmax,
                                                       out_t, out_sens, out_wh, out_el, out_y, se,
                                                       k == 0 and not continued)
             else:

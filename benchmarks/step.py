@@ -1,0 +1,60 @@
+"""The coupled car's step against the scheme: stability and what the diagnosis reads.
+
+    python3 benchmarks/step.py [--duration 1.5] [--runs imex:5e-6 imex2:1e-5 imex2:2e-5 ...]
+
+The validation case (configs/validation_48kmh.toml, front bogie flexible, coarse bodies; the
+integrator's own 10 kHz output, no sensor model) by each ``method:dt``, bypassing the configs'
+step limits: whether it runs, wall seconds per simulated second, and after the 0.5 s fade-in the
+defect-side (ws2_R) and healthy-side RMS, the defect side's BPFO envelope line and its largest
+|a|, each against the first run's.
+"""
+from __future__ import annotations
+
+import argparse
+
+from axlebox.bearing.frequencies import orders, shaft_hz
+from axlebox.bearing.params import BearingParams
+from axlebox.mbs import integrate
+from axlebox.pipelines.readers import TRACK_FADE_IN_S
+
+from coupled import FRONT, bpfo_line, variant
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--duration", type=float, default=1.5, help="simulated s a run (>= 1.3)")
+    ap.add_argument("--runs", nargs="+", default=["imex:5e-6", "imex2:1e-5", "imex2:2e-5"])
+    ap.add_argument("--bodies", default="", help="reduced-body folder (default: built into the cache)")
+    a = ap.parse_args()
+    if not a.duration >= TRACK_FADE_IN_S + 0.8:     # the BPFO line needs 0.8 s after the fade-in
+        ap.error(f"--duration {a.duration:g} is not allowed: expected at least "
+                 f"{TRACK_FADE_IN_S + 0.8:g} s")
+    try:
+        runs = [(r.split(":")[0], float(r.split(":")[1])) for r in a.runs]
+    except (IndexError, ValueError):
+        ap.error(f"--runs {' '.join(a.runs)!r} is not allowed: expected method:dt, e.g. imex2:1e-5")
+    model, y0 = variant(a.bodies, {"bodies": {"flexible": FRONT}})
+    fs = 1e4
+    skip = int(TRACK_FADE_IN_S * fs)
+    bpfo = orders(BearingParams()).BPFO * shaft_hz(48.0, 0.42)
+    print("| method | dt s | status | wall s per simulated s | ws2_R RMS | ws2_L RMS | "
+          "ws2_R BPFO line | ws2_R peak | against the first |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    ref = None
+    for method, dt in runs:
+        s = integrate.Settings(method=method, dt=dt, output_rate_hz=fs, state_rate_hz=100)
+        integrate.simulate(model, 0.001, s, y0=y0)                  # compile outside the timing
+        r = integrate.simulate(model, a.duration, s, y0=y0)
+        if r.status != "done":
+            print(f"| {method} | {dt:g} | {r.status}: {r.message} | | | | | | |", flush=True)
+            continue
+        R, L = (r.sensors[n][skip:, 2] for n in ("ws2_R", "ws2_L"))
+        x = (R.std(), L.std(), bpfo_line(R, fs, bpfo), abs(R).max())
+        ref = ref or x
+        diff = ", ".join(f"{(v / w - 1) * 100:+.1f} %" for v, w in zip(x, ref))
+        print(f"| {method} | {dt:g} | done | {r.wall_s / a.duration:.1f} | {x[0]:.3f} | {x[1]:.3f} | "
+              f"{x[2]:.3f} | {x[3]:.1f} | {diff} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
