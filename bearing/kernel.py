@@ -143,15 +143,17 @@ def _normal(q_el, K, n, ddot, m, P, dmax):
     """
     if q_el <= 0.0:
         return 0.0, 0.0
-    k = n * q_el / dmax
     if P[LAW] == 0.0:
-        c = 2.0 * P[ZETA] * sqrt(m * k)
+        c = 2.0 * P[ZETA] * sqrt(m * n * q_el / dmax)
     elif P[LAW] == 1.0:
         c = P[C_RULE] * K
     else:
-        c = P[BETA] * k
+        c = P[BETA] * n * q_el / dmax
     q = q_el + c * ddot
-    return (q, c + P[H_K] * k) if q > 0.0 else (0.0, 0.0)
+    if not q > 0.0:
+        return 0.0, 0.0
+    # (the same expressions as before "imex2", so that its H_K = 0 leaves every bit as it was)
+    return q, (c if P[H_K] == 0.0 else c + P[H_K] * n * q_el / dmax)
 
 
 @njit(inline="always")
