@@ -36,6 +36,8 @@ from numba import njit
 
 from .layout import J_CD, J_CP, J_RA, J_RD, KINEMATIC, M_C, M_R, N_CAGE, N_ROLLER, R_M, RHO, Z
 
+NEWMARK_K = 0.25        # "imex2": H_K = NEWMARK_K h, Newmark's average acceleration (docstring)
+
 
 @njit(inline="always")
 def _cholesky(A, L):

@@ -165,7 +165,7 @@ def _line_contact(i0, i1, K, L, d0, kap, ddot, m, mu, vrel, nrm, P):
     Q, c = _normal(K / L * i0, K, N_LINE, ddot, m, P, dmax)
     m1 = K / L * i1 if Q > 0.0 else 0.0
     # the tilt stiffness dm1/dkap, about k L^2 / 12 (uniform compression), for the implicit kick
-    kt = P[H_K] * N_LINE * K / L * i0 / dmax * L * L / 12.0 if Q > 0.0 else 0.0
+    kt = P[H_K] * N_LINE * K / L * i0 / dmax * L * L / 12.0 if Q > 0.0 and P[H_K] > 0.0 else 0.0
     return Q, m1, _friction(vrel, nrm, mu * Q, P[V_S]), c, kt
 
 
@@ -358,8 +358,8 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
                 if acc and cdmp > 0.0:
                     Jr = _rates(1.0, no, _mul(rb, no), er, et, ey, ax, bx, R + rho)
                     _damping_rows(G, j, k, nz, cdmp, Jr, Jr, False)
-                    G[j, k, 3, 3] += ktl
                     if P[H_K] > 0.0:
+                        G[j, k, 3, 3] += ktl
                         _friction_rows(G, j, k, nz, P[MU_R] * Qo, vrel, no, vs, et, _mul(rb, no),
                                        er, et, ey, ax, bx, R + rho, False, ey)
                 fr = _lin(-Qo, no, 1.0, f)
@@ -381,8 +381,8 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
                 if acc and cdmp > 0.0:
                     Jr = _rates(-1.0, ni, _mul(-rb, ni), er, et, ey, ax, bx, R + rho)
                     _damping_rows(G, j, k, nz, cdmp, Jr, Jr, False)
-                    G[j, k, 3, 3] += ktl
                     if P[H_K] > 0.0:
+                        G[j, k, 3, 3] += ktl
                         _friction_rows(G, j, k, nz, P[MU_R] * Qi, vrel, ni, vs, et, _mul(-rb, ni),
                                        er, et, ey, ax, bx, R + rho, False, ey)
                 fr = _lin(Qi, ni, 1.0, f)

@@ -35,22 +35,32 @@ def per_call(f, n, *args):
     return (time.perf_counter() - t) / n
 
 
-def rhs_timings():
+def rig_states():
+    """``(P, D, [(name, y, ring)])``: the kernel's inputs at the quasi-static start and in the
+    running rig (0.1 s of RK4 from the start)."""
     p = BearingParams()
     cfg = RigConfig(defects=(Defect(W=2e-3),))
     Y, P, D, rig = initial_state(cfg)
     n = layout.n_state(p.Z)
-    Yr = Y.copy()                     # a running state: 0.1 s of the rig from the start
+    Yr = Y.copy()
     every = cfg.fs_out_every
     m = 10000 // every
     run_rk4(Yr, 0.0, cfg.dt, 10000, every, P, D, rig, np.zeros((10000, 3)), np.zeros((m, 2, 6)),
             np.zeros((m, 2, p.Z, 6)), np.zeros((m, 2, 2)))
-    rows = []
+    states = []
     for name, Ys in (("quasi-static start", Y), ("running rig, t = 0.1 s", Yr)):
-        y = Ys[:n].copy()
         ring = equilibrium.ring_motion(cfg.omega_w, Ys[n:n + 3])
         ring[1, 6:9] = Ys[n + 3:n + 6]
-        yd, F, Q = np.zeros(n), np.zeros((2, 6)), np.zeros((2, p.Z, 6))
+        states.append((name, Ys[:n].copy(), ring))
+    return P, D, states
+
+
+def rhs_timings():
+    P, D, states = rig_states()
+    Z = int(P[layout.Z])
+    rows = []
+    for name, y, ring in states:
+        yd, F, Q = np.zeros(y.size), np.zeros((2, 6)), np.zeros((2, Z, 6))
         t_nb = per_call(kernel.dtrb_rhs, 20000, 0.0, y, ring, P, D, yd, F, Q)
         t_np = per_call(dtrb_rhs_numpy, 300, 0.0, y, ring, P, D)
         kernel.dtrb_rhs(0.0, y, ring, P, D, yd, F, Q)
@@ -78,23 +88,15 @@ def fastmath_kernel():
 def fastmath_cost(repeats=7, n=20000):
     """Best of ``repeats`` timings of ``n`` calls at the running state, IEEE against fastmath,
     interleaved so that the shared machine's load falls on both alike."""
-    p = BearingParams()
-    cfg = RigConfig(defects=(Defect(W=2e-3),))
-    Y, P, D, rig = initial_state(cfg)
-    n_s = layout.n_state(p.Z)
-    every = cfg.fs_out_every
-    m = 10000 // every
-    run_rk4(Y, 0.0, cfg.dt, 10000, every, P, D, rig, np.zeros((10000, 3)), np.zeros((m, 2, 6)),
-            np.zeros((m, 2, p.Z, 6)), np.zeros((m, 2, 2)))
-    y = Y[:n_s].copy()
-    ring = equilibrium.ring_motion(cfg.omega_w, Y[n_s:n_s + 3])
-    ring[1, 6:9] = Y[n_s + 3:n_s + 6]
+    P, D, states = rig_states()
+    _, y, ring = states[1]                    # the running rig
+    Z = int(P[layout.Z])
     fm = fastmath_kernel()
     best = {"IEEE (shipped)": np.inf, "fastmath": np.inf}
     out = {}
     for _ in range(repeats):
         for label, mod in (("IEEE (shipped)", kernel), ("fastmath", fm)):
-            yd, F, Q = np.zeros(n_s), np.zeros((2, 6)), np.zeros((2, p.Z, 6))
+            yd, F, Q = np.zeros(y.size), np.zeros((2, 6)), np.zeros((2, Z, 6))
             best[label] = min(best[label], per_call(mod.dtrb_rhs, n, 0.0, y, ring, P, D, yd, F, Q))
             out[label] = yd
     diff = np.max(np.abs(out["fastmath"] - out["IEEE (shipped)"]) /

@@ -24,7 +24,8 @@ INF = math.inf
 SCHEMA: dict[str, dict[str, tuple]] = {
     "run": {"duration": (F, 5.0, 1e-4, 1e4), "speed_kmh": (F, 48.0, 1.0, 200.0),
             "seed": (I, 0, 0, 2**31 - 1)},
-    "integrator": {"method": (S, "rk4", ("rk4", "leapfrog", "imex", "imex2", "galpha")), "dt": (F, 2e-5, 1e-7, 1e-3),
+    "integrator": {"method": (S, "rk4", ("rk4", "leapfrog", "imex", "imex2", "galpha")),
+                   "dt": (F, 2e-5, 1e-7, 1e-3),
                    "output_rate_hz": (F, 1e4, 1.0, 1e6), "state_rate_hz": (F, 500.0, 0.1, 1e6),
                    "rho_inf": (F, 0.8, 0.0, 1.0)},
     "track": {"fra_class": (I, 5, 1, 6), "lambda_min": (F, 1.0, 0.1, 100.0),

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from axlebox._params import ParameterError, check_ranges, param
-
+from axlebox.bearing.implicit import NEWMARK_K
 from axlebox.bearing.layout import H_K
 
 from . import kernel_integrate as ki
@@ -111,7 +111,7 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
         W = W[:16] + (np.zeros((len(model.bearing_names), 2, Z + 1, 6, 12)),)
         if s.method == "imex2":           # and their stiffness, h^2 / 4 K: Newmark's average
             br_P = S[17].copy()           # acceleration on the contacts
-            br_P[:, H_K] = 0.25 * h
+            br_P[:, H_K] = NEWMARK_K * h
             S = S[:17] + (br_P,) + S[18:]
     nw, ne = len(model.wheel_names), model.S[7].shape[0]
     out_t = np.zeros(n_out)

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from axlebox.bearing.diagnostics.criterion import PAPER, Criterion, verdict
+from axlebox.bearing.diagnostics.criterion import Criterion, verdict
 
 AGREES, DIFFERS, PARTLY, NA = "agrees", "differs", "partly", "no cases"
 

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from axlebox.bearing import defects, equilibrium, kernel, layout
-from axlebox.bearing.implicit import damped_kick
+from axlebox.bearing.implicit import NEWMARK_K, damped_kick
 from axlebox.bearing.layout import N_CAGE, N_ROLLER
 from axlebox.bearing.params import BearingParams
 
@@ -154,7 +154,7 @@ def test_stiffness_blocks_are_the_contacts_stiffness():
     kernel.dtrb_rhs(0.0, y, ring, P0, D, yd, F, Qc)
     j, k = np.unravel_index(np.argmax(Qc[:, :, layout.Q_O]), Qc.shape[:2])
     b0 = (j * Z + k) * N_ROLLER
-    Ja, Jd = p.J_r
+    _, Jd = p.J_r
     for q, m, eps in ((layout.RHO, p.M_r, 1e-8), (layout.TH_T, Jd, 1e-7)):
         f = []
         for sgn in (1.0, -1.0):
@@ -179,7 +179,7 @@ def test_imex2_steps_past_the_tilt_limit():
     ref = run(p, 2.5e-7, T, damped=False)
     assert ref is not None
     assert run(p, 2e-5, T, damped=True) is None
-    imp = run(p, 2e-5, T, damped=True, h_k=0.25)
+    imp = run(p, 2e-5, T, damped=True, h_k=NEWMARK_K)
     assert imp is not None
     assert np.mean(imp) == pytest.approx(np.mean(ref), rel=0.02)
     assert np.std(imp) == pytest.approx(np.std(ref), rel=0.02)
