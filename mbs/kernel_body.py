@@ -119,25 +119,27 @@ def gravity_load(b, bi, bf, inv, y, A, g, Qg):
     """Generalised gravity load (6 + n) of body ``b``: ``m g``, ``S x A^T g``, ``Ct^T A^T g``."""
     n = bi[b, BI_N]
     m = bf[b, BF_M]
-    gb = np.empty(3)
+    # scalars, not small arrays: an allocation costs about as much as this whole load
+    g0 = A[0, 0] * g[0] + A[1, 0] * g[1] + A[2, 0] * g[2]
+    g1 = A[0, 1] * g[0] + A[1, 1] * g[1] + A[2, 1] * g[2]
+    g2 = A[0, 2] * g[0] + A[1, 2] * g[1] + A[2, 2] * g[2]
     for a in range(3):
         Qg[a] = m * g[a]
-        gb[a] = A[0, a] * g[0] + A[1, a] * g[1] + A[2, a] * g[2]
-    S = np.empty(3)
-    for a in range(3):
-        S[a] = bf[b, BF_MC + a]
+    S0, S1, S2 = bf[b, BF_MC], bf[b, BF_MC + 1], bf[b, BF_MC + 2]
     if n > 0:
         Ct = inv_views(inv, bi[b, BI_INV], n)[0]
         q0 = bi[b, BI_POS] + 7 + bi[b, BI_SPIN]
-        for a in range(3):
-            for k in range(n):
-                S[a] += Ct[a, k] * y[q0 + k]
         for k in range(n):
-            Qg[6 + k] = Ct[0, k] * gb[0] + Ct[1, k] * gb[1] + Ct[2, k] * gb[2]
-    t = np.empty(3)
-    cross(S, gb, t)
-    for a in range(3):
-        Qg[3 + a] = t[a]
+            S0 += Ct[0, k] * y[q0 + k]
+        for k in range(n):
+            S1 += Ct[1, k] * y[q0 + k]
+        for k in range(n):
+            S2 += Ct[2, k] * y[q0 + k]
+        for k in range(n):
+            Qg[6 + k] = Ct[0, k] * g0 + Ct[1, k] * g1 + Ct[2, k] * g2
+    Qg[3] = S1 * g2 - S2 * g1
+    Qg[4] = S2 * g0 - S0 * g2
+    Qg[5] = S0 * g1 - S1 * g0
 
 
 @njit(cache=True)
@@ -151,39 +153,39 @@ def body_accelerations(b, y, bi, bf, inv, A, om, omf, Qb, acc):
         # (a_b = A^T v'),  m a_b - S x w' = f,  S x a_b + J_o w' = g,  which solve in closed form
         # with the inertia about the centre of mass J_c = J_o - (|S|^2 I - S S^T)/m:
         # w' = J_c^-1 (g - c x f),  a_b = f/m + c x w'
-        J = np.empty((3, 3))
+        # written with scalars (3 x 3 products and small arrays cost more than the algebra)
+        P = bf[b, BF_P0:BF_P0 + 9]
+        tr = P[0] + P[4] + P[8]
+        o0, o1, o2 = om[0], om[1], om[2]
+        Jw0 = tr * o0 - (P[0] * o0 + P[1] * o1 + P[2] * o2)
+        Jw1 = tr * o1 - (P[3] * o0 + P[4] * o1 + P[5] * o2)
+        Jw2 = tr * o2 - (P[6] * o0 + P[7] * o1 + P[8] * o2)
+        w0, w1, w2 = omf[0], omf[1], omf[2]
+        g0 = Qb[3] - (w1 * Jw2 - w2 * Jw1)
+        g1 = Qb[4] - (w2 * Jw0 - w0 * Jw2)
+        g2 = Qb[5] - (w0 * Jw1 - w1 * Jw0)
+        S0, S1, S2 = bf[b, BF_MC], bf[b, BF_MC + 1], bf[b, BF_MC + 2]
+        u0, u1, u2 = w1 * S2 - w2 * S1, w2 * S0 - w0 * S2, w0 * S1 - w1 * S0     # w x S
+        v0, v1, v2 = w1 * u2 - w2 * u1, w2 * u0 - w0 * u2, w0 * u1 - w1 * u0     # w x (w x S)
+        f0 = A[0, 0] * Qb[0] + A[1, 0] * Qb[1] + A[2, 0] * Qb[2] - v0
+        f1 = A[0, 1] * Qb[0] + A[1, 1] * Qb[1] + A[2, 1] * Qb[2] - v1
+        f2 = A[0, 2] * Qb[0] + A[1, 2] * Qb[1] + A[2, 2] * Qb[2] - v2
+        c0, c1, c2 = S0 / m, S1 / m, S2 / m
+        h0 = g0 - (c1 * f2 - c2 * f1)
+        h1 = g1 - (c2 * f0 - c0 * f2)
+        h2 = g2 - (c0 * f1 - c1 * f0)
+        Ji = bf[b, BF_JINV:BF_JINV + 9]
+        wd0 = Ji[0] * h0 + Ji[1] * h1 + Ji[2] * h2
+        wd1 = Ji[3] * h0 + Ji[4] * h1 + Ji[5] * h2
+        wd2 = Ji[6] * h0 + Ji[7] * h1 + Ji[8] * h2
+        a0 = c1 * wd2 - c2 * wd1 + f0 / m
+        a1 = c2 * wd0 - c0 * wd2 + f1 / m
+        a2 = c0 * wd1 - c1 * wd0 + f2 / m
         for a in range(3):
-            for c in range(3):
-                J[a, c] = -bf[b, BF_P0 + 3 * a + c]
-            J[a, a] += bf[b, BF_P0] + bf[b, BF_P0 + 4] + bf[b, BF_P0 + 8]
-        Jw = J @ om
-        g = np.empty(3)
-        cross(omf, Jw, g)
-        S = np.empty(3)
-        for a in range(3):
-            S[a] = bf[b, BF_MC + a]
-            g[a] = Qb[3 + a] - g[a]
-        t1 = np.empty(3)
-        t2 = np.empty(3)
-        cross(omf, S, t1)
-        cross(omf, t1, t2)
-        f = np.empty(3)
-        for a in range(3):
-            f[a] = A[0, a] * Qb[0] + A[1, a] * Qb[1] + A[2, a] * Qb[2] - t2[a]
-            S[a] /= m                                   # now c
-        cross(S, f, t1)
-        wd = np.empty(3)
-        for a in range(3):
-            s = 0.0
-            for c in range(3):
-                s += bf[b, BF_JINV + 3 * a + c] * (g[c] - t1[c])
-            wd[a] = s
-        cross(S, wd, t2)
-        for a in range(3):
-            t2[a] += f[a] / m
-        for a in range(3):
-            acc[a] = A[a, 0] * t2[0] + A[a, 1] * t2[1] + A[a, 2] * t2[2]
-            acc[3 + a] = wd[a]
+            acc[a] = A[a, 0] * a0 + A[a, 1] * a1 + A[a, 2] * a2
+        acc[3] = wd0
+        acc[4] = wd1
+        acc[5] = wd2
         return
     Ct, Qi, R, _, K, D, Mei = inv_views(inv, bi[b, BI_INV], n)
     q0 = bi[b, BI_POS] + 7 + bi[b, BI_SPIN]

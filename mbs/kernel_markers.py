@@ -129,35 +129,29 @@ def marker_acceleration(m, y, dy, bi, mk_i, mk_f, shp, Ab, omfb, mku, out):
         out[:] = 0.0
         return
     iv = bi[b, BI_VEL]
-    spin = bi[b, BI_SPIN]
-    w = omfb[b]
-    wd = np.empty(3)
-    for a in range(3):
-        wd[a] = dy[iv + 3 + a]
-    if spin == 1:
-        wd[1] = 0.0
-    u = mku[m]
-    ud = np.zeros(3)
-    udd = np.zeros(3)
+    w0, w1, w2 = omfb[b, 0], omfb[b, 1], omfb[b, 2]
+    d0, d1, d2 = dy[iv + 3], dy[iv + 4], dy[iv + 5]
+    if bi[b, BI_SPIN] == 1:
+        d1 = 0.0
+    u0, u1, u2 = mku[m, 0], mku[m, 1], mku[m, 2]
+    # scalars, not small arrays: eleven sensors' allocations cost more than their algebra
+    ud0 = ud1 = ud2 = udd0 = udd1 = udd2 = 0.0
     so = mk_i[m, MK_SHP]
     if so >= 0:
         n = bi[b, BI_N]
         for k in range(n):
-            for a in range(3):
-                ft = shp[so + a * n + k]
-                ud[a] += ft * y[iv + 6 + k]
-                udd[a] += ft * dy[iv + 6 + k]
-    t1 = np.empty(3)
-    t2 = np.empty(3)
-    loc = np.empty(3)
-    cross(wd, u, loc)
-    cross(w, u, t1)
-    cross(w, t1, t2)
-    for a in range(3):
-        loc[a] += t2[a] + udd[a]
-    cross(w, ud, t1)
-    for a in range(3):
-        loc[a] += 2.0 * t1[a]
+            qd, qdd = y[iv + 6 + k], dy[iv + 6 + k]
+            f0, f1, f2 = shp[so + k], shp[so + n + k], shp[so + 2 * n + k]
+            ud0 += f0 * qd
+            ud1 += f1 * qd
+            ud2 += f2 * qd
+            udd0 += f0 * qdd
+            udd1 += f1 * qdd
+            udd2 += f2 * qdd
+    t0, t1, t2 = w1 * u2 - w2 * u1, w2 * u0 - w0 * u2, w0 * u1 - w1 * u0            # w x u
+    l0 = d1 * u2 - d2 * u1 + (w1 * t2 - w2 * t1) + udd0 + 2.0 * (w1 * ud2 - w2 * ud1)
+    l1 = d2 * u0 - d0 * u2 + (w2 * t0 - w0 * t2) + udd1 + 2.0 * (w2 * ud0 - w0 * ud2)
+    l2 = d0 * u1 - d1 * u0 + (w0 * t1 - w1 * t0) + udd2 + 2.0 * (w0 * ud1 - w1 * ud0)
     A = Ab[b]
     for a in range(3):
-        out[a] = dy[iv + a] + A[a, 0] * loc[0] + A[a, 1] * loc[1] + A[a, 2] * loc[2]
+        out[a] = dy[iv + a] + A[a, 0] * l0 + A[a, 1] * l1 + A[a, 2] * l2
