@@ -13,6 +13,7 @@ import tomllib
 from pathlib import Path
 
 from axlebox._params import ParameterError
+from axlebox.mbs.integrate import METHODS
 
 BODY_NAMES = (["carbody", "frame1", "frame2"] + [f"ws{i}" for i in range(1, 5)]
               + [f"ab{i}{s}" for i in range(1, 5) for s in "LR"] + [f"gb{i}" for i in range(1, 5)])
@@ -24,8 +25,8 @@ INF = math.inf
 SCHEMA: dict[str, dict[str, tuple]] = {
     "run": {"duration": (F, 5.0, 1e-4, 1e4), "speed_kmh": (F, 48.0, 1.0, 200.0),
             "seed": (I, 0, 0, 2**31 - 1)},
-    "integrator": {"method": (S, "rk4", ("rk4", "leapfrog", "imex", "imex2", "galpha")),
-                   "dt": (F, 2e-5, 1e-7, 1e-3),
+    "integrator": {"method": (S, "leapfrog", METHODS),
+                   "dt": (F, 5e-5, 1e-7, 1e-3),
                    "output_rate_hz": (F, 1e4, 1.0, 1e6), "state_rate_hz": (F, 500.0, 0.1, 1e6),
                    "rho_inf": (F, 0.8, 0.0, 1.0)},
     "track": {"fra_class": (I, 5, 1, 6), "lambda_min": (F, 1.0, 0.1, 100.0),
@@ -66,6 +67,7 @@ SCHEMA: dict[str, dict[str, tuple]] = {
                   "traction_k": (F, 5e6, 0.0, 1e10), "bumpstop_clearance": (F, 0.03, 0.0, 0.2),
                   "bumpstop_k": (F, 2e6, 0.0, 1e10)},
     "joint": {"model": (S, "bushing", ("bushing", "dtrb")),
+              "wheelsets": (L, [1, 2, 3, 4], (1, 2, 3, 4)),
               "k_radial": (F, 1e9, 1e3, 1e12), "k_axial": (F, 5e8, 1e3, 1e12), "c": (F, 2e4, 0.0, 1e8)},
     "sensors": {"node": (S, "sensor_pad", None), "model": (S, "ideal", ("ideal", "accelerometer")),
                 "fs_hz": (F, 1e4, 100.0, 1e6), "resonance_hz": (F, 25e3, 100.0, 1e7),
@@ -159,6 +161,12 @@ def _check(sec: str, key: str, value, spec) -> object:
             raise ParameterError(f"{name} = {value!r} is not allowed: expected 3 numbers in "
                                  f"[{lim[0]:g}, {lim[1]:g}]")
         return [float(v) for v in value]
+    if not isinstance(lim[0], str):         # wheelset numbers
+        if (not value or len(set(value)) != len(value)
+                or not all(type(v) is int and v in lim for v in value)):
+            raise ParameterError(f"{name} = {value!r} is not allowed: expected distinct wheelset "
+                                 f"numbers from {list(lim)}, at least one")
+        return sorted(value)
     for v in value:
         if v not in lim:
             raise ParameterError(f"{name} = {value!r} is not allowed: {v!r} is not a body "
@@ -205,6 +213,11 @@ def validate(user: dict) -> dict:
             raise ParameterError(f"integrator.dt = {ig['dt']:g} is not allowed with joint.model = "
                                  f"'dtrb' and method {ig['method']!r}: expected at most {dt_max:g} s "
                                  "(the roller contacts)")
+        for d in cfg["defects"]:
+            if d["wheelset"] not in cfg["joint"]["wheelsets"]:
+                raise ParameterError(f"defects: wheelset = {d['wheelset']} is not allowed: its "
+                                     f"axle-boxes sit on row bushings (joint.wheelsets = "
+                                     f"{cfg['joint']['wheelsets']}); expected one of those")
     elif cfg["defects"]:
         raise ParameterError("defects need joint.model = 'dtrb': with the bushing joint there is "
                              "no bearing to hold them")

@@ -156,7 +156,7 @@ def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None 
                 W_ab = ab.mass * G
                 s.add_body(ab, r=(x, sg * geo["journal_y"], z_ws), v=(V, 0, 0),
                            rotation=None if sg > 0 else _rotz_pi())
-                if bearings is not None:
+                if bearings is not None and (k, side) in bearings:
                     # one marker a ring at the bearing centre: the bore's row-1 spider and the
                     # journal's, placed there (the bearing's rows are the kernel's own)
                     om = _marker(s, ab, "bore_row1", (0, 0, 0), align=True, place=True)

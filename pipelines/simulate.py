@@ -104,10 +104,13 @@ def build_model(cfg: dict, log=print):
     if cfg["joint"]["model"] != "dtrb":
         return model, y0
     ws = model.body_state(model.system.index("ws1"), y0)
-    starts = dtrb.start(cfg, dtrb.joint_loads(model, y0), float(ws["omega"][1]), log)
+    loads = {key: F for key, F in dtrb.joint_loads(model, y0).items()
+             if key[0] in cfg["joint"]["wheelsets"]}        # the rest stay on row bushings
+    starts = dtrb.start(cfg, loads, float(ws["omega"][1]), log)
     model = vehicle.build(cfg, tabs, trk, red, bearings={k: v[:3] for k, v in starts.items()}).assemble()
     y0 = dtrb.place_axleboxes(model, y0, starts)
-    log(f"coupled: {model.n_states} states ({model.n_states - model.n_body_states} in 8 bearings)")
+    log(f"coupled: {model.n_states} states ({model.n_states - model.n_body_states} in "
+        f"{len(model.bearing_names)} bearings)")
     return model, y0
 
 

@@ -28,6 +28,7 @@ def coupled_config(**over):
     user = {sec: dict(v) for sec, v in base.items() if sec not in ("bearing", "defects")}
     user["bodies"]["flexible"] = []
     user["joint"]["model"] = "dtrb"
+    user["integrator"]["method"] = "rk4"
     user["integrator"]["dt"] = 1e-5
     user["defects"] = [DEFECT]
     for sec, fields in over.items():
@@ -59,6 +60,28 @@ def test_bearings_start_in_equilibrium_with_the_car(car):
     for k, b in enumerate(model.bodies):
         if b.name.startswith(("ws", "ab")):
             assert abs(b.mass * dy[bi[k, 1] + 2]) < 0.01 * load.min(), b.name
+
+
+def test_one_wheelset_on_bearings_carries_what_it_carries_in_the_full_car(car):
+    """``joint.wheelsets = [2]``: only wheelset 2's axle-boxes on DTRBs, the rest on row bushings
+    (a quarter of the bearings' cost, benchmarks/README.md "How the cost grows").  Its two
+    bearings start with the loads they have when all eight are DTRBs (the statics is the same
+    bushing car either way), to 0.1 %; a defect on a wheelset without bearings is refused."""
+    cfg, model, y0 = car
+    one = coupled_config(track={"irregularity": False}, joint={"wheelsets": [2]})
+    m1, y1 = psim.build_model(one, log=lambda *_: None)
+    assert m1.bearing_names == ["bearing2L", "bearing2R"]
+
+    def loads(m, y):
+        m.rhs(0.0, y)
+        nbr = len(m.bearing_names)
+        rows = m.W[13][-BR_ROWS * nbr:].reshape(nbr, BR_ROWS, 6)
+        return {nm: rows[i, 1, :3] for i, nm in enumerate(m.bearing_names)}
+    full, part = loads(model, y0), loads(m1, y1)
+    for nm in m1.bearing_names:
+        np.testing.assert_allclose(part[nm], full[nm], rtol=0, atol=1e-3 * abs(full[nm][2]))
+    with pytest.raises(ParameterError, match="defects: wheelset = 2"):
+        coupled_config(joint={"wheelsets": [1, 3]})
 
 
 def test_galpha_and_defects_without_bearings_are_refused():

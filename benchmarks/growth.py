@@ -1,0 +1,85 @@
+"""How the cost grows, so that a user can plan a study: wall time and peak memory of one DTRB on
+the rig, one wheelset with its two DTRBs in the car (``joint.wheelsets = [2]``), the car without
+bearings, and the car with its eight, for 1, 2, 4 and 8 simulated seconds.
+
+    python3 benchmarks/growth.py [--durations 1 2 4 8] [--bodies DIR]
+
+Every case runs in a fresh process (peak memory is a process's own): the shipped configs
+(configs/validation_48kmh.toml with its integrator for the coupled cases, configs/vehicle.toml
+for the car without bearings, the rig's defaults with the 2 mm defect), all cores numba has.
+"Run" is the integration alone; "process" adds the Python start, the model's build and statics
+and loading the compiled kernels from numba's cache (the first run on a machine also compiles).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import resource
+import subprocess
+import sys
+import time
+
+CASES = ("rig: one DTRB", "car: wheelset 2 on two DTRBs", "car: no bearings (row bushings)",
+         "car: eight DTRBs")
+
+
+def one(case: str, duration: float, bodies: str) -> dict:
+    t0 = time.perf_counter()
+    if case == CASES[0]:
+        from axlebox.bearing.defects import Defect
+        from axlebox.bearing.rig import RigConfig, simulate
+        c = RigConfig(duration=duration, defects=(Defect(W=2e-3),))
+        t1 = time.perf_counter()
+        simulate(c)
+        run_s, steps = time.perf_counter() - t1, "RK4 1e-05"
+        states = None
+    else:
+        from axlebox import configs
+        from axlebox.mbs import integrate
+        from axlebox.pipelines import simulate as psim
+        over = {"bodies": {"dir": bodies}}
+        name = "validation_48kmh"
+        if case == CASES[1]:
+            over["joint"] = {"wheelsets": [2]}
+        elif case == CASES[2]:
+            name = "vehicle"
+            over["bodies"]["flexible"] = ["frame1", "ws1", "ws2", "ab1L", "ab1R", "ab2L", "ab2R"]
+        cfg, _ = psim.load_config(configs.path(name), overrides=over)
+        model, y0 = psim.build_model(cfg, log=lambda *_: None)
+        s = psim.settings(cfg)
+        run = integrate.simulate(model, duration, s, y0=y0)
+        if not run.ok:
+            raise SystemExit(f"{case}: {run.message}")
+        run_s, steps, states = run.wall_s, f"{s.method} {s.dt:g}", model.n_states
+    return {"case": case, "duration": duration, "run_s": run_s, "steps": steps, "states": states,
+            "process_s": time.perf_counter() - t0,
+            "peak_MB": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--durations", type=float, nargs="+", default=[1.0, 2.0, 4.0, 8.0],
+                    help="simulated seconds of the eight-DTRB car")
+    ap.add_argument("--bodies", default="", help="reduced-body folder (default: built into the cache)")
+    ap.add_argument("--one", nargs=2, metavar=("CASE", "DURATION"), help=argparse.SUPPRESS)
+    a = ap.parse_args()
+    if a.one:
+        print(json.dumps(one(CASES[int(a.one[0])], float(a.one[1]), a.bodies)))
+        return
+    todo = [(0, 1.0), (1, 1.0), (2, 1.0)] + [(3, d) for d in a.durations]
+    print("| case | integrator, dt s | states | simulated s | run wall s | wall s per simulated s | "
+          "process wall s | peak memory MB |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+    for c, d in todo:
+        p = subprocess.run([sys.executable, __file__, "--one", str(c), str(d), "--bodies", a.bodies],
+                           capture_output=True, text=True)
+        if p.returncode:
+            print(f"| {CASES[c]} | failed: {(p.stderr or p.stdout).strip().splitlines()[-1]} |")
+            continue
+        r = json.loads(p.stdout.strip().splitlines()[-1])
+        print(f"| {r['case']} | {r['steps']} | {r['states'] or '-'} | {d:g} | {r['run_s']:.1f} | "
+              f"{r['run_s'] / d:.2f} | {r['process_s']:.0f} | {r['peak_MB']:.0f} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
