@@ -64,7 +64,7 @@ def test_bearings_start_in_equilibrium_with_the_car(car):
 
 def test_one_wheelset_on_bearings_carries_what_it_carries_in_the_full_car(car):
     """``joint.wheelsets = [2]``: only wheelset 2's axle-boxes on DTRBs, the rest on row bushings
-    (a quarter of the bearings' cost, benchmarks/README.md "How the cost grows").  Its two
+    (two bearings' cost instead of eight's, benchmarks/README.md "How the cost grows").  Its two
     bearings start with the loads they have when all eight are DTRBs (the statics is the same
     bushing car either way), to 0.1 %; a defect on a wheelset without bearings is refused."""
     cfg, model, y0 = car
