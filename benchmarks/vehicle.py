@@ -39,10 +39,13 @@ def main():
         if flex is not None:
             cfg["bodies"]["flexible"] = flex
         model, y0 = psim.build_model(cfg, log=lambda *_: None)
-        t0 = time.perf_counter()
-        for _ in range(200):
-            model.rhs(0.0, y0)
-        rhs_us = (time.perf_counter() - t0) / 200 * 1e6
+        model.rhs(0.0, y0)                   # the first call loads the kernels: not timed
+        rhs_us = float("inf")
+        for _ in range(5):                   # best of 5 (the machine is shared)
+            t0 = time.perf_counter()
+            for _ in range(200):
+                model.rhs(0.0, y0)
+            rhs_us = min(rhs_us, (time.perf_counter() - t0) / 200 * 1e6)
         skip = int(0.5 * 1e4)
         ref = None                  # RK4 at its finest step: the converged run all rows are held to
         for method, steps in (("rk4", (1.25e-5, 2.5e-5, 5e-5)), ("galpha", (1e-4, 5e-5, 2.5e-5)),
