@@ -162,8 +162,8 @@ def _check(sec: str, key: str, value, spec) -> object:
                                  f"[{lim[0]:g}, {lim[1]:g}]")
         return [float(v) for v in value]
     if not isinstance(lim[0], str):         # wheelset numbers
-        if (not value or len(set(value)) != len(value)
-                or not all(type(v) is int and v in lim for v in value)):
+        if (not value or not all(type(v) is int and v in lim for v in value)
+                or len(set(value)) != len(value)):
             raise ParameterError(f"{name} = {value!r} is not allowed: expected distinct wheelset "
                                  f"numbers from {list(lim)}, at least one")
         return sorted(value)

@@ -131,11 +131,8 @@ def gravity_load(b, bi, bf, inv, y, A, g, Qg):
         q0 = bi[b, BI_POS] + 7 + bi[b, BI_SPIN]
         for k in range(n):
             S0 += Ct[0, k] * y[q0 + k]
-        for k in range(n):
             S1 += Ct[1, k] * y[q0 + k]
-        for k in range(n):
             S2 += Ct[2, k] * y[q0 + k]
-        for k in range(n):
             Qg[6 + k] = Ct[0, k] * g0 + Ct[1, k] * g1 + Ct[2, k] * g2
     Qg[3] = S1 * g2 - S2 * g1
     Qg[4] = S2 * g0 - S0 * g2

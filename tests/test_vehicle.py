@@ -148,6 +148,7 @@ def test_implicit_and_explicit_integrators_agree_on_the_car(run48):
     ("[integrator]\ndt = 1e-3\noutput_rate_hz = 10000.0\n", "output_rate_hz"),
     ("[integrator]\nmethod = 'euler'\n", "integrator.method"),
     ("[joint]\nwheelsets = [0, 2]\n", "joint.wheelsets"),
+    ("[joint]\nwheelsets = [[1], 2]\n", "joint.wheelsets"),
     ("[track]\nlambda_min = 90.0\n", "track.lambda_min"),
     ("[run]\nduration = 'long'\n", "run.duration"),
 ])
