@@ -52,6 +52,7 @@ from .layout import (BETA, C_O, C_RULE, CAC, CAF, CAI, CAM, CAO, GX, GY, GZ, H_K
                      SAO, V_S, ZETA, Z)
 
 N_LINE = 10.0 / 9.0
+Z6 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)       # no cage part in a raceway contact's gradients
 N_POINT = 1.5
 TWO_PI = 2.0 * pi
 
@@ -128,7 +129,40 @@ def line_integrals(d0, kap, a, b, n):
 
 
 @njit(cache=True)
-def _normal(q_el, K, n, ddot, m, P, dmax):
+def line_stiffness(d0, kap, a, b, n):
+    """``n (int u^(n-1) ds, int s u^(n-1) ds, int s^2 u^(n-1) ds)`` over ``[a, b]`` where
+    ``u = d0 + kap s > 0``: a line contact's tangent stiffness over ``K / L`` in its approach
+    and tilt, ``d(int u^n, int s u^n) / d(d0, kap)`` (symmetric), for the implicit kick's blocks.
+
+    Closed form in ``u`` (``ds = du / kap``); where the compression is nearly uniform
+    (``|kap| (b - a) < 0.1 u_mid``) the midpoint expansion to first order in ``kap``, whose
+    neglected terms are below ``(kap (b - a) / u_mid)^2 / 24`` of each entry: blocks of an
+    iteration matrix need no more.
+    """
+    if b <= a:
+        return 0.0, 0.0, 0.0
+    h = b - a
+    m = 0.5 * (a + b)
+    um = d0 + kap * m
+    p = n - 1.0
+    if um > 0.0 and abs(kap) * h < 0.1 * um:
+        g = um ** p
+        j0 = h * g
+        t = p * g / um * kap * h ** 3 / 12.0
+        return n * j0, n * (m * j0 + t), n * (m * m * j0 + 2.0 * m * t + g * h ** 3 / 12.0)
+    ua = max(d0 + kap * a, 0.0)
+    ub = max(d0 + kap * b, 0.0)
+    if ua == 0.0 and ub == 0.0:
+        return 0.0, 0.0, 0.0
+    e1 = (ub ** (p + 1.0) - ua ** (p + 1.0)) / (p + 1.0)
+    e2 = (ub ** (p + 2.0) - ua ** (p + 2.0)) / (p + 2.0)
+    e3 = (ub ** (p + 3.0) - ua ** (p + 3.0)) / (p + 3.0)
+    return (n * e1 / kap, n * (e2 - d0 * e1) / (kap * kap),
+            n * (e3 - 2.0 * d0 * e2 + d0 * d0 * e1) / (kap * kap * kap))
+
+
+@njit(cache=True)
+def _normal(q_el, K, n, ddot, m, P, dmax, k_imp=0.0):
     """Normal force from the elastic part ``q_el`` and the approach rate ``ddot``.
 
     Law 0 (default): ``c = 2 zeta sqrt(m k)`` with the contact's tangent stiffness
@@ -138,8 +172,10 @@ def _normal(q_el, K, n, ddot, m, P, dmax):
     ``c = c_rule K`` (below Eq. 4).  Law 2: ``c = beta k``, the paper's rule made dimensionally
     consistent (the tangent stiffness k in N/m instead of the Hertz coefficient K in N/m^n).
     Returns ``(Q, c)``: the force, and the damping coefficient acting in it (0 out of contact
-    or where the force is clipped) plus ``P[H_K] k``, for the implicit step's blocks
-    (:func:`_damping_rows`; ``H_K`` is 0 but under ``"imex2"``, bearing/implicit.py).
+    or where the force is clipped) plus ``P[H_K]`` times the contact's tangent stiffness
+    (``k_imp`` where given, a line contact's exact one, :func:`line_stiffness`; else ``k``),
+    for the implicit step's blocks (:func:`_damping_rows`; ``H_K`` is 0 but under ``"imex2"``,
+    bearing/implicit.py).
     """
     if q_el <= 0.0:
         return 0.0, 0.0
@@ -153,20 +189,40 @@ def _normal(q_el, K, n, ddot, m, P, dmax):
     if not q > 0.0:
         return 0.0, 0.0
     # (the same expressions as before "imex2", so that its H_K = 0 leaves every bit as it was)
-    return q, (c if P[H_K] == 0.0 else c + P[H_K] * n * q_el / dmax)
+    if P[H_K] == 0.0:
+        return q, c
+    return q, c + P[H_K] * (k_imp if k_imp > 0.0 else n * q_el / dmax)
 
 
 @njit(inline="always")
-def _line_contact(i0, i1, K, L, d0, kap, ddot, m, mu, vrel, nrm, P):
+def _line_contact(i0, i1, K, L, d0, kap, ddot, m, mu, vrel, nrm, P, k_imp):
     """A line contact (Eqs. 4a, 9) from its integrals ``i0, i1`` over the line of length L:
     normal force Q, elastic couple ``m1 = (K/L) int s delta^n`` (none once Q is clipped to 0),
-    the friction ``mu Q`` against the slip ``vrel``, and the damping coefficient in Q."""
+    the friction ``mu Q`` against the slip ``vrel``, and the coefficient for the implicit blocks
+    (damping, plus ``P[H_K] k_imp``, :func:`_normal`)."""
     dmax = d0 + 0.5 * L * abs(kap)
-    Q, c = _normal(K / L * i0, K, N_LINE, ddot, m, P, dmax)
+    Q, c = _normal(K / L * i0, K, N_LINE, ddot, m, P, dmax, k_imp)
     m1 = K / L * i1 if Q > 0.0 else 0.0
-    # the tilt stiffness dm1/dkap, about k L^2 / 12 (uniform compression), for the implicit kick
-    kt = P[H_K] * N_LINE * K / L * i0 / dmax * L * L / 12.0 if Q > 0.0 and P[H_K] > 0.0 else 0.0
-    return Q, m1, _friction(vrel, nrm, mu * Q, P[V_S]), c, kt
+    return Q, m1, _friction(vrel, nrm, mu * Q, P[V_S]), c
+
+
+@njit(inline="always")
+def _tilt_rows(G, j, k, nz, kdk, kkk, Jd, Jk, Jdc, Jkc, cage):
+    """A line contact's stiffness in its tilt ``kap`` (``kkk = dm1/dkap``) and between tilt and
+    approach (``kdk = dQ/dkap = dm1/dd0``): ``kdk (Jd^T Jk + Jk^T Jd) + kkk Jk^T Jk`` in the
+    blocks, ``Jd``/``Jk`` the gradients of the approach and of ``kap`` in the roller's rates,
+    ``Jdc``/``Jkc`` in the cage's (``cage``: a pocket wall).  The cross term as the difference of
+    two squares, ``(A + B)^T (A + B) - (A - B)^T (A - B) = 2 (A^T B + B^T A)``."""
+    _damping_rows(G, j, k, nz, kkk, Jk, Jkc, cage)
+    if kdk != 0.0:
+        _damping_rows(G, j, k, nz, 0.5 * kdk, _add6(Jd, Jk, 1.0), _add6(Jdc, Jkc, 1.0), cage)
+        _damping_rows(G, j, k, nz, -0.5 * kdk, _add6(Jd, Jk, -1.0), _add6(Jdc, Jkc, -1.0), cage)
+
+
+@njit(inline="always")
+def _add6(a, b, sb):
+    return (a[0] + sb * b[0], a[1] + sb * b[1], a[2] + sb * b[2], a[3] + sb * b[3],
+            a[4] + sb * b[4], a[5] + sb * b[5])
 
 
 @njit(inline="always")
@@ -343,23 +399,33 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
             d0 = _dot(_sub(disp, _add(uo, _cross(th_o, _sub(po, uo)))), no) - P[C_O]
             kap = s * (tht - _dot(th_o, et))
             h, s1, s2 = _outer_defect(D, j, phi, theta_oy)
+            stiff = acc and P[H_K] > 0.0
+            kdd, kdk, kkk = 0.0, 0.0, 0.0
             if h > 0.0:
                 a0, a1 = line_integrals(d0, kap, -0.5 * Le, s1, N_LINE)
                 b0_, b1 = line_integrals(d0 - h, kap, s1, s2, N_LINE)
                 c0, c1 = line_integrals(d0, kap, s2, 0.5 * Le, N_LINE)
                 i0, i1 = a0 + b0_ + c0, a1 + b1 + c1
+                if stiff and i0 > 0.0:
+                    for d_, sa, sb in ((d0, -0.5 * Le, s1), (d0 - h, s1, s2), (d0, s2, 0.5 * Le)):
+                        e0, e1, e2 = line_stiffness(d_, kap, sa, sb, N_LINE)
+                        kdd, kdk, kkk = kdd + e0, kdk + e1, kkk + e2
             else:
                 i0, i1 = line_integrals(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
+                if stiff and i0 > 0.0:
+                    kdd, kdk, kkk = line_stiffness(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
             Qo = 0.0
             if i0 > 0.0:
                 vrel = _sub(_add(Vc, _cross(wr, _mul(rb, no))), _add(vo, _cross(wo, _sub(po, uo))))
-                Qo, m1, f, cdmp, ktl = _line_contact(i0, i1, P[K_O], Le, d0, kap, _dot(vrel, no),
-                                                     Mr, P[MU_R], vrel, no, P)
+                KL = P[K_O] / Le
+                Qo, m1, f, cdmp = _line_contact(i0, i1, P[K_O], Le, d0, kap, _dot(vrel, no),
+                                                Mr, P[MU_R], vrel, no, P, KL * kdd)
                 if acc and cdmp > 0.0:
                     Jr = _rates(1.0, no, _mul(rb, no), er, et, ey, ax, bx, R + rho)
                     _damping_rows(G, j, k, nz, cdmp, Jr, Jr, False)
-                    if P[H_K] > 0.0:
-                        G[j, k, 3, 3] += ktl
+                    if stiff:
+                        _tilt_rows(G, j, k, nz, P[H_K] * KL * kdk, P[H_K] * KL * kkk, Jr,
+                                   (0.0, 0.0, 0.0, s, 0.0, 0.0), Z6, Z6, False)
                         _friction_rows(G, j, k, nz, P[MU_R] * Qo, vrel, no, vs, et, _mul(rb, no),
                                        er, et, ey, ax, bx, R + rho, False, ey)
                 fr = _lin(-Qo, no, 1.0, f)
@@ -375,14 +441,19 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
             i0, i1 = line_integrals(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
             Qi = 0.0
             if i0 > 0.0:
+                kdd, kdk, kkk = 0.0, 0.0, 0.0
+                if stiff:
+                    kdd, kdk, kkk = line_stiffness(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
                 vrel = _sub(_add(Vc, _cross(wr, _mul(-rb, ni))), _add(vi, _cross(wi, _sub(pi_, ui))))
-                Qi, m1, f, cdmp, ktl = _line_contact(i0, i1, P[K_I], Le, d0, kap, -_dot(vrel, ni),
-                                                     Mr, P[MU_R], vrel, ni, P)
+                KL = P[K_I] / Le
+                Qi, m1, f, cdmp = _line_contact(i0, i1, P[K_I], Le, d0, kap, -_dot(vrel, ni),
+                                                Mr, P[MU_R], vrel, ni, P, KL * kdd)
                 if acc and cdmp > 0.0:
                     Jr = _rates(-1.0, ni, _mul(-rb, ni), er, et, ey, ax, bx, R + rho)
                     _damping_rows(G, j, k, nz, cdmp, Jr, Jr, False)
-                    if P[H_K] > 0.0:
-                        G[j, k, 3, 3] += ktl
+                    if stiff:
+                        _tilt_rows(G, j, k, nz, P[H_K] * KL * kdk, P[H_K] * KL * kkk, Jr,
+                                   (0.0, 0.0, 0.0, -s, 0.0, 0.0), Z6, Z6, False)
                         _friction_rows(G, j, k, nz, P[MU_R] * Qi, vrel, ni, vs, et, _mul(-rb, ni),
                                        er, et, ey, ax, bx, R + rho, False, ey)
                 fr = _lin(Qi, ni, 1.0, f)
@@ -428,23 +499,26 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
                 kap = -sw * s * cac * skew
                 i0, i1 = line_integrals(d0, kap, -0.5 * Lb, 0.5 * Lb, N_LINE)
                 if i0 > 0.0:
+                    kdd, kdk, kkk = 0.0, 0.0, 0.0
+                    if stiff:
+                        kdd, kdk, kkk = line_stiffness(d0, kap, -0.5 * Lb, 0.5 * Lb, N_LINE)
+                    KL = P[K_CR] / Lb
                     pw = _lin(1.0, c, rb, nw)
                     vrel = _sub(_add(Vc, _cross(wr, _mul(rb, nw))), _add(vc, _cross(wc, _sub(pw, xc))))
-                    Qw, m1, f, cdmp, ktl = _line_contact(i0, i1, P[K_CR], Lb, d0, kap,
-                                                         _dot(vrel, nw), m_cage, P[MU_C], vrel,
-                                                         nw, P)
+                    Qw, m1, f, cdmp = _line_contact(i0, i1, P[K_CR], Lb, d0, kap, _dot(vrel, nw),
+                                                    m_cage, P[MU_C], vrel, nw, P, KL * kdd)
                     if acc and cdmp > 0.0:
-                        _damping_rows(G, j, k, nz, cdmp,
-                                      _rates(1.0, nw, _mul(rb, nw), er, et, ey, ax, bx, R + rho),
-                                      _cage_rates(1.0, nw, _sub(pw, xc)), True)
-                        if P[H_K] > 0.0:
+                        Jw = _rates(1.0, nw, _mul(rb, nw), er, et, ey, ax, bx, R + rho)
+                        Jwc = _cage_rates(1.0, nw, _sub(pw, xc))
+                        _damping_rows(G, j, k, nz, cdmp, Jw, Jwc, True)
+                        if stiff:
                             _friction_rows(G, j, k, nz, P[MU_C] * Qw, vrel, nw, vs, ey,
                                            _mul(rb, nw), er, et, ey, ax, bx, R + rho, True,
                                            _sub(pw, xc))
-                        if ktl > 0.0:             # the skew in the pocket: kap's gradient
-                            gs = -sw * s * cac
-                            _damping_rows(G, j, k, nz, ktl, (0.0, 0.0, 0.0, 0.0, gs, 0.0),
-                                          (0.0, 0.0, 0.0, -gs * bx[0], -gs * bx[2], 0.0), True)
+                            gs = -sw * s * cac    # the skew in the pocket: kap's gradient
+                            _tilt_rows(G, j, k, nz, P[H_K] * KL * kdk, P[H_K] * KL * kkk, Jw,
+                                       (0.0, 0.0, 0.0, 0.0, gs, 0.0), Jwc,
+                                       (0.0, 0.0, 0.0, -gs * bx[0], -gs * bx[2], 0.0), True)
                     fr = _lin(-Qw, nw, 1.0, f)
                     couple = _mul(m1, _cross(ax, nw))
                     Fr = _add(Fr, fr)

@@ -2,9 +2,12 @@
 
 Prints: the numba right-hand side's time per call at the quasi-static start and in the running
 rig (where centrifugal force keeps every roller on the cup, so more contacts are active), the
-plain-numpy twin's time at the same states and the speed-up; simulated seconds per wall second
-of the rig (RK4, dt = 1e-5 s, healthy and with a 2 mm defect) and the process's peak memory;
-the contact damping ratios and explicit step limits under the default law and the paper's rule.
+plain-numpy twin's time at the same states and the speed-up; IEEE against fastmath; simulated
+seconds per wall second of the rig by each integrator (RK4, the leapfrog, imex2 at several steps,
+1 s, the 2 mm defect and healthy) with the outer ring's RMS and BPFO envelope line against RK4 at
+1e-5 s; the implicit kick's order on the calibrated bearing (steps and weights theta against the
+explicit leapfrog at 2.5e-7 s); the process's peak memory; the contact damping ratios and
+explicit step limits under the default law and the paper's rule.
 Run: ``python benchmarks/bearing.py``.
 """
 from __future__ import annotations
@@ -21,7 +24,7 @@ import numpy as np
 
 from axlebox.bearing import equilibrium, kernel, layout, stiffness
 from axlebox.bearing.defects import Defect
-from axlebox.bearing.integrate import run_rk4
+from axlebox.bearing.integrate import run_leapfrog, run_rk4
 from axlebox.bearing.kernel_numpy import dtrb_rhs_numpy
 from axlebox.bearing.params import BearingParams
 from axlebox.bearing.rig import RigConfig, initial_state, simulate
@@ -104,15 +107,70 @@ def fastmath_cost(repeats=7, n=20000):
     return best, diff
 
 
+def bpfo_line(res, t0=0.05) -> tuple[float, float]:
+    """The outer ring's vertical RMS after ``t0`` and its envelope spectrum's largest line within
+    two bins of BPFO (band 1-4 kHz)."""
+    from axlebox.bearing.frequencies import orders, shaft_hz
+    from axlebox.bearing.spectra import envelope_spectrum
+    a = res.acceleration[res.time >= t0, 2]
+    f, A = envelope_spectrum(a, res.fs, band=(1000.0, 4000.0))
+    k = int(np.argmin(abs(f - orders(res.config.bearing).at(shaft_hz(res.config.speed_kmh,
+                                                                      res.config.r_wheel))["BPFO"])))
+    return float(np.sqrt(np.mean(a ** 2))), float(A[max(0, k - 2):k + 3].max())
+
+
+RIG_RUNS = (("rk4", 1e-5), ("rk4", 5e-6), ("leapfrog", 1e-5), ("leapfrog", 1.25e-5),
+            ("imex2", 1e-5), ("imex2", 2e-5), ("imex2", 2.5e-5), ("imex2", 5e-5))
+
+
 def rig_speed(duration=1.0):
+    """Each integrator on the rig (2 mm defect, 48 km/h, one thread) against RK4 at 1e-5 s: wall
+    time, the outer ring's RMS and BPFO envelope line; and both RK4 and the leapfrog healthy."""
     rows = []
-    for label, defects in (("healthy", ()), ("2 mm defect", (Defect(W=2e-3),))):
-        cfg = RigConfig(duration=duration, defects=defects)
-        t = time.perf_counter()
-        simulate(cfg)
-        wall = time.perf_counter() - t
-        rows.append((label, cfg.dt, duration, wall, duration / wall))
+    for label, defects in (("2 mm defect", (Defect(W=2e-3),)), ("healthy", ())):
+        runs = RIG_RUNS if defects else RIG_RUNS[:1] + RIG_RUNS[2:3]
+        for method, dt in runs:
+            cfg = RigConfig(duration=duration, defects=defects, method=method, dt=dt)
+            simulate(RigConfig(duration=0.001, method=method, dt=dt))         # compile
+            t = time.perf_counter()
+            try:
+                res = simulate(cfg)
+            except FloatingPointError:
+                rows.append((label, method, dt, None, None, None))
+                continue
+            rows.append((label, method, dt, time.perf_counter() - t, *bpfo_line(res)))
     return rows
+
+
+def implicit_order(duration=0.3):
+    """The implicit kick's order on the calibrated bearing (damping 1e-4 s x stiffness): the rig
+    by ``imex`` at several steps and weights theta (bearing/implicit.py) against the explicit
+    leapfrog at 2.5e-7 s, its stable step there."""
+    from scipy.signal import resample_poly
+    cfg = RigConfig(duration=duration, defects=(Defect(W=2e-3),),
+                    bearing=BearingParams(damping="stiffness", beta=1e-4))
+    out = []
+    for mode, dt, theta in ((0, 2.5e-7, 1.0), (1, 2.5e-6, 1.0), (1, 5e-6, 1.0), (1, 1e-5, 1.0),
+                            (1, 2e-5, 1.0), (1, 2.5e-6, 0.5), (1, 5e-6, 0.5), (1, 1e-4 / 15, 0.5),
+                            (1, 1e-5, 0.5), (1, 1e-4 / 15, 0.6), (1, 1e-5, 0.6), (1, 1e-5, 0.8)):
+        Y, P, D, rig = initial_state(cfg)
+        n, every = int(round(duration / dt)), int(round(1e-4 / dt))
+        acc = np.zeros((n, 3))
+        m = n // every
+        t = time.perf_counter()
+        ok = run_leapfrog(Y, 0.0, dt, n, every, P, D, rig, acc, np.zeros((m, 2, 6)),
+                          np.zeros((m, 2, int(P[layout.Z]), 6)), np.zeros((m, 2, 2)), mode, True, theta)
+        wall = time.perf_counter() - t
+        a = resample_poly(acc[:, 2], 1, every) if every > 1 else acc[:, 2]
+
+        class R:                                   # what bpfo_line reads
+            acceleration = np.stack([a, a, a], axis=1)
+            time = np.arange(a.size) * 1e-4
+            fs = 1e4
+            config = cfg
+        out.append(("leapfrog" if mode == 0 else "imex", dt, theta, wall,
+                    *(bpfo_line(R) if ok and np.all(np.isfinite(a)) else (None, None))))
+    return out
 
 
 def damping_table():
@@ -149,10 +207,27 @@ def main():
         print(f"| {label} | {t * 1e6:.2f} |")
     print(f"fastmath / IEEE: {best['fastmath'] / best['IEEE (shipped)']:.3f}; "
           f"largest relative difference of the state derivative {diff:.1e}")
-    print("\n| rig run | dt s | simulated s | wall s | simulated s per wall s |\n"
-          "| --- | --- | --- | --- | --- |")
-    for label, dt, dur, wall, rate in rig_speed():
-        print(f"| {label} | {dt:g} | {dur:g} | {wall:.2f} | {rate:.3f} |")
+    dur = 1.0
+    print(f"\n| rig, {dur:g} s | method | dt s | wall s | simulated s per wall s | RMS m/s^2 | "
+          "vs RK4 1e-5 | BPFO line m/s^2 | vs RK4 1e-5 |\n" + "| --- " * 9 + "|")
+    ref = {}
+    for label, method, dt, wall, rms, line in rig_speed(dur):
+        if wall is None:
+            print(f"| {label} | {method} | {dt:g} | diverged | | | | | |")
+            continue
+        ref.setdefault(label, (rms, line))
+        r0, l0 = ref[label]
+        print(f"| {label} | {method} | {dt:g} | {wall:.2f} | {dur / wall:.2f} | {rms:.3f} | "
+              f"{100 * (rms / r0 - 1):+.1f} % | {line:.3f} | {100 * (line / l0 - 1):+.1f} % |", flush=True)
+    print("\nthe implicit kick's order, calibrated damping (1e-4 s x stiffness), 0.3 s:\n"
+          "| method | dt s | theta | wall s per simulated s | RMS vs reference | BPFO line vs reference |\n"
+          "| --- | --- | --- | --- | --- | --- |")
+    rows = implicit_order()
+    r0, l0 = rows[0][4], rows[0][5]
+    for method, dt, theta, wall, rms, line in rows:
+        tail = ("runs away | |" if rms is None else
+                f"{100 * (rms / r0 - 1):+.2f} % | {100 * (line / l0 - 1):+.2f} % |")
+        print(f"| {method} | {dt:.3g} | {theta:g} | {wall / 0.3:.1f} | {tail}", flush=True)
     print(f"\npeak resident memory: {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f} MB")
     print("\n| damping law | contact | load N | k_lin N/m | damping ratio | RK4 step limit s |\n"
           "| --- | --- | --- | --- | --- | --- |")

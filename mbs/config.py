@@ -12,6 +12,7 @@ import math
 import tomllib
 from pathlib import Path
 
+from axlebox.bearing.integrate import DT_MAX
 from axlebox._params import ParameterError
 from axlebox.mbs.integrate import METHODS
 
@@ -79,13 +80,6 @@ SCHEMA: dict[str, dict[str, tuple]] = {
 # free-form sections checked by their own classes: [bearing] (axlebox.bearing.params.BearingParams
 # fields, SI) and [[defects]] (axlebox.bearing.defects.Defect fields, the angle in degrees, plus where)
 DEFECT_PLACE = {"wheelset": (I, 2, 1, 4), "side": (S, "R", ("L", "R"))}
-# s: the explicit steps' limits on the rollers' tilt mode between the raceways (22.6 kHz,
-# damping ratio 0.12): RK4's w h <= 2.8; the leapfrog's 2 (sqrt(1 + z^2) - z) = 1.77 less a
-# margin for the loads; "imex" (contact damping implicit) keeps the undamped limit of the
-# leapfrog on the tilt mode (benchmarks/README.md); "imex2" (stiffness and friction implicit too)
-# runs the bearing alone at 2e-5 s, but the car's defect side is not yet right there: held to
-# imex's limit until it is (benchmarks/README.md, "imex2")
-DTRB_DT_MAX = {"rk4": 2.8e-5, "leapfrog": 1.2e-5, "imex": 1.2e-5, "imex2": 1.2e-5}
 
 
 def defaults() -> dict:
@@ -205,10 +199,10 @@ def validate(user: dict) -> dict:
                              f"{need:.0f} m (distance plus its length); expected at least that")
     if cfg["joint"]["model"] == "dtrb":
         ig = cfg["integrator"]
-        if ig["method"] not in DTRB_DT_MAX:
+        if ig["method"] not in DT_MAX:
             raise ParameterError(f"integrator.method = {ig['method']!r} is not allowed with "
-                                 f"joint.model = 'dtrb': expected one of {tuple(DTRB_DT_MAX)}")
-        dt_max = DTRB_DT_MAX[ig["method"]]
+                                 f"joint.model = 'dtrb': expected one of {tuple(DT_MAX)}")
+        dt_max = DT_MAX[ig["method"]]
         if ig["dt"] > dt_max:
             raise ParameterError(f"integrator.dt = {ig['dt']:g} is not allowed with joint.model = "
                                  f"'dtrb' and method {ig['method']!r}: expected at most {dt_max:g} s "

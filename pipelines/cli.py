@@ -111,7 +111,7 @@ def _cmd_bearing_simulate(a) -> None:
         defects = (Defect(W=a.defect_width * 1e-3, L=a.defect_length * 1e-3, H=a.defect_depth * 1e-3,
                           row=a.defect_row, angle=radians(a.defect_angle)),)
     cfg = RigConfig(speed_kmh=a.speed_kmh, F_r=a.radial_load, F_a=a.axial_load, duration=a.duration,
-                    dt=a.dt, seed=a.seed, bearing=bearing, defects=defects)
+                    dt=a.dt, method=a.method, seed=a.seed, bearing=bearing, defects=defects)
     out = Path(a.out)
     if not out.parent.is_dir():
         raise FileNotFoundError(f"--out: folder {str(out.parent)!r} does not exist")
@@ -316,6 +316,9 @@ def parser() -> argparse.ArgumentParser:
     bsim.add_argument("--axial-load", type=float, default=0.0, metavar="N", help="default 0")
     bsim.add_argument("--duration", type=float, default=1.0, metavar="S", help="simulated time (default 1)")
     bsim.add_argument("--dt", type=float, default=1e-5, metavar="S", help="integration step (default 1e-5)")
+    bsim.add_argument("--method", default="rk4",
+                      help="integrator: rk4 (default), leapfrog (one evaluation a step, 5x faster "
+                           "at 1e-5 s, about 1 %% off RK4 in the outer ring's RMS), imex or imex2")
     bsim.add_argument("--damping", default="ratio", choices=["ratio", "paper", "stiffness"],
                       help="contact damping law: ratio (zeta of the roller's contact oscillator), "
                            "paper (c_rule x K), stiffness (beta x the tangent stiffness); "
