@@ -13,8 +13,15 @@ depth jump from A to zero at the defect's middle), and A is capped by the depth 
 defect cannot let the roller drop further than its floor).  ``angle`` is the defect's centre,
 so ``theta_o = angle - tau_o / 2``.
 
-The table row ``kind, row, theta_o, tau, A, s1, s2, spare`` has room for inner-ring (kind 1,
-angle in the inner ring's frame) and roller (kind 2) defects: the kernel's signature stays.
+An inner-ring defect (``kind = "inner"``) is the same law on the cone contact with the cone's
+raceway diameter ``D_i`` in ``tau_i = 2 arcsin(W / D_i)`` and its angle in the inner ring's own
+frame: it turns with the shaft, so a roller at azimuth phi meets it while ``phi - theta_iy``
+(``theta_iy`` the inner ring's rotation, the shaft angle) lies in the window: once per
+``1 / BPFI``, and it meets it loaded only when the defect passes the load zone (the shaft-rate
+modulation of the inner-ring fault signature).
+
+The table row ``kind, row, theta, tau, A, s1, s2, spare`` has room for roller defects (kind 2):
+the kernel's signature stays.
 """
 from __future__ import annotations
 
@@ -44,7 +51,7 @@ class Defect:
     def __post_init__(self):
         if self.kind not in KINDS:
             raise ParameterError(f"Defect.kind = {self.kind!r} is not allowed: expected one of "
-                                 f"{', '.join(KINDS)} (inner-ring and roller defects are not modelled yet)")
+                                 f"{', '.join(KINDS)} (roller defects are not modelled yet)")
         if isinstance(self.row, bool) or not isinstance(self.row, int):
             raise ParameterError(f"Defect.row = {self.row!r} is not allowed: expected 1 or 2")
         check_ranges(self)
@@ -54,9 +61,13 @@ class Defect:
         r = p.r_b
         return min(self.H, r - sqrt(r * r - (0.5 * self.W) ** 2))
 
+    def raceway(self, p: BearingParams) -> float:
+        """Diameter of the raceway the defect is on (m): ``D_o`` (cup) or ``D_i`` (cone)."""
+        return p.D_o if self.kind == "outer" else p.D_i
+
     def tau(self, p: BearingParams) -> float:
-        """tau_o of Eq. (14) (rad)."""
-        return 2 * asin(self.W / p.D_o)
+        """tau_o of Eq. (14) (rad), on the defect's own raceway."""
+        return 2 * asin(self.W / self.raceway(p))
 
 
 def table(defects, p: BearingParams) -> np.ndarray:
@@ -68,17 +79,17 @@ def table(defects, p: BearingParams) -> np.ndarray:
                 "is not a local defect of Eq. (14) (the roller would meet its floor)")
         tau = d.tau(p)
         require(tau < 2 * pi / p.Z, d, "W", f"the defect spans more than the roller pitch "
-                f"({pi * p.D_o / p.Z:.4g} m on the cup)")
+                f"({pi * d.raceway(p) / p.Z:.4g} m on the {'cup' if d.kind == 'outer' else 'cone'})")
         half = 0.5 * p.L_e
         require(abs(d.offset) < half, d, "offset", f"must lie on the contact line, |offset| < {half:g} m")
         s1, s2 = max(-half, d.offset - 0.5 * d.L), min(half, d.offset + 0.5 * d.L)
         start = (d.angle - 0.5 * tau) % (2 * pi)
-        for other_start, other_tau, other_row in spans:
+        for other_start, other_tau, other_row, other_kind in spans:
             gap = (start - other_start) % (2 * pi)
-            if other_row == d.row and (gap < other_tau or (2 * pi - gap) < tau):
+            if (other_row, other_kind) == (d.row, d.kind) and (gap < other_tau or (2 * pi - gap) < tau):
                 raise ParameterError(f"Defect.angle = {d.angle!r} is not allowed: the defect overlaps "
-                                     f"another one on row {d.row}")
-        spans.append((start, tau, d.row))
+                                     f"another one on the {d.kind} ring of row {d.row}")
+        spans.append((start, tau, d.row, d.kind))
         rows.append([KINDS[d.kind], d.row - 1, start, tau, d.depth(p), s1, s2, 0.0])
     return np.array(rows, dtype=float).reshape(-1, 8)
 

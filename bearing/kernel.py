@@ -12,7 +12,8 @@ What the paper's equations become here (one vector form for both rows and both s
 * Eqs. (1), (3), (15): the normal approach of each contact is the relative displacement of
   the two bodies at the contact point along the contact normal, ``n_o = cos a_o e_r +
   s sin a_o e_y`` (cup), ``n_i`` (cone, same form), ``n_a = -sin a_f e_r + s cos a_f e_y``
-  (rib), less the clearance (on the cup contact) and the outer-ring defect depth ``h_o``.
+  (rib), less the clearance (on the cup contact) and a defect's depth ``h`` (Eq. 14: on the cup
+  for an outer-ring defect, on the cone for an inner-ring one, each turning with its ring).
 * Eq. (4a): raceway line contacts ``q(sigma) = (K / L_e) delta(sigma)^(10/9)`` integrated in
   closed form along the contact line, ``delta(sigma) = delta_0 + kappa sigma`` with the
   roller's tilt relative to the ring in kappa: the same law as Eq. (4a) for an untilted
@@ -284,17 +285,34 @@ def _damping_rows(G, j, k, nz, c, Jr, Jc, cage):
 
 
 @njit(cache=True)
-def _outer_defect(D, j, phi, theta_oy):
-    """Depth ``h_o`` of an outer-ring defect under a roller of row j at azimuth phi, Eq. (14),
-    and the stretch ``[s1, s2]`` of the contact line it covers.  Defects turn with the ring."""
+def _defect(D, kind, j, phi, theta):
+    """Depth ``h`` of a defect of ``kind`` (0 outer ring, 1 inner ring) under a roller of row j
+    at azimuth phi, Eq. (14), and the stretch ``[s1, s2]`` of the contact line it covers.
+    Defects turn with their ring, whose rotation about the axle is ``theta``."""
     for d in range(D.shape[0]):
-        if D[d, 0] != 0.0 or D[d, 1] != j:
+        if D[d, 0] != kind or D[d, 1] != j:
             continue
-        x = (phi - theta_oy - D[d, 2]) % TWO_PI
+        x = (phi - theta - D[d, 2]) % TWO_PI
         tau = D[d, 3]
         if x < tau:
             return D[d, 4] * sin(pi * x / tau), D[d, 5], D[d, 6]
     return 0.0, 0.0, 0.0
+
+
+@njit(inline="always")
+def _dented(d0, kap, h, s1, s2, Le, stiff):
+    """A raceway line contact's integrals (and, when ``stiff``, its tangent stiffness over
+    ``K / L``) with a defect of depth h over ``[s1, s2]`` of the line (Eq. 14)."""
+    a0, a1 = line_integrals(d0, kap, -0.5 * Le, s1, N_LINE)
+    b0, b1 = line_integrals(d0 - h, kap, s1, s2, N_LINE)
+    c0, c1 = line_integrals(d0, kap, s2, 0.5 * Le, N_LINE)
+    i0, i1 = a0 + b0 + c0, a1 + b1 + c1
+    kdd, kdk, kkk = 0.0, 0.0, 0.0
+    if stiff and i0 > 0.0:
+        for d_, sa, sb in ((d0, -0.5 * Le, s1), (d0 - h, s1, s2), (d0, s2, 0.5 * Le)):
+            e0, e1, e2 = line_stiffness(d_, kap, sa, sb, N_LINE)
+            kdd, kdk, kkk = kdd + e0, kdk + e1, kkk + e2
+    return i0, i1, kdd, kdk, kkk
 
 
 @njit(cache=True)
@@ -342,6 +360,11 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
     vo = (ring[1, 6] - ring[0, 6], ring[1, 7] - ring[0, 7], ring[1, 8] - ring[0, 8])
     wo = (ring[1, 9], ring[1, 10], ring[1, 11])
     theta_oy = ring[1, 4]
+    theta_iy = ring[0, 4]
+    n_inner = 0                                      # inner-ring defects in the table
+    for d in range(D.shape[0]):
+        if D[d, 0] == 1.0:
+            n_inner += 1
     omega_w = ring[0, 10] - ring[1, 10]
 
     Fi = (0.0, 0.0, 0.0)
@@ -398,18 +421,11 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
             po = _lin(1.0, c, rb, no)
             d0 = _dot(_sub(disp, _add(uo, _cross(th_o, _sub(po, uo)))), no) - P[C_O]
             kap = s * (tht - _dot(th_o, et))
-            h, s1, s2 = _outer_defect(D, j, phi, theta_oy)
+            h, s1, s2 = _defect(D, 0.0, j, phi, theta_oy)
             stiff = acc and P[H_K] > 0.0
             kdd, kdk, kkk = 0.0, 0.0, 0.0
             if h > 0.0:
-                a0, a1 = line_integrals(d0, kap, -0.5 * Le, s1, N_LINE)
-                b0_, b1 = line_integrals(d0 - h, kap, s1, s2, N_LINE)
-                c0, c1 = line_integrals(d0, kap, s2, 0.5 * Le, N_LINE)
-                i0, i1 = a0 + b0_ + c0, a1 + b1 + c1
-                if stiff and i0 > 0.0:
-                    for d_, sa, sb in ((d0, -0.5 * Le, s1), (d0 - h, s1, s2), (d0, s2, 0.5 * Le)):
-                        e0, e1, e2 = line_stiffness(d_, kap, sa, sb, N_LINE)
-                        kdd, kdk, kkk = kdd + e0, kdk + e1, kkk + e2
+                i0, i1, kdd, kdk, kkk = _dented(d0, kap, h, s1, s2, Le, stiff)
             else:
                 i0, i1 = line_integrals(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
                 if stiff and i0 > 0.0:
@@ -438,12 +454,16 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
             pi_ = _lin(1.0, c, -rb, ni)
             d0 = _dot(_sub(_add(ui, _cross(th_i, pi_)), disp), ni)
             kap = s * (_dot(th_i, et) - tht)
-            i0, i1 = line_integrals(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
+            h, s1, s2 = (0.0, 0.0, 0.0) if n_inner == 0 else _defect(D, 1.0, j, phi, theta_iy)
+            kdd, kdk, kkk = 0.0, 0.0, 0.0
+            if h > 0.0:
+                i0, i1, kdd, kdk, kkk = _dented(d0, kap, h, s1, s2, Le, stiff)
+            else:
+                i0, i1 = line_integrals(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
+                if stiff and i0 > 0.0:
+                    kdd, kdk, kkk = line_stiffness(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
             Qi = 0.0
             if i0 > 0.0:
-                kdd, kdk, kkk = 0.0, 0.0, 0.0
-                if stiff:
-                    kdd, kdk, kkk = line_stiffness(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
                 vrel = _sub(_add(Vc, _cross(wr, _mul(-rb, ni))), _add(vi, _cross(wi, _sub(pi_, ui))))
                 KL = P[K_I] / Le
                 Qi, m1, f, cdmp = _line_contact(i0, i1, P[K_I], Le, d0, kap, -_dot(vrel, ni),

@@ -87,15 +87,16 @@ def _friction(v, nrm, muq, vs):
     return -muq / np.sqrt(_dot(vt, vt) + vs * vs) * vt
 
 
-def _outer_defect(D, phi, theta_oy):
-    """``(h_o, s1, s2)`` per roller, Eq. (14): the first matching defect of each roller's row."""
+def _defect(D, kind, phi, theta):
+    """``(h, s1, s2)`` per roller, Eq. (14): the first defect of ``kind`` (0 outer, 1 inner ring)
+    on each roller's row, turning with its ring (rotation ``theta``)."""
     h, s1, s2 = np.zeros_like(phi), np.zeros_like(phi), np.zeros_like(phi)
     found = np.zeros(phi.shape, dtype=bool)
     row = np.arange(2)[:, None]
     for d in range(D.shape[0]):
-        if D[d, 0] != 0.0:
+        if D[d, 0] != kind:
             continue
-        x = np.mod(phi - theta_oy - D[d, 2], TWO_PI)
+        x = np.mod(phi - theta - D[d, 2], TWO_PI)
         tau = D[d, 3]
         hit = ~found & (row == D[d, 1]) & (x < tau)
         h = np.where(hit, D[d, 4] * np.sin(np.pi * x / tau), h)
@@ -103,6 +104,19 @@ def _outer_defect(D, phi, theta_oy):
         s2 = np.where(hit, D[d, 6], s2)
         found |= hit
     return h, s1, s2
+
+
+def _dented(d0, kap, h, s1, s2, Le):
+    """A raceway line contact's integrals, with a defect of depth h (> 0) over ``[s1, s2]``."""
+    i0, i1 = line_integrals_numpy(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
+    dent = h > 0.0
+    if dent.any():
+        a0, a1 = line_integrals_numpy(d0, kap, -0.5 * Le, s1, N_LINE)
+        b0, b1 = line_integrals_numpy(d0 - h, kap, s1, s2, N_LINE)
+        e0, e1 = line_integrals_numpy(d0, kap, s2, 0.5 * Le, N_LINE)
+        i0 = np.where(dent, a0 + b0 + e0, i0)
+        i1 = np.where(dent, a1 + b1 + e1, i1)
+    return i0, i1
 
 
 def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -172,15 +186,7 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     po = c + rb * no
     d0 = _dot(disp - (uo + _cross(th_o, po - uo)), no) - P[C_O]
     kap = s * (tht - _dot(th_o, et))
-    i0, i1 = line_integrals_numpy(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
-    h, s1, s2 = _outer_defect(D, phi, theta_oy)
-    dent = h > 0.0
-    if dent.any():
-        a0, a1 = line_integrals_numpy(d0, kap, -0.5 * Le, s1, N_LINE)
-        b0, b1 = line_integrals_numpy(d0 - h, kap, s1, s2, N_LINE)
-        e0, e1 = line_integrals_numpy(d0, kap, s2, 0.5 * Le, N_LINE)
-        i0 = np.where(dent, a0 + b0 + e0, i0)
-        i1 = np.where(dent, a1 + b1 + e1, i1)
+    i0, i1 = _dented(d0, kap, *_defect(D, 0.0, phi, theta_oy), Le)
     vrel = Vc + _cross(wr, rb * no) - (vo + _cross(wo, po - uo))
     Qo, m1, f = _line_contact(i0, i1, P[K_O], Le, d0, kap, _dot(vrel, no), Mr, P[MU_R],
                                vrel, no, P)
@@ -194,7 +200,7 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     pi_ = c - rb * ni
     d0 = _dot(_cross(th_i, pi_) - disp, ni)
     kap = s * (_dot(th_i, et) - tht)
-    i0, i1 = line_integrals_numpy(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
+    i0, i1 = _dented(d0, kap, *_defect(D, 1.0, phi, ring[0, 4]), Le)
     vrel = Vc + _cross(wr, -rb * ni) - _cross(wi, pi_)
     Qi, m1, f = _line_contact(i0, i1, P[K_I], Le, d0, kap, -_dot(vrel, ni), Mr, P[MU_R],
                                vrel, ni, P)

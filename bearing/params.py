@@ -101,6 +101,11 @@ class BearingParams:
         return self.D_m + self.D_b * cos(self.alpha_o)
 
     @property
+    def D_i(self) -> float:
+        """Inner raceway (cone) diameter at the contact, Eq. (14)'s D_o for the inner ring."""
+        return self.D_m - self.D_b * cos(self.alpha_i)
+
+    @property
     def clearance_n(self) -> float:
         """Clearance along the cup contact normal, one row, rings concentric (m).
 

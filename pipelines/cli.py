@@ -109,7 +109,7 @@ def _cmd_bearing_simulate(a) -> None:
     defects = ()
     if a.defect_width > 0:
         defects = (Defect(W=a.defect_width * 1e-3, L=a.defect_length * 1e-3, H=a.defect_depth * 1e-3,
-                          row=a.defect_row, angle=radians(a.defect_angle)),)
+                          row=a.defect_row, angle=radians(a.defect_angle), kind=a.defect_kind),)
     cfg = RigConfig(speed_kmh=a.speed_kmh, F_r=a.radial_load, F_a=a.axial_load, duration=a.duration,
                     dt=a.dt, method=a.method, seed=a.seed, bearing=bearing, defects=defects)
     out = Path(a.out)
@@ -304,12 +304,14 @@ def parser() -> argparse.ArgumentParser:
                                            "spring-damper, constant load; writes an axlebox-result file")
     bsim.add_argument("--speed-kmh", type=float, default=48.0, help="vehicle speed (default 48)")
     bsim.add_argument("--defect-width", type=float, default=0.0, metavar="MM",
-                      help="outer-ring defect width in mm (default 0: healthy)")
+                      help="defect width in mm (default 0: healthy)")
     bsim.add_argument("--defect-length", type=float, default=50.4, metavar="MM",
                       help="defect length across the raceway in mm (default 50.4)")
     bsim.add_argument("--defect-depth", type=float, default=2.0, metavar="MM",
                       help="defect depth in mm (default 2)")
     bsim.add_argument("--defect-row", type=int, default=2, help="row of the defect, 1 or 2 (default 2)")
+    bsim.add_argument("--defect-kind", default="outer",
+                      help="outer (on the cup, default) or inner (on the cone, turning with the shaft)")
     bsim.add_argument("--defect-angle", type=float, default=0.0, metavar="DEG",
                       help="defect centre from the top (load zone middle), degrees (default 0)")
     bsim.add_argument("--radial-load", type=float, default=54e3, metavar="N", help="default 54e3")

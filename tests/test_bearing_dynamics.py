@@ -120,6 +120,57 @@ def test_envelope_spectrum_peaks_at_bpfo_only_with_a_defect(faulty, healthy):
     assert Ah[near_h].max() < A[np.abs(f - BPFO) <= 1.5 * df].max() / 30
 
 
+BPFI = orders(BearingParams()).BPFI * F_S        # 56.99 Hz at the cone angle
+
+
+@pytest.fixture(scope="module")
+def inner():
+    """A 2 mm inner-ring defect on row 2, centred on the load zone's middle at the start."""
+    return simulate(RigConfig(duration=1.0, defects=(Defect(W=2e-3, kind="inner"),)))
+
+
+def test_inner_ring_impulses_are_spaced_one_over_bpfi(inner):
+    """The defect turns with the shaft: it is struck once per roller passage, 1/BPFI apart, hard
+    only while it crosses the load zone (once a shaft turn), so the impulses come in bursts.  The
+    train's period: a straight line through every impulse time against its whole number of BPFI
+    periods from the first (the gaps between bursts count whole periods too); 3 % (the cage's
+    slip, about 1 %, shortens the kinematic 1/BPFI the issue names)."""
+    e = envelope(_after(inner), inner.fs, BAND)
+    peaks, _ = find_peaks(e, height=0.3 * e.max(), distance=int(0.6 * inner.fs / BPFI))
+    t = peaks / inner.fs
+    n = np.round((t - t[0]) * BPFI)
+    assert len(t) >= 8 and n[-1] >= 40                   # bursts over most of the second
+    period = np.polyfit(n, t, 1)[0]
+    print(f"{len(t)} impulses, period {period * 1e3:.3f} ms against 1/BPFI {1e3 / BPFI:.3f} ms")
+    assert period == pytest.approx(1 / BPFI, rel=0.03)
+    assert np.max(np.abs(t - t[0] - n * period)) < 0.25 / BPFI    # each on its place in the train
+
+
+def test_inner_ring_envelope_spectrum_is_bpfi_with_shaft_sidebands(inner, healthy):
+    """The envelope spectrum of the inner-ring defect: the shaft-rate modulation (the load zone)
+    puts lines at f_s and at BPFI +- f_s; the BPFI family stands above the other fault orders'
+    lines (BPFO, 2 BSF, FTF) and its sidebands above 10 times the floor; without the defect the
+    BPFI line is within 4 times the floor and under 1 % of the faulty one."""
+    f, A = envelope_spectrum(_after(inner), inner.fs, BAND)
+    m = (f > 1) & (f < 300)
+    floor = np.median(A[m])
+
+    def line(fq, ff=f, AA=A):                          # the largest within 1.5 bins
+        return AA[np.abs(ff - fq) <= 1.5 * ff[1]].max()
+    o = orders(BearingParams())
+    family = max(line(BPFI), line(BPFI - F_S), line(BPFI + F_S))
+    print(f"BPFI {line(BPFI):.2f}, -f_s {line(BPFI - F_S):.2f}, +f_s {line(BPFI + F_S):.2f}, BPFO "
+          f"{line(BPFO):.2f}, 2 BSF {line(2 * o.BSF * F_S):.2f}, floor {floor:.3f} m/s^2")
+    for other in (BPFO, 2 * o.BSF * F_S, o.FTF * F_S):
+        assert family > 1.5 * line(other)
+    assert line(BPFI - F_S) > 10 * floor and line(BPFI + F_S) > 10 * floor
+    assert line(F_S) > 10 * floor                        # the load zone's modulation itself
+    fh, Ah = envelope_spectrum(_after(healthy), healthy.fs, BAND)
+    mh = (fh > 1) & (fh < 300)
+    assert line(BPFI, fh, Ah) < 4 * np.median(Ah[mh])
+    assert line(BPFI, fh, Ah) < 0.01 * line(BPFI)
+
+
 def test_wider_defects_give_larger_impulses():
     amp = []
     for W in (1e-3, 3e-3, 5e-3):
@@ -213,7 +264,7 @@ def test_result_file_roundtrip_and_resume(tmp_path, method):
     (lambda: defects.table((Defect(W=2e-3, angle=0.0), Defect(W=2e-3, angle=0.005)), BearingParams()),
      "angle"),
     (lambda: Defect(row=3), "row"),
-    (lambda: Defect(kind="inner"), "kind"),
+    (lambda: Defect(kind="roller"), "kind"),
     (lambda: RigConfig(speed_kmh=0.0), "speed_kmh"),
     (lambda: RigConfig(dt=3e-5), "dt"),
     (lambda: RigConfig(method="euler"), "method"),
@@ -230,6 +281,7 @@ def test_bad_rig_input_is_named(make, field):
     (["--param", "u_r=-1e-5"], "u_r"), (["--param", "Z=2"], "Z"), (["--defect-width", "30"], "W"),
     (["--speed-kmh", "0"], "speed"), (["--speed-kmh", "-5"], "speed"), (["--dt", "3e-5"], "dt"),
     (["--method", "leapfrog", "--dt", "2e-5"], "dt"), (["--method", "euler"], "method"),
+    (["--defect-width", "2", "--defect-kind", "roller"], "kind"),
     (["--defect-width", "-1"], "defect-width"), (["--defect-width", "2", "--defect-row", "3"], "row"),
 ])
 def test_cli_bad_input_exits_2_naming_the_parameter(args, field, tmp_path, capsys):
