@@ -20,8 +20,17 @@ frame: it turns with the shaft, so a roller at azimuth phi meets it while ``phi 
 ``1 / BPFI``, and it meets it loaded only when the defect passes the load zone (the shaft-rate
 modulation of the inner-ring fault signature).
 
-The table row ``kind, row, theta, tau, A, s1, s2, spare`` has room for roller defects (kind 2):
-the kernel's signature stays.
+A roller defect (``kind = "roller"``, on roller ``roller`` of the row) is the same law on the
+roller's own surface, ``tau_r = 2 arcsin(W / D_b)`` of its circumference: it turns with the
+roller's spin angle psi (the state about its axis, in the frame that orbits with it), and it
+is under the cup contact while ``psi`` lies within ``tau_r / 2`` of ``angle`` and under the cone
+contact half a turn later: each raceway meets it once a roller revolution, 2 BSF in all, hard
+only while the roller crosses the load zone (once a cage turn).  Its depth A takes the roller's
+curvature as Eq. (14) does; where a ring's defect and the roller's meet one contact, the deeper
+counts.
+
+The table row is ``kind, row, theta, tau, A, s1, s2, roller`` (the roller's index from 0 for
+kind 2).
 """
 from __future__ import annotations
 
@@ -44,16 +53,22 @@ class Defect:
     L: float = param(50.4e-3, 1e-6, 1.0, doc="length across the raceway (along the roller)")
     H: float = param(2e-3, 1e-7, 0.05, doc="depth")
     row: int = param(2, 1, 2, unit="", doc="bearing row, 1 (inboard) or 2 (outboard)")
-    angle: float = param(0.0, -2 * pi, 2 * pi, unit="rad", doc="centre of the defect")
+    angle: float = param(0.0, -2 * pi, 2 * pi, unit="rad", doc="centre of the defect (a roller "
+                                                                  "defect: the roller's spin angle at "
+                                                                  "which it is at the cup contact)")
     offset: float = param(0.0, -0.5, 0.5, doc="centre of the defect along the contact line")
     kind: str = "outer"
+    roller: int = param(1, 1, 1000, unit="", doc="the roller of the row that carries a roller "
+                                                  "defect, 1..Z")
 
     def __post_init__(self):
         if self.kind not in KINDS:
             raise ParameterError(f"Defect.kind = {self.kind!r} is not allowed: expected one of "
-                                 f"{', '.join(KINDS)} (roller defects are not modelled yet)")
-        if isinstance(self.row, bool) or not isinstance(self.row, int):
-            raise ParameterError(f"Defect.row = {self.row!r} is not allowed: expected 1 or 2")
+                                 f"{', '.join(KINDS)}")
+        for name in ("row", "roller"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, int):
+                raise ParameterError(f"Defect.{name} = {v!r} is not allowed: expected a whole number")
         check_ranges(self)
 
     def depth(self, p: BearingParams) -> float:
@@ -62,8 +77,9 @@ class Defect:
         return min(self.H, r - sqrt(r * r - (0.5 * self.W) ** 2))
 
     def raceway(self, p: BearingParams) -> float:
-        """Diameter of the raceway the defect is on (m): ``D_o`` (cup) or ``D_i`` (cone)."""
-        return p.D_o if self.kind == "outer" else p.D_i
+        """Diameter of the surface the defect is on (m): ``D_o`` (cup), ``D_i`` (cone) or ``D_b``
+        (roller)."""
+        return {"outer": p.D_o, "inner": p.D_i, "roller": p.D_b}[self.kind]
 
     def tau(self, p: BearingParams) -> float:
         """tau_o of Eq. (14) (rad), on the defect's own raceway."""
@@ -78,19 +94,24 @@ def table(defects, p: BearingParams) -> np.ndarray:
         require(d.W < p.D_b, d, "W", f"a defect wider than the roller diameter D_b = {p.D_b:g} m "
                 "is not a local defect of Eq. (14) (the roller would meet its floor)")
         tau = d.tau(p)
-        require(tau < 2 * pi / p.Z, d, "W", f"the defect spans more than the roller pitch "
-                f"({pi * d.raceway(p) / p.Z:.4g} m on the {'cup' if d.kind == 'outer' else 'cone'})")
+        if d.kind == "roller":
+            require(d.roller <= p.Z, d, "roller", f"a row has Z = {p.Z} rollers")
+        else:
+            require(tau < 2 * pi / p.Z, d, "W", f"the defect spans more than the roller pitch "
+                    f"({pi * d.raceway(p) / p.Z:.4g} m on the {'cup' if d.kind == 'outer' else 'cone'})")
         half = 0.5 * p.L_e
         require(abs(d.offset) < half, d, "offset", f"must lie on the contact line, |offset| < {half:g} m")
         s1, s2 = max(-half, d.offset - 0.5 * d.L), min(half, d.offset + 0.5 * d.L)
         start = (d.angle - 0.5 * tau) % (2 * pi)
-        for other_start, other_tau, other_row, other_kind in spans:
+        surface = (d.row, d.kind, d.roller if d.kind == "roller" else 0)
+        for other_start, other_tau, other in spans:
             gap = (start - other_start) % (2 * pi)
-            if (other_row, other_kind) == (d.row, d.kind) and (gap < other_tau or (2 * pi - gap) < tau):
+            if other == surface and (gap < other_tau or (2 * pi - gap) < tau):
                 raise ParameterError(f"Defect.angle = {d.angle!r} is not allowed: the defect overlaps "
-                                     f"another one on the {d.kind} ring of row {d.row}")
-        spans.append((start, tau, d.row, d.kind))
-        rows.append([KINDS[d.kind], d.row - 1, start, tau, d.depth(p), s1, s2, 0.0])
+                                     f"another one on the same surface ({d.kind}, row {d.row})")
+        spans.append((start, tau, surface))
+        rows.append([KINDS[d.kind], d.row - 1, start, tau, d.depth(p), s1, s2,
+                     d.roller - 1 if d.kind == "roller" else 0.0])
     return np.array(rows, dtype=float).reshape(-1, 8)
 
 
@@ -102,6 +123,7 @@ def phase_clear_of(D: np.ndarray, Z: int, phase: float = 0.0) -> float:
     pitch = 2 * pi / Z
     for k in range(8):
         phi = pitch * np.arange(Z) + phase + k * pitch / 8
-        if not any(np.any(np.mod(phi - start, 2 * pi) < tau) for _, _, start, tau, *_ in D):
+        if not any(np.any(np.mod(phi - start, 2 * pi) < tau) for kind, _, start, tau, *_ in D
+                   if kind != KINDS["roller"]):      # a roller's defect is not at an azimuth
             return phase + k * pitch / 8
     return phase + 0.5 * pitch

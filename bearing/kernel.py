@@ -13,7 +13,8 @@ What the paper's equations become here (one vector form for both rows and both s
   the two bodies at the contact point along the contact normal, ``n_o = cos a_o e_r +
   s sin a_o e_y`` (cup), ``n_i`` (cone, same form), ``n_a = -sin a_f e_r + s cos a_f e_y``
   (rib), less the clearance (on the cup contact) and a defect's depth ``h`` (Eq. 14: on the cup
-  for an outer-ring defect, on the cone for an inner-ring one, each turning with its ring).
+  for an outer-ring defect, on the cone for an inner-ring one, each turning with its ring; on
+  both, half a roller turn apart, for a defect on a roller, turning with its spin).
 * Eq. (4a): raceway line contacts ``q(sigma) = (K / L_e) delta(sigma)^(10/9)`` integrated in
   closed form along the contact line, ``delta(sigma) = delta_0 + kappa sigma`` with the
   roller's tilt relative to the ring in kappa: the same law as Eq. (4a) for an untilted
@@ -299,6 +300,23 @@ def _defect(D, kind, j, phi, theta):
     return 0.0, 0.0, 0.0
 
 
+@njit(cache=True)
+def _roller_defect(D, j, k, psi):
+    """Depths ``(h_cup, h_cone)`` of a defect on roller k of row j at its spin angle psi, Eq. (14)
+    on the roller's surface (bearing/defects.py): under the cup within ``tau / 2`` of the
+    defect's angle, under the cone half a turn on; and its stretch ``[s1, s2]`` of the line."""
+    for d in range(D.shape[0]):
+        if D[d, 0] != 2.0 or D[d, 1] != j or D[d, 7] != k:
+            continue
+        tau = D[d, 3]
+        x = (psi - D[d, 2]) % TWO_PI
+        h_o = D[d, 4] * sin(pi * x / tau) if x < tau else 0.0
+        x = (psi + pi - D[d, 2]) % TWO_PI
+        h_i = D[d, 4] * sin(pi * x / tau) if x < tau else 0.0
+        return h_o, h_i, D[d, 5], D[d, 6]
+    return 0.0, 0.0, 0.0, 0.0
+
+
 @njit(inline="always")
 def _dented(d0, kap, h, s1, s2, Le, stiff):
     """A raceway line contact's integrals (and, when ``stiff``, its tangent stiffness over
@@ -361,10 +379,13 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
     wo = (ring[1, 9], ring[1, 10], ring[1, 11])
     theta_oy = ring[1, 4]
     theta_iy = ring[0, 4]
-    n_inner = 0                                      # inner-ring defects in the table
+    n_inner = 0                                      # inner-ring and roller defects in the table
+    n_roller = 0
     for d in range(D.shape[0]):
         if D[d, 0] == 1.0:
             n_inner += 1
+        elif D[d, 0] == 2.0:
+            n_roller += 1
     omega_w = ring[0, 10] - ring[1, 10]
 
     Fi = (0.0, 0.0, 0.0)
@@ -422,6 +443,9 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
             d0 = _dot(_sub(disp, _add(uo, _cross(th_o, _sub(po, uo)))), no) - P[C_O]
             kap = s * (tht - _dot(th_o, et))
             h, s1, s2 = _defect(D, 0.0, j, phi, theta_oy)
+            hr_o, hr_i, r1, r2 = (0.0, 0.0, 0.0, 0.0) if n_roller == 0 else _roller_defect(D, j, k, y[b0 + 5])
+            if hr_o > h:
+                h, s1, s2 = hr_o, r1, r2
             stiff = acc and P[H_K] > 0.0
             kdd, kdk, kkk = 0.0, 0.0, 0.0
             if h > 0.0:
@@ -455,6 +479,8 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
             d0 = _dot(_sub(_add(ui, _cross(th_i, pi_)), disp), ni)
             kap = s * (_dot(th_i, et) - tht)
             h, s1, s2 = (0.0, 0.0, 0.0) if n_inner == 0 else _defect(D, 1.0, j, phi, theta_iy)
+            if hr_i > h:
+                h, s1, s2 = hr_i, r1, r2
             kdd, kdk, kkk = 0.0, 0.0, 0.0
             if h > 0.0:
                 i0, i1, kdd, kdk, kkk = _dented(d0, kap, h, s1, s2, Le, stiff)

@@ -106,6 +106,32 @@ def _defect(D, kind, phi, theta):
     return h, s1, s2
 
 
+def _roller_defect(D, psi):
+    """``(h_cup, h_cone, s1, s2)`` per roller from the table's roller defects (kind 2), turning
+    with each roller's spin angle psi (see kernel._roller_defect)."""
+    ho, hi, s1, s2 = (np.zeros_like(psi) for _ in range(4))
+    row = np.arange(2)[:, None]
+    k = np.arange(psi.shape[1])[None, :]
+    for d in range(D.shape[0]):
+        if D[d, 0] != 2.0:
+            continue
+        on = (row == D[d, 1]) & (k == D[d, 7])
+        tau = D[d, 3]
+        xo = np.mod(psi - D[d, 2], TWO_PI)
+        xi = np.mod(psi + np.pi - D[d, 2], TWO_PI)
+        ho = np.where(on & (xo < tau), D[d, 4] * np.sin(np.pi * xo / tau), ho)
+        hi = np.where(on & (xi < tau), D[d, 4] * np.sin(np.pi * xi / tau), hi)
+        s1 = np.where(on, D[d, 5], s1)
+        s2 = np.where(on, D[d, 6], s2)
+    return ho, hi, s1, s2
+
+
+def _deeper(ring, roller):
+    """Of a ring's defect ``(h, s1, s2)`` and a roller's at the same contact, the deeper."""
+    use = roller[0] > ring[0]
+    return tuple(np.where(use, b, a) for a, b in zip(ring, roller))
+
+
 def _dented(d0, kap, h, s1, s2, Le):
     """A raceway line contact's integrals, with a defect of depth h (> 0) over ``[s1, s2]``."""
     i0, i1 = line_integrals_numpy(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
@@ -186,7 +212,8 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     po = c + rb * no
     d0 = _dot(disp - (uo + _cross(th_o, po - uo)), no) - P[C_O]
     kap = s * (tht - _dot(th_o, et))
-    i0, i1 = _dented(d0, kap, *_defect(D, 0.0, phi, theta_oy), Le)
+    ho_r, hi_r, r1, r2 = _roller_defect(D, rol[..., 5])
+    i0, i1 = _dented(d0, kap, *_deeper(_defect(D, 0.0, phi, theta_oy), (ho_r, r1, r2)), Le)
     vrel = Vc + _cross(wr, rb * no) - (vo + _cross(wo, po - uo))
     Qo, m1, f = _line_contact(i0, i1, P[K_O], Le, d0, kap, _dot(vrel, no), Mr, P[MU_R],
                                vrel, no, P)
@@ -200,7 +227,7 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     pi_ = c - rb * ni
     d0 = _dot(_cross(th_i, pi_) - disp, ni)
     kap = s * (_dot(th_i, et) - tht)
-    i0, i1 = _dented(d0, kap, *_defect(D, 1.0, phi, ring[0, 4]), Le)
+    i0, i1 = _dented(d0, kap, *_deeper(_defect(D, 1.0, phi, ring[0, 4]), (hi_r, r1, r2)), Le)
     vrel = Vc + _cross(wr, -rb * ni) - _cross(wi, pi_)
     Qi, m1, f = _line_contact(i0, i1, P[K_I], Le, d0, kap, -_dot(vrel, ni), Mr, P[MU_R],
                                vrel, ni, P)

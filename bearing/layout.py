@@ -42,7 +42,7 @@ N_ROLLER, N_CAGE = 12, 12
 # --- contact-force output slots (2, Z, N_Q) ------------------------------------------------
 Q_O, Q_I, Q_A, Q_CR1, Q_CR2, Q_SIDE, N_Q = range(7)
 
-KINDS = {"outer": 0, "inner": 1}   # roller (2) defects: same table, later
+KINDS = {"outer": 0, "inner": 1, "roller": 2}   # defect kinds: the table's first column
 
 
 def n_state(Z_: int) -> int:

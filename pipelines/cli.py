@@ -109,7 +109,8 @@ def _cmd_bearing_simulate(a) -> None:
     defects = ()
     if a.defect_width > 0:
         defects = (Defect(W=a.defect_width * 1e-3, L=a.defect_length * 1e-3, H=a.defect_depth * 1e-3,
-                          row=a.defect_row, angle=radians(a.defect_angle), kind=a.defect_kind),)
+                          row=a.defect_row, angle=radians(a.defect_angle), kind=a.defect_kind,
+                          roller=a.defect_roller),)
     cfg = RigConfig(speed_kmh=a.speed_kmh, F_r=a.radial_load, F_a=a.axial_load, duration=a.duration,
                     dt=a.dt, method=a.method, seed=a.seed, bearing=bearing, defects=defects)
     out = Path(a.out)
@@ -311,9 +312,13 @@ def parser() -> argparse.ArgumentParser:
                       help="defect depth in mm (default 2)")
     bsim.add_argument("--defect-row", type=int, default=2, help="row of the defect, 1 or 2 (default 2)")
     bsim.add_argument("--defect-kind", default="outer",
-                      help="outer (on the cup, default) or inner (on the cone, turning with the shaft)")
+                      help="outer (on the cup, default), inner (on the cone, turning with the "
+                           "shaft) or roller (on one roller, turning with its spin)")
+    bsim.add_argument("--defect-roller", type=int, default=1,
+                      help="the roller (1..Z) that carries a roller defect (default 1)")
     bsim.add_argument("--defect-angle", type=float, default=0.0, metavar="DEG",
-                      help="defect centre from the top (load zone middle), degrees (default 0)")
+                      help="defect centre from the top (load zone middle), degrees (default 0); "
+                           "a roller defect: the roller's spin angle at which it meets the cup")
     bsim.add_argument("--radial-load", type=float, default=54e3, metavar="N", help="default 54e3")
     bsim.add_argument("--axial-load", type=float, default=0.0, metavar="N", help="default 0")
     bsim.add_argument("--duration", type=float, default=1.0, metavar="S", help="simulated time (default 1)")

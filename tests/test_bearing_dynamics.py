@@ -171,6 +171,43 @@ def test_inner_ring_envelope_spectrum_is_bpfi_with_shaft_sidebands(inner, health
     assert line(BPFI, fh, Ah) < 0.01 * line(BPFI)
 
 
+@pytest.fixture(scope="module")
+def roller():
+    """A 2 mm defect on roller 1 of row 2, clear of both raceways at the start (a quarter turn);
+    2 s by the leapfrog (half-hertz lines; test_leapfrog_follows_rk4 holds it to RK4)."""
+    return simulate(RigConfig(duration=2.0, method="leapfrog", defects=(
+        Defect(W=2e-3, kind="roller", roller=1, angle=np.pi / 2),)))
+
+
+def test_roller_defect_envelope_spectrum_is_two_bsf_with_cage_sidebands(roller, healthy):
+    """The defect meets the cup and the cone once a roller turn each: a line at 2 BSF (within
+    3 %: the rollers slip), and, as the roller rides round with the cage into and out of the
+    load zone, sidebands at 2 BSF +- the cage's rotation and the cage frequency itself; each 10
+    times the floor.  The single BSF (one raceway) stays weaker than 2 BSF.  Without the defect
+    the 2 BSF line is within 4 times the floor and under 5 % of the faulty one."""
+    f, A = envelope_spectrum(_after(roller), roller.fs, BAND)
+    m = (f > 1) & (f < 150)
+    floor = np.median(A[m])
+    df = f[1]
+    bsf = orders(BearingParams()).BSF * F_S
+    win = np.abs(f / (2 * bsf) - 1) <= 0.03
+    f2 = f[win][np.argmax(A[win])]
+    f_c = roller.cage_hz(0.1)
+
+    def line(fq, ff=f, AA=A):                          # the largest within 1.5 bins
+        return AA[np.abs(ff - fq) <= 1.5 * ff[1]].max()
+    print(f"2 BSF {2 * bsf:.2f} Hz kinematic, found {f2:.2f} Hz ({line(f2):.2f}); -f_c "
+          f"{line(f2 - f_c):.2f}, +f_c {line(f2 + f_c):.2f}, f_c {line(f_c):.2f}, BSF {line(bsf):.2f}, "
+          f"floor {floor:.3f} m/s^2, bins {df:.2f} Hz")
+    for fq in (f2, f2 - f_c, f2 + f_c, f_c):
+        assert line(fq) > 10 * floor, fq
+    assert line(bsf) < line(f2)
+    fh, Ah = envelope_spectrum(_after(healthy), healthy.fs, BAND)
+    mh = (fh > 1) & (fh < 150)
+    assert line(2 * bsf, fh, Ah) < 4 * np.median(Ah[mh])
+    assert line(2 * bsf, fh, Ah) < 0.05 * line(f2)
+
+
 def test_wider_defects_give_larger_impulses():
     amp = []
     for W in (1e-3, 3e-3, 5e-3):
@@ -264,7 +301,9 @@ def test_result_file_roundtrip_and_resume(tmp_path, method):
     (lambda: defects.table((Defect(W=2e-3, angle=0.0), Defect(W=2e-3, angle=0.005)), BearingParams()),
      "angle"),
     (lambda: Defect(row=3), "row"),
-    (lambda: Defect(kind="roller"), "kind"),
+    (lambda: Defect(kind="ball"), "kind"),
+    (lambda: RigConfig(defects=(Defect(kind="roller", roller=21),)), "roller"),
+    (lambda: Defect(kind="roller", roller=1.5), "roller"),
     (lambda: RigConfig(speed_kmh=0.0), "speed_kmh"),
     (lambda: RigConfig(dt=3e-5), "dt"),
     (lambda: RigConfig(method="euler"), "method"),
@@ -281,7 +320,7 @@ def test_bad_rig_input_is_named(make, field):
     (["--param", "u_r=-1e-5"], "u_r"), (["--param", "Z=2"], "Z"), (["--defect-width", "30"], "W"),
     (["--speed-kmh", "0"], "speed"), (["--speed-kmh", "-5"], "speed"), (["--dt", "3e-5"], "dt"),
     (["--method", "leapfrog", "--dt", "2e-5"], "dt"), (["--method", "euler"], "method"),
-    (["--defect-width", "2", "--defect-kind", "roller"], "kind"),
+    (["--defect-width", "2", "--defect-kind", "ball"], "kind"),
     (["--defect-width", "-1"], "defect-width"), (["--defect-width", "2", "--defect-row", "3"], "row"),
 ])
 def test_cli_bad_input_exits_2_naming_the_parameter(args, field, tmp_path, capsys):

@@ -190,3 +190,27 @@ def test_inner_ring_defect(start):
     assert np.array_equal(Qt, Qt0)
     y3, ring3 = perturbed(p, y, ring)
     assert_same(y3, ring3, P, both_kinds)
+
+
+def test_roller_defect(start):
+    """A defect on roller 1 of row 2 (kind 2, turning with its spin): under the cup at its angle,
+    under the cone half a turn on; the twins agree in both places, beside an outer-ring defect,
+    and on a shaken state; only that roller's contact changes."""
+    p, P, _, _, _ = start
+    none = defects.table((), p)
+    y, uo = equilibrium.static_state(p, P, none, (0.0, 0.0, -54e3), OMEGA)
+    ring = equilibrium.ring_motion(OMEGA, uo)
+    assert layout.views(y, p.Z)[0][1, 0, PSI] == 0.0
+    _, _, Q0 = assert_same(y, ring, P, none)
+    for angle, q in ((0.0, layout.Q_O), (np.pi, layout.Q_I)):
+        D = defects.table((defects.Defect(W=2e-3, kind="roller", roller=1, angle=angle),), p)
+        _, _, Q = assert_same(y, ring, P, D)
+        assert 0.0 <= Q[1, 0, q] < Q0[1, 0, q]
+        other = np.ones(Q.shape[:2], bool)
+        other[1, 0] = False
+        assert np.array_equal(Q[other], Q0[other])
+    D = defects.table((defects.Defect(W=2e-3, kind="roller", roller=3, angle=0.5),
+                       defects.Defect(W=2e-3)), p)
+    y3, ring3 = perturbed(p, y, ring)
+    layout.views(y3, p.Z)[0][1, 2, PSI] = 0.5            # roller 3 on its defect at the cup
+    assert_same(y3, ring3, P, D)
