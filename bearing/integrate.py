@@ -113,6 +113,24 @@ def _record(i, every, Y, a, F, Qc, nb, acc, Fout, Qout, cage):
 
 
 @njit(cache=True)
+def kick_drift(y, a, P, hk, h, kick):
+    """The leapfrog on one DTRB's states ``y`` (bearing/layout.py: rollers, then cages, each six
+    positions and their six rates) from their accelerations ``a``: the rates kicked by ``hk``
+    (unless ``kick`` is False: the implicit kick did it), then the positions drifted by ``h`` at
+    the new rates; a kinematic cage drives the azimuths at the rate the right-hand side gave."""
+    kin = P[KINEMATIC] != 0.0
+    cages = y.shape[0] - 2 * N_CAGE
+    for o in range(0, y.shape[0], N_ROLLER):
+        for q in range(6):
+            if kick:
+                y[o + 6 + q] += hk * a[o + 6 + q]
+            if kin and ((o < cages and q == 1) or (o >= cages and q == 5)):
+                y[o + q] += h * a[o + q]
+            else:
+                y[o + q] += h * y[o + 6 + q]
+
+
+@njit(cache=True)
 def run_leapfrog(Y, t0, dt, n_steps, every, P, D, rig, acc, Fout, Qout, cage, mode, start,
                  theta=1.0):
     """:func:`run_rk4`'s contract by the leapfrog (module docstring): ``mode`` 0 explicit,
@@ -132,23 +150,13 @@ def run_leapfrog(Y, t0, dt, n_steps, every, P, D, rig, acc, Fout, Qout, cage, mo
     F = np.zeros((2, 6))
     Qc = np.zeros((2, nz, 6))
     G = np.zeros((2 if mode > 0 else 0, nz + 1, 6, 12))
-    kin = Pk[KINEMATIC] != 0.0
-    cages = nb - 2 * N_CAGE
     for i in range(n_steps):
         _rig_rhs(t0 + i * dt, Y, Pk, D, rig, ring, a, F, Qc, G)
         _record(i, every, Y, a, F, Qc, nb, acc, Fout, Qout, cage)
         hk = 0.5 * dt if (start and i == 0) else dt
         if mode > 0:
             damped_kick(Y[:nb], a[:nb], G, Pk, hk, theta)
-        for o in range(0, nb, N_ROLLER):
-            for q in range(6):
-                if mode == 0:
-                    Y[o + 6 + q] += hk * a[o + 6 + q]
-                # a kinematic cage drives the azimuths at the rate the right-hand side gave
-                if kin and ((o < cages and q == 1) or (o >= cages and q == 5)):
-                    Y[o + q] += dt * a[o + q]
-                else:
-                    Y[o + q] += dt * Y[o + 6 + q]
+        kick_drift(Y[:nb], a[:nb], Pk, hk, dt, mode == 0)
         for q in range(3):
             Y[nb + 3 + q] += hk * a[nb + 3 + q]
             Y[nb + q] += dt * Y[nb + 3 + q]

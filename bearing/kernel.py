@@ -318,14 +318,20 @@ def _roller_defect(D, j, k, psi):
 
 
 @njit(inline="always")
-def _dented(d0, kap, h, s1, s2, Le, stiff):
+def _raceway(d0, kap, h, s1, s2, Le, stiff):
     """A raceway line contact's integrals (and, when ``stiff``, its tangent stiffness over
-    ``K / L``) with a defect of depth h over ``[s1, s2]`` of the line (Eq. 14)."""
+    ``K / L``, :func:`line_stiffness`), with a defect of depth h over ``[s1, s2]`` of the line
+    where ``h > 0`` (Eq. 14)."""
+    kdd, kdk, kkk = 0.0, 0.0, 0.0
+    if not h > 0.0:
+        i0, i1 = line_integrals(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
+        if stiff and i0 > 0.0:
+            kdd, kdk, kkk = line_stiffness(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
+        return i0, i1, kdd, kdk, kkk
     a0, a1 = line_integrals(d0, kap, -0.5 * Le, s1, N_LINE)
     b0, b1 = line_integrals(d0 - h, kap, s1, s2, N_LINE)
     c0, c1 = line_integrals(d0, kap, s2, 0.5 * Le, N_LINE)
     i0, i1 = a0 + b0 + c0, a1 + b1 + c1
-    kdd, kdk, kkk = 0.0, 0.0, 0.0
     if stiff and i0 > 0.0:
         for d_, sa, sb in ((d0, -0.5 * Le, s1), (d0 - h, s1, s2), (d0, s2, 0.5 * Le)):
             e0, e1, e2 = line_stiffness(d_, kap, sa, sb, N_LINE)
@@ -351,6 +357,7 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
     own block and its coupling to the cage of row j, ``G[j, Z, :, :6]`` the cage's own, for a
     step that treats the contact damping implicitly (:mod:`.implicit`)."""
     acc = G.shape[0] > 0
+    stiff = acc and P[H_K] > 0.0                     # "imex2": the stiffness in the blocks too
     if acc:
         G[:, :, :, :] = 0.0
     nz = int(P[Z])
@@ -446,14 +453,7 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
             hr_o, hr_i, r1, r2 = (0.0, 0.0, 0.0, 0.0) if n_roller == 0 else _roller_defect(D, j, k, y[b0 + 5])
             if hr_o > h:
                 h, s1, s2 = hr_o, r1, r2
-            stiff = acc and P[H_K] > 0.0
-            kdd, kdk, kkk = 0.0, 0.0, 0.0
-            if h > 0.0:
-                i0, i1, kdd, kdk, kkk = _dented(d0, kap, h, s1, s2, Le, stiff)
-            else:
-                i0, i1 = line_integrals(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
-                if stiff and i0 > 0.0:
-                    kdd, kdk, kkk = line_stiffness(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
+            i0, i1, kdd, kdk, kkk = _raceway(d0, kap, h, s1, s2, Le, stiff)
             Qo = 0.0
             if i0 > 0.0:
                 vrel = _sub(_add(Vc, _cross(wr, _mul(rb, no))), _add(vo, _cross(wo, _sub(po, uo))))
@@ -481,13 +481,7 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
             h, s1, s2 = (0.0, 0.0, 0.0) if n_inner == 0 else _defect(D, 1.0, j, phi, theta_iy)
             if hr_i > h:
                 h, s1, s2 = hr_i, r1, r2
-            kdd, kdk, kkk = 0.0, 0.0, 0.0
-            if h > 0.0:
-                i0, i1, kdd, kdk, kkk = _dented(d0, kap, h, s1, s2, Le, stiff)
-            else:
-                i0, i1 = line_integrals(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
-                if stiff and i0 > 0.0:
-                    kdd, kdk, kkk = line_stiffness(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
+            i0, i1, kdd, kdk, kkk = _raceway(d0, kap, h, s1, s2, Le, stiff)
             Qi = 0.0
             if i0 > 0.0:
                 vrel = _sub(_add(Vc, _cross(wr, _mul(-rb, ni))), _add(vi, _cross(wi, _sub(pi_, ui))))

@@ -132,7 +132,7 @@ def _deeper(ring, roller):
     return tuple(np.where(use, b, a) for a, b in zip(ring, roller))
 
 
-def _dented(d0, kap, h, s1, s2, Le):
+def _raceway(d0, kap, h, s1, s2, Le):
     """A raceway line contact's integrals, with a defect of depth h (> 0) over ``[s1, s2]``."""
     i0, i1 = line_integrals_numpy(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
     dent = h > 0.0
@@ -213,7 +213,7 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     d0 = _dot(disp - (uo + _cross(th_o, po - uo)), no) - P[C_O]
     kap = s * (tht - _dot(th_o, et))
     ho_r, hi_r, r1, r2 = _roller_defect(D, rol[..., 5])
-    i0, i1 = _dented(d0, kap, *_deeper(_defect(D, 0.0, phi, theta_oy), (ho_r, r1, r2)), Le)
+    i0, i1 = _raceway(d0, kap, *_deeper(_defect(D, 0.0, phi, theta_oy), (ho_r, r1, r2)), Le)
     vrel = Vc + _cross(wr, rb * no) - (vo + _cross(wo, po - uo))
     Qo, m1, f = _line_contact(i0, i1, P[K_O], Le, d0, kap, _dot(vrel, no), Mr, P[MU_R],
                                vrel, no, P)
@@ -227,7 +227,7 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     pi_ = c - rb * ni
     d0 = _dot(_cross(th_i, pi_) - disp, ni)
     kap = s * (_dot(th_i, et) - tht)
-    i0, i1 = _dented(d0, kap, *_deeper(_defect(D, 1.0, phi, ring[0, 4]), (hi_r, r1, r2)), Le)
+    i0, i1 = _raceway(d0, kap, *_deeper(_defect(D, 1.0, phi, ring[0, 4]), (hi_r, r1, r2)), Le)
     vrel = Vc + _cross(wr, -rb * ni) - _cross(wi, pi_)
     Qi, m1, f = _line_contact(i0, i1, P[K_I], Le, d0, kap, -_dot(vrel, ni), Mr, P[MU_R],
                                vrel, ni, P)

@@ -40,7 +40,7 @@ import math
 import numpy as np
 from numba import njit
 
-from axlebox.bearing.layout import KINEMATIC, N_CAGE, N_ROLLER
+from axlebox.bearing.integrate import kick_drift
 
 from .kernel_bearings import BR_N, BR_OFF, damped_kicks
 from .kernel_body import BI_N, BI_POS, BI_SPIN, BI_VEL, frame_kinematics, position_rates
@@ -119,19 +119,7 @@ def _kick_drift(y, a, hk, h, S, W):
         damped_kicks(y, a, br_i, br_P, brG, hk)
     for k in range(br_i.shape[0]):
         off, n = br_i[k, BR_OFF], br_i[k, BR_N]
-        kin = br_P[k, KINEMATIC] != 0.0
-        cages = off + n - 2 * N_CAGE
-        # rollers and cages alike: six positions, then their six rates (bearing/layout.py)
-        for o in range(off, off + n, N_ROLLER):
-            if brG.shape[0] == 0:
-                for q in range(6):
-                    y[o + 6 + q] += hk * a[o + 6 + q]
-            for q in range(6):
-                # a kinematic cage drives the azimuths at the rate the right-hand side gave
-                if kin and ((o < cages and q == 1) or (o >= cages and q == 5)):
-                    y[o + q] += h * a[o + q]
-                else:
-                    y[o + q] += h * y[o + 6 + q]
+        kick_drift(y[off:off + n], a[off:off + n], br_P[k], hk, h, brG.shape[0] == 0)
 
 
 @njit(cache=True)
