@@ -178,14 +178,41 @@ def _cmd_report(a) -> None:
 def _cmd_sweep(a) -> None:
     from .sweep import sweep
     res = sweep(a.config, a.out, speeds=a.speeds, widths=a.widths, duration=a.duration,
-                scheduler=a.scheduler, workers=a.workers)
+                scheduler=a.scheduler, workers=a.workers, kinds=a.kinds, sides=a.sides)
     if res["failed"]:
         raise RuntimeError(f"{len(res['failed'])} case(s) failed ({', '.join(res['failed'])}); the "
                            f"finished ones are in {a.out}, a rerun retries the rest")
 
 
+def _cmd_dataset(a) -> None:
+    from axlebox.bearing.diagnostics.criterion import Criterion
+
+    from .dataset import write
+    write(a.sweep_dir, a.out, window_s=a.window, hop_s=a.hop, criterion=Criterion(mode=a.criterion))
+
+
+def _add_dataset(sub) -> None:
+    ds = sub.add_parser("dataset", help="a vehicle sweep as labelled windows of the two axle-box "
+                                        "signals (NetCDF-4, xarray) with a dataset card",
+                        description="Cuts every result of a vehicle sweep folder into windows of "
+                        "the two axle-box signals (vertical, after the track's fade-in) labelled "
+                        "with speed, each side's defect, the real side and the criterion's verdict; "
+                        "writes OUT/dataset.nc (xarray.open_dataset) and OUT/README.md.")
+    ds.add_argument("sweep_dir", help="the --out folder of axlebox sweep (vehicle results)")
+    ds.add_argument("--out", required=True, help="output folder (dataset.nc, README.md)")
+    ds.add_argument("--window", type=float, default=0.5, metavar="S", help="window length in s "
+                                                                            "(default 0.5)")
+    ds.add_argument("--hop", type=float, default=0.25, metavar="S", help="step between window "
+                                                                          "starts in s (default 0.25)")
+    ds.add_argument("--criterion", choices=("relative", "absolute"), default="relative",
+                    help="the criterion's VF mode for the verdict labels (default relative, as the "
+                         "demo)")
+    ds.set_defaults(func=_cmd_dataset)
+
+
 def _add_sweep(sub) -> None:
-    sw = sub.add_parser("sweep", help="a study matrix (speeds x defect widths) of the bearing rig or "
+    sw = sub.add_parser("sweep", help="a study matrix (speeds x defect widths [x kinds x sides]) of the "
+                                      "bearing rig or "
                                       "the vehicle on dask.distributed; resumable; summary table",
                         description="Runs every case (speed x defect width) of a rig config ([rig]) "
                         "or a vehicle config ([run] ...) as a dask.distributed task, on a local "
@@ -194,12 +221,18 @@ def _add_sweep(sub) -> None:
                         "cases. Ends with a table of indicators per case and side (DIR/summary.csv).")
     sw.add_argument("config", help="base config: a TOML file or a shipped config's name (axlebox "
                                    "configs): a rig config (study_rig) or a vehicle config (study); "
-                                   "an optional [sweep] gives speeds_kmh, widths_mm")
+                                   "an optional [sweep] gives speeds_kmh, widths_mm, kinds, sides")
     sw.add_argument("--speeds", type=float, nargs="+", metavar="V",
                     help="speeds in km/h (default: sweep.speeds_kmh, else the config's speed)")
     sw.add_argument("--widths", type=float, nargs="+", metavar="MM",
                     help="defect widths in mm, 0: no defect; > 0 sets W of every [[defects]] entry "
                          "(default: sweep.widths_mm, else the config's defects)")
+    sw.add_argument("--kinds", nargs="+", metavar="KIND",
+                    help="defect kinds (outer, inner, roller) set on every [[defects]] entry "
+                         "(default: sweep.kinds, else the config's)")
+    sw.add_argument("--sides", nargs="+", metavar="SIDE",
+                    help="vehicle: L, R or LR (both sides of the wheelset) for every [[defects]] "
+                         "entry (default: sweep.sides, else the config's)")
     sw.add_argument("--scheduler", metavar="ADDRESS",
                     help="dask scheduler (e.g. tcp://host:8786; default: a local cluster)")
     sw.add_argument("--workers", type=int, metavar="N",
@@ -371,6 +404,7 @@ def parser() -> argparse.ArgumentParser:
     rp.set_defaults(func=_cmd_report)
 
     _add_sweep(sub)
+    _add_dataset(sub)
 
     c = sub.add_parser("contact", help="wheel-rail contact")
     cs = c.add_subparsers(dest="contact_command", required=True, parser_class=_Parser)

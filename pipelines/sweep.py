@@ -1,11 +1,15 @@
-"""``axlebox sweep CONFIG.toml --out DIR``: speeds x outer-ring defect widths of the bearing rig
-(a config with ``[rig]``) or the vehicle (``[run]`` ..., as ``configs/vehicle.toml``), one case
-per dask.distributed task on a local cluster (``--workers`` one-thread processes, never more than
-the cases) or the scheduler at ``--scheduler`` (its workers must see DIR).
+"""``axlebox sweep CONFIG.toml --out DIR``: speeds x defect widths (x defect kinds x sides) of the
+bearing rig (a config with ``[rig]``) or the vehicle (``[run]`` ..., as ``configs/vehicle.toml``),
+one case per dask.distributed task on a local cluster (``--workers`` one-thread processes, never
+more than the cases) or the scheduler at ``--scheduler`` (its workers must see DIR).
 
-Lists from the options, else ``[sweep] speeds_kmh``/``widths_mm``, else the config's own speed
-and defects; width 0 removes the ``[[defects]]``, > 0 sets their ``W`` (m).  Each case writes
-``DIR/v48_w2.h5`` (``.`` -> ``p``) with its own config inside, through a temporary name; a rerun
+Lists from the options, else ``[sweep] speeds_kmh``/``widths_mm``/``kinds``/``sides``, else the
+config's own speed and defects; width 0 removes the ``[[defects]]`` (one case per speed, whatever
+the kinds and sides), > 0 sets their ``W`` (m); a kind (``outer``, ``inner``, ``roller``) sets
+every defect's ``kind``; a side (vehicle only) puts every defect on ``L`` or ``R``, or ``LR`` on
+both (each entry once per side: faults on both sides of its wheelset).  Each case writes
+``DIR/v48_w2.h5`` (``.`` -> ``p``; ``DIR/v48_w2_inner_LR.h5`` when kinds and sides are swept)
+with its own config inside, through a temporary name; a rerun
 skips files that open as a result of the same config and removes ``*.tmp`` left by a killed run
 (one sweep per folder at a time; the rig's ``*.partial.h5`` checkpoints are kept, it resumes from
 them).  The summary per case and side goes to ``DIR/summary.csv``: two-sensor (vehicle) results
@@ -32,7 +36,8 @@ from axlebox import configs
 from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
 
-SWEEP_FIELDS = ("speeds_kmh", "widths_mm")
+SWEEP_FIELDS = ("speeds_kmh", "widths_mm", "kinds", "sides")
+SIDES = ("L", "R", "LR")                             # LR: the defect on both sides of its wheelset
 RUN_SECTION = {"rig": "rig", "vehicle": "run"}       # where speed_kmh and duration live
 
 
@@ -45,6 +50,8 @@ class Case:
     speed_kmh: float
     width_mm: float
     toml: str
+    defect_kind: str | None = None      # swept kind, None: the config's own
+    sides: str | None = None            # swept side(s), None: the config's own
 
     def path(self, out) -> Path:
         return Path(out) / f"{self.name}.h5"
@@ -90,8 +97,38 @@ def case_toml(kind: str, d: dict) -> str:
     return tomli_w.dumps(d)
 
 
-def matrix(kind: str, cfg: dict, speeds=None, widths=None, duration=None) -> list[Case]:
-    """The cases of ``cfg`` (parsed TOML): speeds (km/h) x widths (mm); options over ``[sweep]``."""
+def _names(values, name: str, allowed: tuple[str, ...]) -> list[str]:
+    """A non-empty list of names among ``allowed``, duplicates dropped."""
+    if not isinstance(values, (list, tuple)) or not values:
+        raise ParameterError(f"{name} = {values!r} is not allowed: expected a list of "
+                             + ", ".join(allowed))
+    for v in values:
+        if v not in allowed:
+            raise ParameterError(f"{name} {v!r} is not allowed: expected one of " + ", ".join(allowed))
+    return list(dict.fromkeys(values))
+
+
+def _place(defects: list[dict], w, kind, sides) -> list[dict]:
+    """The case's ``[[defects]]``: width ``w`` mm (0: none, None: as they are), ``kind`` and
+    ``sides`` (None: as they are) set on every entry; ``LR`` gives each entry once per side."""
+    if w == 0:
+        return []
+    out = []
+    for e in defects:
+        e = dict(e)
+        if w is not None:
+            e["W"] = w * 1e-3
+        if kind is not None:
+            e["kind"] = kind
+        out += [dict(e, side=s) for s in sides] if sides is not None else [e]
+    return out
+
+
+def matrix(kind: str, cfg: dict, speeds=None, widths=None, duration=None, kinds=None,
+           sides=None) -> list[Case]:
+    """The cases of ``cfg`` (parsed TOML): speeds (km/h) x widths (mm) x defect kinds x sides;
+    options over ``[sweep]``."""
+    from axlebox.bearing.layout import KINDS
     sw = cfg.get("sweep", {})
     if not isinstance(sw, dict):
         raise ParameterError(f"sweep = {sw!r} is not allowed: expected a [sweep] table")
@@ -104,32 +141,52 @@ def matrix(kind: str, cfg: dict, speeds=None, widths=None, duration=None) -> lis
         if given is not None:
             return _numbers(given, option, what, zero_ok)
         return _numbers(sw[key], f"sweep.{key}", what, zero_ok) if key in sw else default
+
+    def names(given, key, option, allowed):
+        if given is not None:
+            return _names(given, option, allowed)
+        return _names(sw[key], f"sweep.{key}", allowed) if key in sw else [None]
     speeds = axis(speeds, "speeds_kmh", "--speeds", "speeds in km/h", False,
                   [cfg.get(sec, {}).get("speed_kmh", 48.0)])
     widths = axis(widths, "widths_mm", "--widths", "defect widths in mm", True,
                   [None])                                # None: the config's defects as they are
+    kinds = names(kinds, "kinds", "--kinds", tuple(KINDS))
+    sides = names(sides, "sides", "--sides", SIDES)
+    if kind == "rig" and sides != [None]:
+        raise ParameterError(f"sides {sides!r} are not allowed for the bearing rig: it has one "
+                             "bearing; sweep sides with a vehicle config")
     if duration is not None and not (math.isfinite(duration) and duration > 0):
         raise ParameterError(f"--duration = {duration!r} is not allowed: expected a time > 0 s")
     base = {k: v for k, v in cfg.items() if k != "sweep"}
     defects = base.get("defects", [])
-    if any(widths) and not defects:
-        raise ParameterError(f"width {next(w for w in widths if w):g} mm is not allowed: the config has "
-                             "no [[defects]] entry whose defects.W to set; add one or sweep width 0 only")
-    cases = []
+    if not defects and (any(widths) or kinds != [None] or sides != [None]):
+        what, field = ((f"width {next(w for w in widths if w):g} mm", "W") if any(widths) else
+                       (f"kinds {kinds!r}", "kind") if kinds != [None] else (f"sides {sides!r}", "side"))
+        raise ParameterError(f"{what} is not allowed: the config has no [[defects]] entry whose "
+                             f"defects.{field} to set; add one or sweep width 0 only")
+    cases = {}
     for v in speeds:
         for w in widths:
-            d = tomllib.loads(tomli_w.dumps(base))          # a deep copy of plain TOML data
-            d.setdefault(sec, {})["speed_kmh"] = float(v)
-            if duration is not None:
-                d[sec]["duration"] = float(duration)
-            if w == 0:
-                d.pop("defects", None)
-            for e in d.get("defects", []) if w else []:
-                e["W"] = w * 1e-3
-            mm = w if w is not None else 1e3 * max((float(e.get("W", 0.0)) for e in defects), default=0.0)
-            name = f"v{v:g}_w{mm:g}".replace(".", "p")
-            cases.append(Case(name, kind, float(v), mm, case_toml(kind, d)))
-    return cases
+            for dk in kinds:
+                for sd in sides:
+                    if w == 0:                   # no defect: one case, whatever the kind and side
+                        dk, sd = None, None
+                    d = tomllib.loads(tomli_w.dumps(base))          # a deep copy of plain TOML data
+                    d.setdefault(sec, {})["speed_kmh"] = float(v)
+                    if duration is not None:
+                        d[sec]["duration"] = float(duration)
+                    d.pop("defects", None)
+                    placed = _place(defects, w, dk, None if sd is None else
+                                    (("L", "R") if sd == "LR" else (sd,)))
+                    if placed:
+                        d["defects"] = placed
+                    mm = w if w is not None else 1e3 * max((float(e.get("W", 0.0)) for e in defects),
+                                                           default=0.0)
+                    name = f"v{v:g}_w{mm:g}".replace(".", "p") + "".join(
+                        f"_{x}" for x in (dk, sd) if x is not None)
+                    if name not in cases:
+                        cases[name] = Case(name, kind, float(v), mm, case_toml(kind, d), dk, sd)
+    return list(cases.values())
 
 
 def run_case(kind: str, toml_text: str, out: str, threads: int = 0) -> dict:
@@ -287,14 +344,14 @@ def summarise(cases: list[Case], out, log=print) -> list[dict]:
 
 
 def sweep(config, out, *, speeds=None, widths=None, duration=None, scheduler=None, workers=None,
-          log=print) -> dict:
+          log=print, kinds=None, sides=None) -> dict:
     """The whole command.  Returns ``{"cases", "skipped", "ran", "failed", "rows"}``."""
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
         raise ParameterError(f"--workers = {workers!r} is not allowed: expected an integer >= 1")
     if workers is not None and scheduler:
         raise ParameterError(f"--workers {workers} is not allowed with --scheduler: the scheduler's "
                              "cluster has its own workers")
-    cases = matrix(*load_config(config), speeds, widths, duration)
+    cases = matrix(*load_config(config), speeds, widths, duration, kinds, sides)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     for p in sorted(out.glob("*.tmp")):

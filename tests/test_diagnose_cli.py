@@ -63,6 +63,25 @@ def test_cwru_drive_end_is_real_and_fan_end_pseudo(setting, tmp_path, capsys):
 
 
 @needs_cwru
+@pytest.mark.parametrize("swap", [False, True], ids=["DE-left", "DE-right"])
+def test_cwru_one_faulty_end_is_not_faults_on_both_sides(swap, tmp_path):
+    """The both-sides rule (bearing/diagnostics/own.py) leaves the real record's verdict as it
+    was, whichever channel is given first: the fan end's BPFO in the drive end's band is 0.15
+    of the drive end's (under 0.25: a copy), the drive end's in the fan end's 1.04 (its own)."""
+    args = list(CWRU_ARGS)
+    if swap:
+        args[1], args[3] = args[3], args[1]
+    out = tmp_path / "c.json"
+    assert main(["diagnose", str(CWRU), *args, "--relative", "--json", str(out)]) == 0
+    d = json.loads(out.read_text())
+    de, fe = ("right", "left") if swap else ("left", "right")
+    assert (d["verdicts"][de]["verdict"], d["verdicts"][fe]["verdict"]) == ("real fault", "pseudo-fault")
+    share = d["shares"]["BPFO"]["share"]
+    assert share[fe] == pytest.approx(0.153, abs=0.02) and share[fe] < Criterion().own_share
+    assert share[de] > 1.0
+
+
+@needs_cwru
 def test_cwru_with_the_paper_metro_range_is_undecided(tmp_path, capsys):
     """The paper's Hz^2 range belongs to the metro car: on the 12 kHz rig the VF difference
     (8.4e5 Hz^2) is above it, and the criterion says so instead of guessing."""

@@ -254,7 +254,7 @@ def test_paper_range_and_its_relative_mapping():
     # above the range (9e4 > 7.49e4)
     (side(1e4, 2.0, 40), side(1e5, 1.0, 30), ("undecided",) * 2, "above the range"),
     # no fault line on either side -> healthy whatever the VF difference
-    (side(2e4, 2.0, 40, ()), side(5e4, 1.0, 30, ()), ("healthy",) * 2, "no BPFO line"),
+    (side(2e4, 2.0, 40, ()), side(5e4, 1.0, 30, ()), ("healthy",) * 2, "no BPFO/BPFI line"),
     # the larger side shows no line but the smaller does
     (side(2e4, 2.0, 40, ()), side(5e4, 1.0, 30), ("undecided",) * 2, "only right shows fault lines"),
 ])

@@ -216,6 +216,24 @@ def test_two_local_workers_run_four_cases_at_least_1_6_times_faster(tmp_path):
     assert max(ratios) >= 1.6, ratios
 
 
+def test_kinds_and_sides_make_their_cases():
+    """``--kinds`` and ``--sides`` multiply the matrix; width 0 is one case per speed; LR puts
+    every defect on both sides; names say which."""
+    kind, cfg = load_config("validation_48kmh")
+    cases = matrix(kind, cfg, speeds=[48.0], widths=[0.0, 2.0], kinds=["outer", "inner"],
+                   sides=["R", "LR"])
+    assert [c.name for c in cases] == ["v48_w0", "v48_w2_outer_R", "v48_w2_outer_LR",
+                                       "v48_w2_inner_R", "v48_w2_inner_LR"]
+    import tomllib
+    for c in cases:
+        d = tomllib.loads(c.toml).get("defects", [])
+        want = {None: [], "R": ["R"], "LR": ["L", "R"]}[c.sides]
+        assert [e["side"] for e in d] == want
+        assert all(e["kind"] == c.defect_kind and e["W"] == 2e-3 for e in d)
+    # without the new axes the names and configs are as before
+    assert [c.name for c in matrix(kind, cfg, speeds=[48.0], widths=[2.0])] == ["v48_w2"]
+
+
 @pytest.mark.parametrize("setup,args,words", [
     (lambda d: (d / "x.toml").write_text("[foo]\na = 1\n"), ["x.toml"], ["unknown kind", "foo"]),
     (lambda d: _config(d, name="x.toml"), ["x.toml", "--speeds", "-5"], ["--speeds", "-5", "> 0"]),
@@ -230,6 +248,12 @@ def test_two_local_workers_run_four_cases_at_least_1_6_times_faster(tmp_path):
      ["sweep.speeds", "speeds_kmh"]),
     (lambda d: _config(d, name="x.toml"), ["x.toml", "--speeds", "500"], ["speed_kmh", "500"]),
     (lambda d: _config(d, name="x.toml"), ["x.toml", "--workers", "0"], ["--workers", "0"]),
+    (lambda d: _config(d, name="x.toml"), ["x.toml", "--kinds", "ball"], ["--kinds", "'ball'", "outer"]),
+    (lambda d: _config(d, name="x.toml"), ["x.toml", "--sides", "LR"], ["sides", "rig"]),
+    (lambda d: (d / "v.toml").write_text("[run]\nduration = 0.1\n"), ["v.toml", "--kinds", "inner"],
+     ["kinds", "[[defects]]"]),
+    (lambda d: (d / "x.toml").write_text("[rig]\n[sweep]\nsides = ['M']\n"), ["x.toml"],
+     ["sweep.sides", "'M'"]),
 ])
 def test_bad_input_exits_2_with_one_line(tmp_path, capsys, setup, args, words):
     """Refused before any cluster starts: status 2, one line naming the field and value."""

@@ -150,6 +150,16 @@ def reguide(res: ChannelResult, x, guide: str, *, n_harmonics: int = 3, slip: fl
     return replace(res, **env)
 
 
+def in_band(res: ChannelResult, x, band: tuple[float, float], *, n_harmonics: int = 3,
+            slip: float = 0.03, threshold_db: float | None = None, p_fa: float = 1e-3,
+            n_required: int = 2) -> ChannelResult:
+    """``res`` (of :func:`analyse` on ``x``) with its envelope spectrum and lines redone in the
+    given ``band``: the same as ``analyse(x, ..., band=band)`` without the band-free parts."""
+    env = _band_and_lines(_signal(x), res.fs, res.shaft_hz, res.fault_hz, band, None,
+                          n_harmonics, slip, threshold_db, p_fa, n_required)
+    return replace(res, **env)
+
+
 def _band_and_lines(x, fs, shaft_hz, fault_hz, band, guide, n_harmonics, slip, threshold_db,
                     p_fa, n_required) -> dict:
     """The band-dependent fields of a :class:`ChannelResult`: the envelope band (given, by

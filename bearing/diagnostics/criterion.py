@@ -8,16 +8,23 @@ two spectra are alike (the paper's healthy wheelset, Fig. 14a); above it lies ou
 criterion was found on.
 
 :func:`verdict` applies it in this order (each side gets "real fault", "pseudo-fault",
-"healthy" or "undecided", with the reason in words):
+"healthy", "faults on both sides" or "undecided", with the reason in words):
 
-1. fault evidence (ours): a side shows a fault when one of ``Criterion.lines`` (BPFO: the paper
-   treats outer-ring faults) is detected in its envelope spectrum (:mod:`.faultlines`: the
-   fundamental and two harmonics over the noise floor).  No line on either side -> both healthy.
-   The paper's VF difference alone cannot say this: gearbox load transfer alone gives a VF
-   difference (Fig. 14a), and in relative mode the VF levels no longer tell defects from none.
+1. fault evidence (ours): a side shows a fault when one of ``Criterion.lines`` (BPFO, the paper's
+   outer-ring faults, and BPFI, inner-ring faults) is detected in its envelope spectrum
+   (:mod:`.faultlines`: the fundamental and two harmonics over the noise floor).  No line on
+   either side -> both healthy.  The paper's VF difference alone cannot say this: gearbox load
+   transfer alone gives a VF difference (Fig. 14a), and in relative mode the VF levels no longer
+   tell defects from none.
+1b. faults on both sides (ours, beyond the paper): when each side *owns* a fault line
+   (:mod:`.own`: in the band where the other side's line stands best, this side's line is at
+   least ``Criterion.own_share`` of the other's; a transmitted copy is far weaker there), both
+   sides are "faults on both sides", whatever the VF difference and the lag say (two faults'
+   impulse trains coincide or interleave, so neither a lead nor a pseudo-fault pattern is to be
+   expected).  Only with the shares given (:func:`.pair.analyse_pair` computes them).
 2. the VF difference ``m`` against the range (paper): below -> both undecided (lines are seen,
-   yet no pseudo-fault pattern: faults on both sides, or one not transmitted, are outside the
-   paper's criterion); above -> both undecided.
+   yet no pseudo-fault pattern: a fault not transmitted, or faults on both sides of unlike size,
+   are outside the paper's criterion); above -> both undecided.
 3. in the range (paper): the side where every indicator of ``Criterion.compare`` (RMS and SPM)
    is larger is the real fault, the other the pseudo-fault; if they disagree -> undecided.  If
    the larger side shows no fault line while the other does -> undecided.
@@ -69,13 +76,15 @@ import numpy as np
 
 from axlebox._params import ParameterError
 
+from .own import owned
+
 VF_RANGE_PAPER = (0.8e4, 7.49e4)        # Hz^2, paper Fig. 14 and conclusion (3)
 VF_METRO = 5.72e4                       # Hz^2, VF of a flat PSD on 0-200 and 300-800 Hz (Fig. 12)
 REL_RANGE_DEFAULT = (round(VF_RANGE_PAPER[0] / VF_METRO, 2), 1.0)
 MODES = ("absolute", "relative")
 LAG_POLICIES = ("decide", "veto", "off")
 COMPARABLE = ("rms", "spm_db", "peak", "kurtosis", "crest", "SV")
-VERDICTS = ("real fault", "pseudo-fault", "healthy", "undecided")
+VERDICTS = ("real fault", "pseudo-fault", "healthy", "faults on both sides", "undecided")
 SIDES = ("left", "right")
 _LABEL = {"rms": "RMS", "spm_db": "SPM", "peak": "peak", "kurtosis": "kurtosis", "crest": "crest",
           "SV": "SV"}
@@ -88,15 +97,18 @@ class Criterion:
     that must all be larger on the real side; ``lines``: fault lines whose detection counts as a
     fault; ``lag``: how the lag between the sides enters (one of ``LAG_POLICIES``, module
     docstring, step 4); ``lag_min_peak``: envelope correlation needed to use a lag read by
-    correlation (one read on the impulses carries its own test)."""
+    correlation (one read on the impulses carries its own test); ``own_share``: the share of the
+    other side's line, in the other side's band, above which a side's line is its own (step 1b,
+    :mod:`.own`)."""
 
     mode: str = "absolute"
     vf_range: tuple[float, float] = VF_RANGE_PAPER
     rel_range: tuple[float, float] = REL_RANGE_DEFAULT
     compare: tuple[str, ...] = ("rms", "spm_db")
-    lines: tuple[str, ...] = ("BPFO",)
+    lines: tuple[str, ...] = ("BPFO", "BPFI")
     lag: str = "decide"
     lag_min_peak: float = 0.3
+    own_share: float = 0.25
 
     def __post_init__(self):
         if self.mode not in MODES:
@@ -121,6 +133,9 @@ class Criterion:
         if not 0 <= self.lag_min_peak <= 1:
             raise ParameterError(f"Criterion.lag_min_peak = {self.lag_min_peak!r} is not allowed: "
                                  "expected a correlation in [0, 1]")
+        if not (np.isfinite(self.own_share) and self.own_share > 0):
+            raise ParameterError(f"Criterion.own_share = {self.own_share!r} is not allowed: "
+                                 "expected a ratio > 0")
 
     @property
     def range(self) -> tuple[float, float]:
@@ -152,10 +167,32 @@ def _fmt(v: float) -> str:
     return f"{v:.3g}"
 
 
-def verdict(left, right, lag=None, criterion: Criterion = PAPER) -> dict[str, tuple[str, str]]:
+def _both_sides(left, right, shares: dict, criterion: Criterion) -> str | None:
+    """The reason for "faults on both sides" when each side owns a line (:mod:`.own`), else None."""
+    own = owned(left, right, shares, criterion.lines, criterion.own_share)
+    if not (own["left"] and own["right"]):
+        return None
+    how = []
+    for s in SIDES:
+        for n in own[s]:
+            if n in shares:
+                sh = shares[n]
+                o = "right" if s == "left" else "left"
+                b = getattr(sh, f"band_{o}")
+                how.append(f"{s}'s {n} is {sh.share[s]:.2g} of {o}'s in {o}'s band "
+                           f"{b[0]:.0f}-{b[1]:.0f} Hz")
+            else:
+                how.append(f"{s}'s {n} is found on {s} only")
+    return (f"each side carries its own fault line ({'; '.join(how)}; a copy carried across "
+            f"would be under {criterion.own_share:g} of its source there)")
+
+
+def verdict(left, right, lag=None, criterion: Criterion = PAPER,
+            shares: dict | None = None) -> dict[str, tuple[str, str]]:
     """``{"left": (verdict, reason), "right": (...)}`` from two :class:`.channel.ChannelResult`
-    (``FC``/``VF``, ``rms``, ``spm_db``, ``lines``) and an optional :class:`.lag.LagResult`
-    whose channel ``a`` is ``left``."""
+    (``FC``/``VF``, ``rms``, ``spm_db``, ``lines``), an optional :class:`.lag.LagResult`
+    whose channel ``a`` is ``left`` and the fault lines' shares (:func:`.own.shares`; without
+    them step 1b is left out)."""
     ch = {"left": left, "right": right}
     other = {"left": "right", "right": "left"}
     m = vf_difference(left.VF, right.VF, criterion)
@@ -172,10 +209,14 @@ def verdict(left, right, lag=None, criterion: Criterion = PAPER) -> dict[str, tu
         return both("healthy", f"no {names} line (fundamental and harmonics over the noise floor) "
                                f"on either side; {m_txt}")
     where = " and ".join(f"{s} ({', '.join(seen[s])})" for s in SIDES if seen[s])
+    both_txt = None if shares is None else _both_sides(left, right, shares, criterion)
+    if both_txt is not None:
+        return both("faults on both sides", f"fault lines on {where}: {both_txt}; {m_txt}")
     if m < lo:
         return both("undecided", f"fault lines on {where}, but the {m_txt} is below the range "
-                                 f"{rng_txt}: no pseudo-fault pattern (faults on both sides, or one "
-                                 "not transmitted, are outside the paper's criterion)")
+                                 f"{rng_txt}: no pseudo-fault pattern (a fault not transmitted, or "
+                                 "faults on both sides of unlike size, are outside the paper's "
+                                 "criterion)")
     if m > hi:
         return both("undecided", f"{m_txt} is above the range {rng_txt} the criterion was "
                                  f"found on; fault lines on {where}")

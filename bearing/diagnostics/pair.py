@@ -16,6 +16,7 @@ from .channel import LINE_OPTIONS, ChannelResult, analyse, reguide
 from .criterion import PAPER, Criterion, verdict, vf_difference
 from .envelope import _signal, check_fs
 from .lag import LagResult, impulse_lag, time_lag
+from .own import shares as line_shares
 
 
 @dataclass(frozen=True)
@@ -32,6 +33,7 @@ class PairResult:
     criterion: Criterion
     verdicts: dict
     names: tuple[str, str] = ("left", "right")
+    shares: dict = field(default_factory=dict)
     x_left: np.ndarray = field(default=None, repr=False, compare=False)
     x_right: np.ndarray = field(default=None, repr=False, compare=False)
 
@@ -40,7 +42,8 @@ class PairResult:
                 "left": self.left.to_dict(), "right": self.right.to_dict(),
                 "lag": self.lag.to_dict(), "vf_diff_hz2": self.vf_diff,
                 "criterion": {**self.criterion.to_dict(), "m": self.m},
-                "verdicts": {s: {"verdict": v, "reason": r} for s, (v, r) in self.verdicts.items()}}
+                "verdicts": {s: {"verdict": v, "reason": r} for s, (v, r) in self.verdicts.items()},
+                "shares": {n: sh.to_dict() for n, sh in self.shares.items()}}
 
     def summary(self) -> str:
         """A few lines for a terminal."""
@@ -142,13 +145,13 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders: FaultOrder
             res[side] = analyse(x, fs, shaft_hz, orders, D, band, **channel_kw)
         except ParameterError as err:
             raise ParameterError(f"{side} channel {n!r}: {err}") from None
+    line_kw = {k: v for k, v in channel_kw.items() if k in LINE_OPTIONS}
     if band is None and guided:
         for name in criterion.lines:
             seen = {s: name in r.lines and r.lines[name].detected for s, r in res.items()}
             if seen["left"] != seen["right"]:
                 side = "left" if seen["right"] else "right"
                 x = xs[0] if side == "left" else xs[1]
-                line_kw = {k: v for k, v in channel_kw.items() if k in LINE_OPTIONS}
                 res[side] = reguide(res[side], x, name, **line_kw)
                 break
     period = 1.0 / (orders.BPFO * shaft_hz)
@@ -171,7 +174,8 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders: FaultOrder
                    for ba, bb in dict.fromkeys([(bl, bl), (br, br), (bl, br), (None, None)])),
                   key=lambda r: r.peak)
     m = vf_difference(res["left"].VF, res["right"].VF, criterion)
-    v = verdict(res["left"], res["right"], lag, criterion)
+    sh = line_shares(xs[0], xs[1], res["left"], res["right"], criterion.lines, **line_kw)
+    v = verdict(res["left"], res["right"], lag, criterion, sh)
     return PairResult(left=res["left"], right=res["right"], lag=lag,
                       vf_diff=abs(res["left"].VF - res["right"].VF), m=m, criterion=criterion,
-                      verdicts=v, names=tuple(names), x_left=xs[0], x_right=xs[1])
+                      verdicts=v, names=tuple(names), shares=sh, x_left=xs[0], x_right=xs[1])

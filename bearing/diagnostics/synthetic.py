@@ -57,3 +57,19 @@ def coaxial_pair(T: float, fs: float, f_fault: float, rng, *, amplitude: float =
     b = resonance(np.roll(a, int(round(delay_s * fs))), fs, f_bend, zeta)
     b *= gain * amplitude / max(b.std(), 1e-300)
     return (a + noise * wheel_rail_noise(n, fs, rng), b + noise * wheel_rail_noise(n, fs, rng))
+
+
+def both_sides_pair(T: float, fs: float, f_fault: float, rng, *, amplitude=(1.0, 1.0),
+                    offset_s: float = 0.0, **kw) -> tuple[np.ndarray, np.ndarray]:
+    """``(left, right)`` of a wheelset with a fault on each side (beyond the paper): each side
+    rings its own hits (RMS ``amplitude[side]``) and carries the other's as :func:`coaxial_pair`
+    does, the right side's hits ``offset_s`` after the left's; ``kw`` as :func:`coaxial_pair`
+    (the noise is added once per side)."""
+    noise = kw.pop("noise", 0.5)
+    n = int(round(T * fs))
+    own_l, copy_r = coaxial_pair(T, fs, f_fault, rng, amplitude=amplitude[0], noise=0.0, **kw)
+    own_r, copy_l = coaxial_pair(T, fs, f_fault, rng, amplitude=amplitude[1], noise=0.0, **kw)
+    k = int(round(offset_s * fs))
+    own_r, copy_l = np.roll(own_r, k), np.roll(copy_l, k)
+    return (own_l + copy_l + noise * wheel_rail_noise(n, fs, rng),
+            own_r + copy_r + noise * wheel_rail_noise(n, fs, rng))

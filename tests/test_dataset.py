@@ -1,0 +1,149 @@
+"""``axlebox dataset``: a sweep folder as labelled windows of the two axle-box signals.
+
+A 4-case sweep with known answers, written as the vehicle's result files (bearing/diagnostics/
+synthetic.py): no defect, an outer-ring defect on the left, on the right, and on both sides.  The
+coupled car's own 4-case sweep goes through the same command in tests/test_both_sides_car.py.
+"""
+import h5py
+import numpy as np
+import pandas as pd
+import pytest
+import xarray as xr
+
+from axlebox.bearing import resultfile
+from axlebox.bearing.diagnostics.synthetic import both_sides_pair, coaxial_pair
+from axlebox.bearing.frequencies import orders, shaft_hz
+from axlebox.bearing.params import BearingParams
+from axlebox.pipelines import cli
+from axlebox.pipelines.diagnose import analyse_file
+
+FS = 10_000.0
+T = 3.0
+DEFECT = '[[defects]]\nwheelset = 2\nside = "{side}"\nW = 0.002\nrow = 2\nkind = "{kind}"\n'
+CASES = {"none": ((), "none"), "left": (("L",), "left"), "right": (("R",), "right"),
+         "both": (("L", "R"), "both")}
+
+
+def write_case(folder, name, sides, speed=48.0, seed=0, kind="outer"):
+    rng = np.random.default_rng(seed)
+    bpfo = orders(BearingParams()).BPFO * shaft_hz(speed)
+    house = dict(f_res=3000.0, zeta=0.03, noise=0.3)
+    if len(sides) == 2:
+        left, right = both_sides_pair(T, FS, bpfo, rng, **house)
+    else:
+        a, b = coaxial_pair(T, FS, bpfo, rng, amplitude=1.0 if sides else 0.0, **house)
+        left, right = (a, b) if sides == ("L",) else (b, a)
+    cfg = f"[run]\nspeed_kmh = {speed}\n" + "".join(DEFECT.format(side=s, kind=kind) for s in sides)
+    z = np.zeros_like(left)
+    return resultfile.write(folder / f"{name}.h5", config_toml=cfg, seed=seed,
+                            time=np.arange(left.size) / FS, fs_hz=FS,
+                            signals={"ws2_L": {"acceleration": np.c_[z, z, left]},
+                                     "ws2_R": {"acceleration": np.c_[z, z, right]}})
+
+
+@pytest.fixture(scope="module")
+def sweep_dir(tmp_path_factory):
+    d = tmp_path_factory.mktemp("sweep")
+    for i, (name, (sides, _)) in enumerate(CASES.items()):
+        write_case(d, name, sides, seed=i)
+    return d
+
+
+@pytest.fixture(scope="module")
+def dataset(sweep_dir, tmp_path_factory):
+    out = tmp_path_factory.mktemp("data") / "data"
+    assert cli.main(["dataset", str(sweep_dir), "--out", str(out), "--window", "0.4",
+                     "--hop", "0.3"]) == 0
+    return out
+
+
+def test_loads_in_one_line_with_every_label(dataset):
+    ds = xr.open_dataset(dataset / "dataset.nc")
+    labels = ds.drop_dims("sample").to_dataframe()
+    assert isinstance(labels, pd.DataFrame)
+    for col in ("case", "file", "start_index", "t_start", "speed_kmh", "wheelset", "real_side",
+                "left_kind", "left_W", "left_L", "left_H", "left_row", "right_kind", "right_W",
+                "right_L", "right_H", "right_row", "left_verdict", "right_verdict"):
+        assert col in labels.columns, col
+    # 2.5 s after the fade-in: windows of 0.4 s every 0.3 s start at 0.5, 0.8, ... 2.6 s
+    per_case = labels.groupby("case").size()
+    assert dict(per_case) == {c: 8 for c in CASES}
+    assert ds.sizes["sample"] == 4000 and ds.attrs["fs_hz"] == FS
+    for name, (sides, real) in CASES.items():
+        rows = labels[labels.case == name]
+        assert set(rows.real_side) == {real}
+        for s, letter in (("left", "L"), ("right", "R")):
+            kind = "outer" if letter in sides else "none"
+            assert set(rows[f"{s}_kind"]) == {kind}
+            assert set(rows[f"{s}_W"]) == ({0.002} if kind == "outer" else {0.0})
+    ds.close()
+
+
+def test_windows_reproduce_the_source_arrays_exactly(dataset, sweep_dir):
+    ds = xr.load_dataset(dataset / "dataset.nc")
+    n = ds.sizes["sample"]
+    for k in range(ds.sizes["window"]):
+        w = ds.isel(window=k)
+        with h5py.File(sweep_dir / str(w.file.values), "r") as f:
+            i = int(w.start_index)
+            for side, sensor in (("left", "ws2_L"), ("right", "ws2_R")):
+                src = f[f"signals/{sensor}/acceleration"][i:i + n, 2]
+                assert np.array_equal(w[side].values, src)          # bit for bit
+        assert float(w.t_start) == pytest.approx(int(w.start_index) / FS)
+
+
+def test_verdict_labels_are_what_diagnose_says(dataset, sweep_dir):
+    """The labels' verdicts are the relative criterion's on each whole record; on these known
+    answers: healthy without defects, real on the defect side, faults on both sides."""
+    from axlebox.bearing.diagnostics.criterion import Criterion
+    labels = xr.open_dataset(dataset / "dataset.nc").drop_dims("sample").to_dataframe()
+    expect = {"none": ("healthy", "healthy"), "left": ("real fault", "pseudo-fault"),
+              "right": ("pseudo-fault", "real fault"),
+              "both": ("faults on both sides", "faults on both sides")}
+    for name in CASES:
+        r = labels[labels.case == name].iloc[0]
+        _, _, pair = analyse_file(sweep_dir / f"{name}.h5", criterion=Criterion(mode="relative"))
+        assert (r.left_verdict, r.right_verdict) == (pair.verdicts["left"][0], pair.verdicts["right"][0])
+        assert (r.left_verdict, r.right_verdict) == expect[name], name
+
+
+def test_card_states_how_it_was_made(dataset):
+    card = (dataset / "README.md").read_text()
+    assert "xr.open_dataset" in card and "--window 0.4 --hop 0.3" in card
+    for name in CASES:
+        assert f"| {name} |" in card
+    assert "split training and test data by case" in " ".join(card.split())
+    assert not list(dataset.glob("*.tmp"))
+
+
+def _rig_result(folder):
+    z = np.zeros((100, 3))
+    return resultfile.write(folder / "rig.h5", config_toml="[rig]\nspeed_kmh = 48.0\n", seed=0,
+                            time=np.arange(100) / FS, fs_hz=FS, signals={"outer_ring": {"acceleration": z}})
+
+
+@pytest.mark.parametrize("setup, args, words", [
+    (lambda d: None, ["nowhere"], "SWEEP_DIR"),
+    (lambda d: (d / "empty").mkdir(), ["empty"], "no result file"),
+    (lambda d: (d / "r").mkdir() or _rig_result(d / "r"), ["r"], "bearing-rig result"),
+    (lambda d: (d / "x").mkdir() or h5py.File(d / "x" / "plain.h5", "w").close(), ["x"],
+     "not an axlebox result"),
+    (lambda d: None, ["SWEEP", "--window", "0"], "--window"),
+    (lambda d: None, ["SWEEP", "--hop", "-1"], "--hop"),
+    (lambda d: None, ["SWEEP", "--window", "5"], "--window 5 s is not allowed"),
+    (lambda d: (d / "file").write_text(""), ["SWEEP", "--out", "FILE"], "is a file"),
+    (lambda d: None, ["SWEEP", "--criterion", "loose"], "--criterion"),
+])
+def test_bad_input_exits_2_with_one_line(tmp_path, sweep_dir, capsys, setup, args, words):
+    setup(tmp_path)
+    argv = [str(sweep_dir) if a == "SWEEP" else str(tmp_path / "file") if a == "FILE"
+            else str(tmp_path / a) if a in ("nowhere", "empty", "r", "x") else a for a in args]
+    if "--out" not in argv:
+        argv += ["--out", str(tmp_path / "out")]
+    try:
+        rc = cli.main(["dataset", *argv])
+    except SystemExit as e:             # argparse's refusals (--criterion choices)
+        rc = e.code
+    assert rc == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and words in err and "Traceback" not in err, err
