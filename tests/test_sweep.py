@@ -230,6 +230,8 @@ def test_kinds_and_sides_make_their_cases():
         want = {None: [], "R": ["R"], "LR": ["L", "R"]}[c.sides]
         assert [e["side"] for e in d] == want
         assert all(e["kind"] == c.defect_kind and e["W"] == 2e-3 for e in d)
+    # the shipped study: 2 speeds x (no defect + 3 kinds x 2 sides)
+    assert len(matrix(*load_config("study_both"))) == 14
     # without the new axes the names and configs are as before
     assert [c.name for c in matrix(kind, cfg, speeds=[48.0], widths=[2.0])] == ["v48_w2"]
 

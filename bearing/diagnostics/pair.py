@@ -59,6 +59,10 @@ class PairResult:
         out.append(f"VF difference {self.vf_diff:.4g} Hz^2 (criterion, {self.criterion.mode}: "
                    f"{self.m:.4g} against [{lo:.4g}, {hi:.4g}]); lag {self.lag.lag_s * 1e3:.3g} ms, "
                    f"{lead} leads ({how}envelope correlation {self.lag.peak:.2f})")
+        for n, sh in self.shares.items():        # bearing/diagnostics/own.py
+            out.append(f"{n} share (this side's line over the other's, in the other's band): "
+                       f"left {sh.share['left']:.3g}, right {sh.share['right']:.3g} (own from "
+                       f"{self.criterion.own_share:g})")
         return "\n".join(out)
 
     def plot(self, path=None):
