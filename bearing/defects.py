@@ -62,7 +62,7 @@ class Defect:
                                                   "defect, 1..Z")
 
     def __post_init__(self):
-        if self.kind not in KINDS:
+        if not isinstance(self.kind, str) or self.kind not in KINDS:
             raise ParameterError(f"Defect.kind = {self.kind!r} is not allowed: expected one of "
                                  f"{', '.join(KINDS)}")
         for name in ("row", "roller"):

@@ -115,8 +115,13 @@ def _defects(items) -> list[dict]:
                                      f"one of {', '.join(allowed)}")
         e = {k: _check(f"defects[{i}]", k, d.get(k, spec[1]), spec) for k, spec in DEFECT_PLACE.items()}
         shape = {k: v for k, v in d.items() if k not in DEFECT_PLACE and k != "angle_deg"}
-        shape["angle"] = math.radians(d.get("angle_deg", 0.0))
-        e["defect"] = Defect(**shape)
+        # the angle in degrees, checked here: Defect would name its radians
+        shape["angle"] = math.radians(_check(f"defects[{i}]", "angle_deg", d.get("angle_deg", 0.0),
+                                             (F, 0.0, -360.0, 360.0)))
+        try:
+            e["defect"] = Defect(**shape)
+        except ParameterError as err:
+            raise ParameterError(f"defects[{i}]: {err}") from None
         out.append(e)
     return out
 

@@ -68,7 +68,7 @@ def file_kind(path) -> str:
         try:
             with h5py.File(path, "r") as f:
                 return "axlebox-result" if f.attrs.get("format") == resultfile.FORMAT else "hdf5"
-        except OSError as err:
+        except (OSError, RuntimeError, KeyError, ValueError) as err:      # a damaged file
             raise ParameterError(f"input file {str(path)!r} is not readable as HDF5: {err}") from None
     if b"\x00" not in head:
         return "csv"
@@ -167,12 +167,35 @@ def _read_hdf5(path, left, right, fs, kind: str) -> Record:
                   tuple(names), kind)
 
 
-def _read_mat5(path, left, right, fs) -> Record:
+def _loadmat(path: str) -> dict:
     from scipy.io import loadmat
+    return loadmat(path)
+
+
+def _loadmat_isolated(path) -> dict:
+    """``scipy.io.loadmat`` in a child process: on some damaged files (sizes in the header that
+    disagree with the data) it crashes the interpreter (SIGSEGV, found by tests/test_fuzz.py);
+    a crash of the child is a refusal here, not the end of the command."""
+    import multiprocessing as mp
+    from concurrent.futures import ProcessPoolExecutor
+    from concurrent.futures.process import BrokenProcessPool
+    ctx = mp.get_context("fork" if "fork" in mp.get_all_start_methods() else "spawn")
+    with ProcessPoolExecutor(1, mp_context=ctx) as ex:
+        try:
+            return ex.submit(_loadmat, str(path)).result()
+        except BrokenProcessPool:
+            raise ParameterError(f"input file {str(path)!r} is not a readable MATLAB v5 file: the "
+                                 "reader crashed on it (a damaged file)") from None
+
+
+def _read_mat5(path, left, right, fs) -> Record:
     try:
-        m = loadmat(path)
+        m = _loadmat_isolated(path)
+    except ParameterError:
+        raise
     except Exception as err:  # noqa: BLE001 - scipy raises several types for a broken file
-        raise ParameterError(f"input file {str(path)!r} is not a readable MATLAB v5 file: {err}") from None
+        first = str(err).splitlines()[0] if str(err) else type(err).__name__
+        raise ParameterError(f"input file {str(path)!r} is not a readable MATLAB v5 file: {first}") from None
     avail = sorted(k for k in m if not k.startswith("__"))
     names = [_pick(avail, n, s, None, Path(path).name) for n, s in ((left, "left"), (right, "right"))]
     chans = [_channel(m[n], n, s) for n, s in zip(names, ("left", "right"))]
@@ -229,5 +252,10 @@ def read(path, left=None, right=None, fs=None, column: int = 2) -> Record:
         if kind == "mat5":
             return _read_mat5(path, left, right, fs)
         return _read_csv(path, left, right, fs)
-    except OSError as err:
-        raise ParameterError(f"input file {str(path)!r} is not readable as {kind}: {err}") from None
+    except ParameterError:
+        raise
+    except (OSError, RuntimeError, KeyError, ValueError, TypeError, IndexError, MemoryError) as err:
+        # h5py and scipy report a damaged file by any of these (a bad header, a message of an
+        # unknown version, a size it cannot allocate): one line naming the file
+        first = str(err).splitlines()[0] if str(err) else type(err).__name__
+        raise ParameterError(f"input file {str(path)!r} is not readable as {kind}: {first}") from None

@@ -1,0 +1,251 @@
+"""Property-based fuzzing (hypothesis) of the entry points that read user input (issue 21, item 2):
+the vehicle and rig configs, the diagnose readers (CSV, HDF5, MATLAB v5) and diagnose's options.
+
+Every generated case either runs or is refused with :class:`ParameterError` (the CLI: exit 2)
+in one line; nothing else escapes (no traceback), and every case ends (hypothesis' deadline off,
+a per-case time limit instead).  ``AXLEBOX_FULL=1``: 500 cases per entry point; CI: 30.
+``benchmarks/fuzz.py`` runs the full size and prints the distinct messages seen.
+"""
+import os
+import re
+import signal
+import tempfile
+from collections import Counter
+from contextlib import contextmanager
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from axlebox._params import ParameterError
+
+from conftest import full_size
+
+N = 500 if full_size() else 30
+SETTINGS = settings(max_examples=N, deadline=None, database=None, derandomize=True,
+                    suppress_health_check=list(HealthCheck))
+SEEN: dict[str, Counter] = {}
+
+# what a TOML file can hold, wrong or right
+scalars = st.one_of(st.integers(-2**63, 2**63 - 1), st.floats(allow_nan=True, allow_infinity=True),
+                    st.text(max_size=12), st.booleans())
+values = st.one_of(scalars, st.lists(scalars, max_size=4),
+                   st.dictionaries(st.text(max_size=6), scalars, max_size=3))
+
+
+@contextmanager
+def time_limit(s: float):
+    """A hang fails the case (SIGALRM)."""
+    def boom(*_):
+        raise TimeoutError(f"no answer in {s} s")
+    old = signal.signal(signal.SIGALRM, boom)
+    signal.setitimer(signal.ITIMER_REAL, s)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+
+
+def kind_of(msg: str) -> str:
+    """A message with its file paths and numbers taken out: what kind of refusal it is."""
+    msg = re.sub(r"'[^']*/[^']*'", "FILE", msg)
+    msg = re.sub(r"'[^']*'|\[[^\]]*\]|-?\d[\d.e+-]*|nan|inf", "_", msg)
+    return msg[:90]
+
+
+def refused_or_ran(entry: str, fn, *args, names=()):
+    """Runs ``fn``; a ParameterError must be one line (naming one of ``names`` when given)."""
+    with time_limit(30.0):
+        try:
+            fn(*args)
+        except (ParameterError, FileNotFoundError) as err:
+            msg = str(err)
+            assert msg and "\n" not in msg, msg
+            if names:
+                assert any(n in msg for n in names), (names, msg)
+            SEEN.setdefault(entry, Counter())[kind_of(msg)] += 1
+            return
+    SEEN.setdefault(entry, Counter())["(ran)"] += 1
+
+
+def mutate(base: dict, data, sections: dict) -> tuple[dict, tuple[str, ...]]:
+    """``base`` with one of: a field set to any value, a field removed, an unknown field or
+    section, a section replaced by a scalar; returns it and the names a refusal must quote."""
+    d = {k: dict(v) if isinstance(v, dict) else v for k, v in base.items()}
+    op = data.draw(st.sampled_from(["value", "value", "value", "drop", "unknown", "nesting", "section"]))
+    sec = data.draw(st.sampled_from(sorted(sections)))
+    field = data.draw(st.sampled_from(sorted(sections[sec])))
+    if op == "value":
+        d.setdefault(sec, {})[field] = data.draw(values)
+        return d, (field,)
+    if op == "drop":
+        d.get(sec, {}).pop(field, None)
+        return d, ()
+    if op == "unknown":
+        d.setdefault(sec, {})["zz_" + data.draw(st.text("abc", min_size=1, max_size=4))] = 1.0
+        return d, ("zz_",)
+    if op == "nesting":
+        d[sec] = data.draw(scalars)
+        return d, (sec,)
+    d["zz_section"] = {"x": 1}
+    return d, ("zz_section",)
+
+
+# ---------------------------------------------------------------------------- vehicle config
+
+
+@SETTINGS
+@given(st.data())
+def test_vehicle_config(data):
+    from axlebox.mbs.config import SCHEMA, validate
+    base = {"defects": {"wheelset": 2, "side": "R", "W": 2e-3}, "joint": {"model": "dtrb"},
+            "integrator": {"method": "imex", "dt": 5e-6}}
+    validate({**base, "defects": [base["defects"]]})             # the base runs
+    sections = {**{k: v for k, v in SCHEMA.items()}, "defects": {"W": 0, "L": 0, "H": 0, "row": 0,
+                                                                  "side": 0, "wheelset": 0,
+                                                                  "kind": 0, "roller": 0,
+                                                                  "angle_deg": 0}}
+    d, names = mutate(base, data, sections)
+    if "defects" in d and isinstance(d["defects"], dict):        # the defect table's entries
+        d["defects"] = [d["defects"]]
+    refused_or_ran("vehicle config", validate, d, names=names)
+
+
+# -------------------------------------------------------------------------------- rig config
+
+
+@SETTINGS
+@given(st.data())
+def test_rig_config(data):
+    import dataclasses
+
+    from axlebox.bearing.params import BearingParams
+    from axlebox.bearing.rig import RigConfig, config_from_dict
+    rig = {f.name: 0 for f in dataclasses.fields(RigConfig) if f.name not in ("defects", "bearing")}
+    sections = {"rig": rig, "bearing": {f.name: 0 for f in dataclasses.fields(BearingParams)},
+                "defects": {"W": 0, "L": 0, "H": 0, "row": 0, "angle": 0, "kind": 0, "roller": 0}}
+    base = {"rig": {"duration": 0.01}, "defects": {"W": 1e-3}}
+    config_from_dict({**base, "defects": [base["defects"]]})     # the base runs
+    d, names = mutate(base, data, sections)
+    if isinstance(d.get("defects"), dict):
+        d["defects"] = [d["defects"]]
+    refused_or_ran("rig config", config_from_dict, d, names=names)
+
+
+# ----------------------------------------------------------------------------------- readers
+
+
+def _read(path, left=None, right=None, fs=None):
+    from axlebox.pipelines.readers import read
+    read(path, left, right, fs)
+
+
+csv_rows = st.lists(st.lists(st.one_of(st.floats(allow_nan=True, allow_infinity=True).map(repr),
+                                       st.text(",; \t0123456789.eE-xa", max_size=6), st.just("")),
+                             min_size=0, max_size=4), max_size=30)
+
+
+@SETTINGS
+@given(csv_rows, st.sampled_from([",", ";", "\t", " "]), st.one_of(st.none(), st.floats()))
+def test_csv_reader(rows, sep, fs):
+    with tempfile.TemporaryDirectory() as tmp:
+        p = Path(tmp) / "x.csv"
+        p.write_text("\n".join(sep.join(r) for r in rows))
+        refused_or_ran("CSV reader", _read, p, None, None, fs)
+
+
+def _valid_files(folder: Path) -> dict[str, Path]:
+    from scipy.io import savemat
+    rng = np.random.default_rng(0)
+    a, b = rng.standard_normal((2, 2000))
+    h5 = folder / "ok.h5"
+    with h5py.File(h5, "w") as f:
+        f["a"] = a
+        f["b"] = b
+        f["a"].attrs["fs_hz"] = 1e4
+    mat = folder / "ok.mat"
+    savemat(mat, {"a": a[:, None], "b": b[:, None], "fs": 1e4})
+    return {"hdf5": h5, "mat5": mat}
+
+
+@pytest.mark.parametrize("kind", ["hdf5", "mat5"])
+@SETTINGS
+@given(data=st.data())
+def test_truncated_or_corrupted_files(kind, data):
+    """A valid file cut short, bytes overwritten (also in the header, where sizes are
+    declared), or a size field set huge."""
+    with tempfile.TemporaryDirectory() as tmp:
+        src = _valid_files(Path(tmp))[kind]
+        raw = bytearray(src.read_bytes())
+        op = data.draw(st.sampled_from(["cut", "flip", "huge"]))
+        if op == "cut":
+            raw = raw[:data.draw(st.integers(0, len(raw) - 1))]
+        else:
+            for _ in range(data.draw(st.integers(1, 8))):
+                i = data.draw(st.integers(0, min(len(raw) - 4, 4096)))
+                val = b"\xff\xff\xff\x7f" if op == "huge" else bytes([data.draw(st.integers(0, 255))])
+                raw[i:i + len(val)] = val
+        p = Path(tmp) / f"bad.{'h5' if kind == 'hdf5' else 'mat'}"
+        p.write_bytes(bytes(raw))
+        refused_or_ran(f"{kind} reader", _read, p, "a", "b", None)
+
+
+# --------------------------------------------------------------------------- diagnose options
+
+
+@pytest.fixture(scope="module")
+def record(tmp_path_factory):
+    from axlebox.bearing.diagnostics.synthetic import coaxial_pair
+    from axlebox.bearing.frequencies import orders, shaft_hz
+    from axlebox.bearing.params import BearingParams
+    a, b = coaxial_pair(1.0, 1e4, orders(BearingParams()).BPFO * shaft_hz(48.0),
+                        np.random.default_rng(0))
+    p = tmp_path_factory.mktemp("rec") / "rec.csv"
+    p.write_text("a,b\n" + "\n".join(f"{x:.17g},{y:.17g}" for x, y in zip(a, b)))
+    return p
+
+
+OPTIONS = {"--fs": st.one_of(st.floats().map(repr), st.text(max_size=5)),
+           "--rpm": st.one_of(st.floats().map(repr), st.text(max_size=5)),
+           "--speed-kmh": st.floats().map(repr), "--band": st.text(",0123456789.-e", max_size=10),
+           "--orders": st.text("BPFOIT=,.0123456789", max_size=20), "--bore": st.floats().map(repr),
+           "--scale": st.floats().map(repr), "--vf-range": st.text(",0123456789.-e", max_size=10),
+           "--left": st.sampled_from(["a", "b", "c", ""]), "--lag": st.text("decidvto", max_size=6),
+           "--column": st.integers(-3, 5).map(str), "--nperseg": st.integers(-5, 10**6).map(str)}
+
+
+@SETTINGS
+@given(st.dictionaries(st.sampled_from(sorted(OPTIONS)), st.just(None), min_size=1, max_size=3),
+       st.data())
+def test_diagnose_options(record, chosen, data):
+    """``axlebox diagnose REC.csv --fs 1e4 --rpm 303 [options]``: exit 0 or 2, one line on stderr."""
+    import contextlib
+    import io
+
+    from axlebox.pipelines.cli import main
+    argv = ["diagnose", str(record), "--fs", "10000", "--speed-kmh", "48"]
+    for k in chosen:
+        argv += [k, data.draw(OPTIONS[k])]
+    err = io.StringIO()
+    with time_limit(60.0), contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+        try:
+            rc = main(argv)
+        except SystemExit as e:          # argparse
+            rc = e.code
+    text = err.getvalue().strip()
+    assert rc in (0, 2), (argv, rc, text)
+    if rc == 2:
+        assert len(text.splitlines()) == 1 and "Traceback" not in text, (argv, text)
+    SEEN.setdefault("diagnose options", Counter())[kind_of(text) if rc else "(ran)"] += 1
+
+
+def teardown_module():
+    if os.environ.get("AXLEBOX_FUZZ_REPORT"):
+        with open(os.environ["AXLEBOX_FUZZ_REPORT"], "w") as fh:
+            for entry, c in SEEN.items():
+                fh.write(f"{entry}\t{sum(c.values())}\t{len(c)}\t" + " | ".join(
+                    f"{k} x{v}" for k, v in c.most_common()) + "\n")
