@@ -91,12 +91,22 @@ class Run:
 _STATUS = {ki.NOT_FINITE: "not finite", ki.RUNAWAY: "runaway", ki.NO_CONVERGENCE: "no convergence"}
 
 
+OUTPUTS = ("out_t", "out_sens", "out_wh", "out_el", "out_y")       # what a checkpoint holds, with y
+
+
 def simulate(model: Model, duration: float, settings: Settings | None = None, *, y0=None,
-             t0: float = 0.0, chunk: float = 0.25, progress=None, continued: bool = False) -> Run:
+             t0: float = 0.0, chunk: float = 0.25, progress=None, continued: bool = False,
+             checkpoint=None, checkpoint_every: float = 0.0, resume: dict | None = None) -> Run:
     """Integrate ``model`` for ``duration`` s from ``y0`` (default: the model's initial state).
 
     ``continued``: ``y0`` is the ``y_end`` of an earlier leapfrog run with the same step, whose
-    velocities are half a step behind (the run then goes on as if it had not stopped)."""
+    velocities are half a step behind (the run then goes on as if it had not stopped).
+    ``checkpoint(snapshot)``: called at the first end of a chunk after ``checkpoint_every``
+    simulated seconds since the last (the chunks are the same with and without checkpoints:
+    where a chunk ends moves the last bits of the step times), with ``{"k": outputs done, "y":
+    the state, "wall_s", and the output arrays OUTPUTS up to k}``; ``resume``: such a
+    snapshot, from which the run goes on as the uninterrupted one would (the same steps at the
+    same times: bit for bit)."""
     s = settings or Settings()
     if not (math.isfinite(duration) and duration > 0):
         raise ParameterError(f"duration = {duration!r} is not allowed: expected a time > 0 s")
@@ -131,8 +141,17 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
         pattern, groups, n_groups = model.coupling_pattern()
         scale, atol = model.state_scales()
     per = max(1, int(round(chunk * s.output_rate_hz)))
+    outs = {"out_t": out_t, "out_sens": out_sens, "out_wh": out_wh, "out_el": out_el, "out_y": out_y}
+    k, status, bad, wall_before = 0, ki.OK, -1, 0.0
+    if resume is not None:
+        k = int(resume["k"])
+        y[:] = resume["y"]
+        for name, arr in outs.items():
+            n = resume[name].shape[0]
+            arr[:n] = resume[name]
+        wall_before = float(resume.get("wall_s", 0.0))
     wall0 = time.perf_counter()
-    k, status, bad = 0, ki.OK, -1
+    k_saved = k
     while k < n_out:
         k1 = min(n_out, k + per)
         tk = t0 + k * s.n_sub * h
@@ -158,7 +177,14 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
         k = k1
         if progress is not None:
             progress(out_t[k - 1] - t0, duration)
-    wall = time.perf_counter() - wall0
+        due = (k - k_saved) >= checkpoint_every * s.output_rate_hz - 0.5
+        if checkpoint is not None and k < n_out and due:
+            ks = (k - 1) // se + 1
+            checkpoint({"k": k, "y": y, "wall_s": wall_before + time.perf_counter() - wall0,
+                        "out_t": out_t[:k], "out_sens": out_sens[:k], "out_wh": out_wh[:k],
+                        "out_el": out_el[:k], "out_y": out_y[:ks]})
+            k_saved = k
+    wall = wall_before + time.perf_counter() - wall0
     n_keep = k + (1 if status in (ki.NOT_FINITE, ki.RUNAWAY) else 0)
     n_keep = min(n_keep, n_out)
     msg = ""

@@ -143,7 +143,8 @@ def _cmd_contact_geometry(a) -> None:
 
 def _cmd_simulate(a) -> None:
     from .simulate import run
-    res = run(a.config, a.out, duration=a.duration)
+    res = run(a.config, a.out, duration=a.duration, checkpoint_every=a.checkpoint_every,
+              restart=a.restart)
     if not res.ok:
         raise RuntimeError(f"{res.message}; what was computed is in {a.out}")
 
@@ -378,6 +379,11 @@ def parser() -> argparse.ArgumentParser:
     sm.add_argument("--duration", type=float, default=None, metavar="S",
                     help="simulated time (default: the config's run.duration)")
     sm.add_argument("--out", required=True, help="result file (.h5)")
+    sm.add_argument("--checkpoint-every", type=float, default=1.0, metavar="S",
+                    help="simulated seconds between checkpoints to OUT.partial.h5 (default 1; 0: "
+                         "none); the same command run again resumes from the last")
+    sm.add_argument("--restart", action="store_true",
+                    help="start over, dropping a checkpoint of another config")
     sm.set_defaults(func=_cmd_simulate)
 
     dg = sub.add_parser("diagnose", help="real fault or coaxial pseudo-fault from the two sides' "

@@ -5,15 +5,20 @@ config makes flexible; wheel-rail tables; track irregularity; the vehicle; stati
 the track as it lies under the wheels at t = 0 (no settling transient); the run; the result
 file (``format = "axlebox-result"``, DESIGN.md), written through a temporary name.  A run that
 diverges still writes what it computed, with ``status`` and ``message`` attributes, and the
-command exits with status 1.
+command exits with status 1.  Every ``checkpoint_every`` simulated seconds the run's state and
+outputs so far go to ``<out>.partial.h5`` (through a temporary name); the same command run
+again resumes from it, to the same bits as a run never stopped.
 """
 from __future__ import annotations
 
+import math
+import os
 import sys
 import time
 import tomllib
 from pathlib import Path
 
+import h5py
 import numpy as np
 import tomli_w
 
@@ -168,25 +173,102 @@ def load_config(config_path, duration: float | None = None, overrides: dict | No
     return cfg, f"# {Path(config_path).name}, as run\n" + tomli_w.dumps(user)
 
 
+def _changed(old_text: str, new_text: str) -> list[str]:
+    """``section.field: old -> new`` for every field two configs' TOML texts set differently."""
+    def flat(d, pre=""):
+        out = {}
+        for k, v in d.items():
+            if isinstance(v, dict):
+                out.update(flat(v, f"{pre}{k}."))
+            else:
+                out[f"{pre}{k}"] = v
+        return out
+    try:
+        a, b = flat(tomllib.loads(old_text)), flat(tomllib.loads(new_text))
+    except tomllib.TOMLDecodeError:
+        return ["the checkpoint's config (unreadable)"]
+    return [f"{k}: {a.get(k, '(unset)')!r} -> {b.get(k, '(unset)')!r}"
+            for k in sorted(set(a) | set(b)) if a.get(k) != b.get(k)] or ["the config's text"]
+
+
+def partial_path(out) -> Path:
+    """The checkpoint of a run writing ``out``: ``<out>.partial.h5``."""
+    return Path(str(out) + ".partial.h5")
+
+
+def read_checkpoint(path: Path, text: str) -> dict:
+    """The snapshot in ``path`` (:func:`axlebox.mbs.integrate.simulate`'s ``resume``), or a
+    ParameterError naming what changed when it was made by another config."""
+    try:
+        with h5py.File(path, "r") as f:
+            old = str(f.attrs.get("config", ""))
+            if old != text:
+                changed = _changed(old, text)
+                raise ParameterError(
+                    f"checkpoint {str(path)!r} was made by another config ({'; '.join(changed[:3])}"
+                    f"{' ...' if len(changed) > 3 else ''}): run the same config to resume, or "
+                    "--restart to start over")
+            snap = {"k": int(f.attrs["k"]), "wall_s": float(f.attrs["wall_s"]), "y": f["y"][()]}
+            for name in integrate.OUTPUTS:
+                snap[name] = f[name][()]
+            return snap
+    except (OSError, KeyError) as err:
+        raise ParameterError(f"checkpoint {str(path)!r} is not readable ({err}): --restart to "
+                             "start over") from None
+
+
+def write_checkpoint(path: Path, text: str, snap: dict) -> None:
+    """The snapshot to ``path``, through a temporary name (a kill leaves the last one whole)."""
+    tmp = path.with_name(path.name + ".tmp")
+    with h5py.File(tmp, "w") as f:
+        f.attrs.update(config=text, k=snap["k"], wall_s=snap["wall_s"])
+        f["y"] = snap["y"]
+        for name in integrate.OUTPUTS:
+            f[name] = snap[name]
+    os.replace(tmp, path)
+
+
 def run(config_path, out, duration: float | None = None, log=print,
-        overrides: dict | None = None) -> integrate.Run:
+        overrides: dict | None = None, checkpoint_every: float = 1.0,
+        restart: bool = False) -> integrate.Run:
+    """The whole command.  ``checkpoint_every`` (simulated s, 0: none): snapshots to
+    ``<out>.partial.h5``; a rerun of the same config resumes from it and gives the same file
+    as an uninterrupted run; another config is refused (exit 2, naming what changed) unless
+    ``restart``."""
     cfg, text = load_config(config_path, duration, overrides)
     out = Path(out)
     if not out.parent.is_dir():
         raise FileNotFoundError(f"--out: folder {str(out.parent)!r} does not exist")
+    if not (math.isfinite(checkpoint_every) and checkpoint_every >= 0):
+        raise ParameterError(f"--checkpoint-every = {checkpoint_every!r} is not allowed: expected "
+                             "a simulated time >= 0 s (0: no checkpoints)")
+    partial = partial_path(out)
+    for p in (partial.with_name(partial.name + ".tmp"),):       # left by a kill mid-write
+        p.unlink(missing_ok=True)
+    resume = None
+    if partial.is_file():
+        if restart:
+            partial.unlink()
+        else:
+            resume = read_checkpoint(partial, text)
     s = settings(cfg)
     t0 = time.perf_counter()
     model, y0 = build_model(cfg, log)
     log(f"model ready in {time.perf_counter() - t0:.1f} s; running {cfg['run']['duration']:g} s "
-        f"({s.method}, dt {s.dt:g} s)")
+        f"({s.method}, dt {s.dt:g} s)" + (f", resuming at {resume['k'] / s.output_rate_hz:g} s from {partial}"
+                                          if resume else ""))
 
     def progress(t, T):
         print(f"\rsimulating: {t:6.3f} / {T:g} s", end="", file=sys.stderr, flush=True)
-    res = integrate.simulate(model, cfg["run"]["duration"], s, y0=y0, progress=progress)
+    res = integrate.simulate(model, cfg["run"]["duration"], s, y0=y0, progress=progress,
+                             checkpoint=lambda snap: write_checkpoint(partial, text, snap),
+                             checkpoint_every=checkpoint_every if checkpoint_every > 0 else math.inf,
+                             resume=resume)
     print(file=sys.stderr)
     if cfg["sensors"]["model"] != "ideal":          # what the acquisition records of it
         res = sensor.decimate_run(res, s.output_rate_hz, cfg["sensors"])
     write(out, res, model, text, cfg["run"]["seed"])
+    partial.unlink(missing_ok=True)
     T = res.time[-1] if res.time.size else 0.0
     log(f"wrote {out}: {T:g} s simulated in {res.wall_s:.1f} s wall ({T / max(res.wall_s, 1e-9):.3f} "
         f"simulated s per wall s)")

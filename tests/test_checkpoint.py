@@ -1,0 +1,86 @@
+"""``axlebox simulate`` survives a kill (issue 21, item 1): every ``--checkpoint-every``
+simulated seconds the run's state and outputs go to ``<out>.partial.h5`` through a temporary
+name; the same command run again resumes from it and writes the same arrays as a run never
+stopped; another config is refused, naming what changed, unless ``--restart``.
+
+The validation case (eight DTRBs), 0.35 s with a checkpoint at 0.25 s (the end of the first
+0.25 s chunk), killed with SIGKILL once the checkpoint is there.
+"""
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+from axlebox.pipelines import cli
+from axlebox.pipelines import simulate as psim
+
+ROOT = Path(__file__).resolve().parents[1]
+ARGS = ["validation_48kmh", "--duration", "0.35", "--checkpoint-every", "0.25"]
+
+
+def arrays(path) -> dict:
+    out = {}
+    with h5py.File(path, "r") as f:
+        f.visititems(lambda n, o: out.__setitem__(n, o[()]) if isinstance(o, h5py.Dataset) else None)
+    return out
+
+
+@pytest.mark.slow
+def test_a_killed_run_resumes_to_the_same_arrays(tmp_path, capsys):
+    ref = tmp_path / "ref.h5"
+    psim.run("validation_48kmh", ref, duration=0.35, checkpoint_every=0.25, log=lambda *_: None)
+    assert not psim.partial_path(ref).exists()             # removed once the result is written
+
+    out = tmp_path / "run.h5"
+    partial = psim.partial_path(out)
+    p = subprocess.Popen([sys.executable, "-m", "axlebox", "simulate", *ARGS, "--out", str(out)],
+                         cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                         start_new_session=True)
+    deadline = time.monotonic() + 600
+    try:
+        while not partial.exists() and p.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.05)
+    finally:
+        os.killpg(p.pid, signal.SIGKILL)
+        p.wait()
+    assert partial.exists() and not out.exists(), "the run ended before its checkpoint"
+    with h5py.File(partial, "r") as f:            # the first chunk: 0.25 s at 50 kHz
+        assert int(f.attrs["k"]) == f["out_t"].shape[0] == 12_500
+
+    # another config: refused in one line naming the field, the checkpoint kept
+    capsys.readouterr()                               # (the reference run's progress)
+    bad = ["simulate", "validation_48kmh", "--duration", "0.3", "--checkpoint-every", "0.25",
+           "--out", str(out)]
+    assert cli.main(bad) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "run.duration" in err and "--restart" in err, err
+    assert partial.exists()
+
+    # the same command: resumes, and the result is the uninterrupted run's, array for array
+    assert cli.main(["simulate", *ARGS, "--out", str(out)]) == 0
+    assert "resuming at 0.25 s" in capsys.readouterr().out
+    assert not partial.exists()
+    a, b = arrays(ref), arrays(out)
+    assert a.keys() == b.keys()
+    for k in a:
+        assert np.array_equal(a[k], b[k]), k
+
+
+def test_restart_drops_a_checkpoint_of_another_config(tmp_path):
+    """``--restart``: a checkpoint left by another config is removed, not read (checked before
+    the model is built: a broken one is refused at once)."""
+    out = tmp_path / "run.h5"
+    partial = psim.partial_path(out)
+    partial.write_bytes(b"not a checkpoint")
+    with pytest.raises(Exception, match="checkpoint .* is not readable"):
+        psim.run("validation_48kmh", out, duration=0.01, log=lambda *_: None)
+    with pytest.raises(Exception, match="checkpoint-every"):
+        psim.run("validation_48kmh", out, duration=0.01, checkpoint_every=-1.0, log=lambda *_: None)
+    psim.run("validation_48kmh", out, duration=0.01, restart=True, log=lambda *_: None)
+    assert out.is_file() and not partial.exists()
