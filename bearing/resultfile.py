@@ -47,6 +47,19 @@ def write(path, *, config_toml: str, seed: int, time: np.ndarray, fs_hz: float,
     return path
 
 
+def write_checkpoint(path, attrs: dict, arrays: dict) -> Path:
+    """A run's checkpoint (``<out>.partial.h5``): ``attrs`` and ``arrays`` (name -> array) to
+    ``path`` via ``path.tmp`` and an atomic rename, so a kill leaves the last one whole."""
+    path = Path(path)
+    tmp = path.with_name(path.name + ".tmp")
+    with h5py.File(tmp, "w") as f:
+        f.attrs.update(attrs)
+        for name, arr in arrays.items():
+            f.create_dataset(name, data=arr)
+    os.replace(tmp, path)
+    return path
+
+
 def open_result(path) -> h5py.File:
     """Open a result file for reading; refuses other formats and newer versions."""
     path = Path(path)

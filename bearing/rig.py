@@ -18,7 +18,6 @@ configuration.
 from __future__ import annotations
 
 import dataclasses
-import os
 import time as _time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -306,9 +305,5 @@ def simulate(c: RigConfig, out=None, progress=None, chunk_s: float = 0.05,
 
 
 def _checkpoint(path: Path, toml, done, Y, acc, F, Q, cage):
-    tmp = path.with_name(path.name + ".tmp")
-    with h5py.File(tmp, "w") as f:
-        f.attrs.update(config=toml, done=done)
-        for name, arr in (("Y", Y), ("acc", acc), ("F", F), ("Q", Q), ("cage", cage)):
-            f.create_dataset(name, data=arr)
-    os.replace(tmp, path)
+    resultfile.write_checkpoint(path, {"config": toml, "done": done},
+                                {"Y": Y, "acc": acc, "F": F, "Q": Q, "cage": cage})

@@ -12,7 +12,6 @@ again resumes from it, to the same bits as a run never stopped.
 from __future__ import annotations
 
 import math
-import os
 import sys
 import time
 import tomllib
@@ -219,13 +218,8 @@ def read_checkpoint(path: Path, text: str) -> dict:
 
 def write_checkpoint(path: Path, text: str, snap: dict) -> None:
     """The snapshot to ``path``, through a temporary name (a kill leaves the last one whole)."""
-    tmp = path.with_name(path.name + ".tmp")
-    with h5py.File(tmp, "w") as f:
-        f.attrs.update(config=text, k=snap["k"], wall_s=snap["wall_s"])
-        f["y"] = snap["y"]
-        for name in integrate.OUTPUTS:
-            f[name] = snap[name]
-    os.replace(tmp, path)
+    resultfile.write_checkpoint(path, {"config": text, "k": snap["k"], "wall_s": snap["wall_s"]},
+                                {name: snap[name] for name in ("y", *integrate.OUTPUTS)})
 
 
 def run(config_path, out, duration: float | None = None, log=print,
@@ -243,8 +237,7 @@ def run(config_path, out, duration: float | None = None, log=print,
         raise ParameterError(f"--checkpoint-every = {checkpoint_every!r} is not allowed: expected "
                              "a simulated time >= 0 s (0: no checkpoints)")
     partial = partial_path(out)
-    for p in (partial.with_name(partial.name + ".tmp"),):       # left by a kill mid-write
-        p.unlink(missing_ok=True)
+    partial.with_name(partial.name + ".tmp").unlink(missing_ok=True)     # a kill mid-write
     resume = None
     if partial.is_file():
         if restart:

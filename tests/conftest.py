@@ -30,3 +30,29 @@ def wheelset_fe():
     m = mesh.mesh_model("wheelset", wheelset.build, p, BODIES["wheelset"].mesh_size)
     fe = assembly.assemble(m)
     return p, fe, eigen.free_free_modes(fe, 30)
+
+
+def write_pair_result(path, left, right, config_toml: str, fs: float, seed: int = 0):
+    """Two axle-box signals as a vehicle result file (vertical column of ws2_L / ws2_R)."""
+    import numpy as np
+
+    from axlebox.bearing import resultfile
+    z = np.zeros_like(left)
+    return resultfile.write(path, config_toml=config_toml, seed=seed, time=np.arange(left.size) / fs,
+                            fs_hz=fs, signals={"ws2_L": {"acceleration": np.c_[z, z, left]},
+                                               "ws2_R": {"acceleration": np.c_[z, z, right]}})
+
+
+def assert_windows_are_the_source(ds, folder) -> None:
+    """Every window of an ``axlebox dataset`` equals its source file's slice, bit for bit."""
+    import h5py
+    import numpy as np
+    n = ds.sizes["sample"]
+    for k in range(ds.sizes["window"]):
+        w = ds.isel(window=k)
+        with h5py.File(folder / str(w.file.values), "r") as f:
+            i = int(w.start_index)
+            for side in ("left", "right"):
+                sensor = f"ws{int(w.wheelset)}_{side[0].upper()}"
+                src = f[f"signals/{sensor}/acceleration"][i:i + n, 2]
+                assert np.array_equal(w[side].values, src), (k, side)

@@ -8,8 +8,6 @@ sides of wheelset 2 at 48 and 80 km/h, on the gearbox side only at 80 km/h, and 
 relative form, as the demo.  1.6 s at 48 km/h, 1.2 s at 80 km/h (0.7 s after the fade-in: 51
 BPFO periods, 2.6 cage periods); AXLEBOX_FULL=1 runs 2 s each.
 """
-import h5py
-import numpy as np
 import pytest
 import xarray as xr
 
@@ -19,7 +17,7 @@ from axlebox.pipelines import cli
 from axlebox.pipelines.diagnose import analyse_file
 from axlebox.pipelines.sweep import sweep
 
-from conftest import full_size
+from conftest import assert_windows_are_the_source, full_size
 
 REL = Criterion(mode="relative")
 
@@ -91,12 +89,6 @@ def test_the_sweep_as_a_dataset(runs, tmp_path):
         assert set(rows.right_verdict) == {pair.verdicts["right"][0]}
         assert set(rows.speed_kmh) == {float(name[1:3])}
         assert set(rows.right_kind) == {"none" if side == "none" else "outer"}
-    n = ds.sizes["sample"]
-    for k in range(ds.sizes["window"]):
-        w = ds.isel(window=k)
-        with h5py.File(runs / str(w.file.values), "r") as f:
-            i = int(w.start_index)
-            for side, sensor in (("left", "ws2_L"), ("right", "ws2_R")):
-                assert np.array_equal(w[side].values, f[f"signals/{sensor}/acceleration"][i:i + n, 2])
+    assert_windows_are_the_source(ds, runs)
     card = (data / "README.md").read_text()
     assert all(f"| {name} |" in card for name in real)

@@ -12,12 +12,13 @@ import json
 import numpy as np
 import pytest
 
-from axlebox.bearing import resultfile
 from axlebox.bearing.diagnostics.synthetic import coaxial_pair
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.params import BearingParams
 from axlebox.pipelines import cli, report
 from axlebox.pipelines.diagnose import analyse_file
+
+from conftest import write_pair_result
 
 FS = 10_000.0
 SPEEDS = (20.0, 48.0)
@@ -30,14 +31,10 @@ def write_case(folder, speed, width, seed):
     bpfo = orders(BearingParams()).BPFO * shaft_hz(speed)
     amp = (width / 5.0) * (0.5 + speed / 96.0)
     left, right = coaxial_pair(4.0, FS, bpfo, rng, amplitude=amp, noise=0.25, delay_s=DELAY)
-    zeros = np.zeros_like(left)
     cfg = f"[run]\nspeed_kmh = {speed}\n[wheelset]\nr0 = 0.42\n"
     if width:
         cfg += f"[[defects]]\nW = {width * 1e-3}\nrow = 2\nside = \"L\"\n"
-    return resultfile.write(folder / f"v{speed:g}_w{width:g}.h5", config_toml=cfg, seed=seed,
-                            time=np.arange(left.size) / FS, fs_hz=FS,
-                            signals={"ws2_L": {"acceleration": np.c_[zeros, zeros, left]},
-                                     "ws2_R": {"acceleration": np.c_[zeros, zeros, right]}})
+    return write_pair_result(folder / f"v{speed:g}_w{width:g}.h5", left, right, cfg, FS, seed)
 
 
 @pytest.fixture(scope="module")

@@ -70,12 +70,12 @@ def shares(x_left, x_right, left: ChannelResult, right: ChannelResult, lines,
             and left.lines[n].detected and right.lines[n].detected]
     if not both:
         return {}
+    bl, br = left.band, right.band
+    # each signal's lines in the other side's band (one envelope spectrum each, for every line)
+    l_in_r = in_band(left, x_left, br, **line_kw)
+    r_in_l = in_band(right, x_right, bl, **line_kw)
     out = {}
     for n in both:
-        bl, br = left.band, right.band
-        # each signal's line in the other side's band
-        l_in_r = in_band(left, x_left, br, **line_kw)
-        r_in_l = in_band(right, x_right, bl, **line_kw)
         a_l = (_amplitude(left, n), _amplitude(r_in_l, n))          # in the left's band
         a_r = (_amplitude(l_in_r, n), _amplitude(right, n))         # in the right's band
         share = {"left": a_r[0] / a_r[1] if a_r[1] > 0 else np.inf,
