@@ -7,11 +7,14 @@ channels under ``signals/<sensor>/`` and model internals under other groups.
 """
 from __future__ import annotations
 
-import os
+import contextlib
 from pathlib import Path
 
 import h5py
 import numpy as np
+
+from axlebox._files import h5_bound, h5_written
+from axlebox._params import ParameterError
 
 FORMAT = "axlebox-result"
 VERSION = 1
@@ -24,11 +27,12 @@ class ResultFileError(ValueError):
 def write(path, *, config_toml: str, seed: int, time: np.ndarray, fs_hz: float,
           signals: dict, groups: dict | None = None, attrs: dict | None = None) -> Path:
     """Write ``signals`` (sensor -> {channel: array}) and ``groups`` (name -> {dataset: array or
-    (array, attrs)}) to ``path`` via ``path.tmp`` and an atomic rename; ``attrs`` are further
-    file attributes (run status and the like)."""
-    path = Path(path)
-    tmp = path.with_name(path.name + ".tmp")
-    with h5py.File(tmp, "w") as f:
+    (array, attrs)}) to ``path`` via ``path.tmp`` and an atomic rename (space reserved first:
+    a full disk is a :class:`axlebox._files.DiskFullError`, nothing written); ``attrs`` are
+    further file attributes (run status and the like)."""
+    arrays = [time, *(a for ch in signals.values() for a in ch.values()),
+              *(i[0] if isinstance(i, tuple) else i for g in (groups or {}).values() for i in g.values())]
+    with h5_written(path, h5_bound(arrays)) as f:
         f.attrs.update(format=FORMAT, version=VERSION, config=config_toml, seed=int(seed))
         f.attrs.update(attrs or {})
         f.create_dataset("time", data=time)
@@ -43,21 +47,37 @@ def write(path, *, config_toml: str, seed: int, time: np.ndarray, fs_hz: float,
                 data, attrs = item if isinstance(item, tuple) else (item, {})
                 ds = g.create_dataset(name, data=data, compression="gzip", compression_opts=4)
                 ds.attrs.update(attrs)
-    os.replace(tmp, path)
-    return path
+    return Path(path)
 
 
 def write_checkpoint(path, attrs: dict, arrays: dict) -> Path:
     """A run's checkpoint (``<out>.partial.h5``): ``attrs`` and ``arrays`` (name -> array) to
     ``path`` via ``path.tmp`` and an atomic rename, so a kill leaves the last one whole."""
-    path = Path(path)
-    tmp = path.with_name(path.name + ".tmp")
-    with h5py.File(tmp, "w") as f:
+    with h5_written(path, h5_bound(arrays.values())) as f:
         f.attrs.update(attrs)
         for name, arr in arrays.items():
             f.create_dataset(name, data=arr)
-    os.replace(tmp, path)
-    return path
+    return Path(path)
+
+
+# what h5py raises on a damaged file: a bad header, a message of an unknown version, an address
+# past the end, a size it cannot allocate
+DAMAGED = (OSError, RuntimeError, KeyError, ValueError, TypeError, IndexError, MemoryError)
+
+
+@contextlib.contextmanager
+def reading(path):
+    """:func:`open_result` for a ``with`` block whose reads of a damaged file are one
+    :class:`ResultFileError` naming the file (a ValueError: exit 2 on the CLI), whatever h5py
+    (or the parser of its config text) raised; the caller's own ParameterError passes."""
+    try:
+        with open_result(path) as f:
+            yield f
+    except (ResultFileError, ParameterError, FileNotFoundError):
+        raise
+    except DAMAGED as err:
+        first = " ".join(str(err).split()) or type(err).__name__
+        raise ResultFileError(f"{str(path)!r} is a damaged result file: {first}") from None
 
 
 def open_result(path) -> h5py.File:

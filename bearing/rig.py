@@ -217,7 +217,7 @@ def load(path) -> RigResult:
     """Read a rig result written by :meth:`RigResult.save` (the configuration is kept as TOML
     text in the file; the returned ``config`` is rebuilt from it)."""
     import tomllib
-    with resultfile.open_result(path) as f:
+    with resultfile.reading(path) as f:
         config = config_from_dict(tomllib.loads(f.attrs["config"]))
         return RigResult(config=config, time=f["time"][:],
                          acceleration=f[f"signals/{SENSOR}/acceleration"][:],

@@ -1,11 +1,11 @@
 """Contact geometry of a wheel-rail pair on the command line: table, plot and equivalent conicity."""
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import numpy as np
 
+from axlebox._files import replaced
 from axlebox._params import ParameterError
 from axlebox.mbs.wheelrail import standard
 from axlebox.mbs.wheelrail.conicity import equivalent_conicity
@@ -28,9 +28,8 @@ def profile(name_or_file: str, kind: str) -> Profile:
 
 
 def _write_csv(path: Path, header: list[str], rows: np.ndarray) -> None:
-    tmp = path.with_name(path.name + ".tmp")
-    np.savetxt(tmp, rows, delimiter=",", header=",".join(header), comments="", fmt="%.9g")
-    os.replace(tmp, path)
+    with replaced(path) as tmp:
+        np.savetxt(tmp, rows, delimiter=",", header=",".join(header), comments="", fmt="%.9g")
 
 
 def write_table(t: ContactTable, path: Path) -> None:
@@ -59,7 +58,6 @@ def run(wheel: str, rail: str, out: str | Path, *, layout: TrackLayout, y_max: f
     _write_csv(out / "conicity.csv", ["amplitude", "harmonic", "klingel"],
                np.column_stack([A, con["harmonic"], con["klingel"]]))
     fig = t.plot()
-    tmp = out / "contact_table.tmp.png"
-    fig.savefig(tmp, dpi=120)
-    os.replace(tmp, out / "contact_table.png")
+    with replaced(out / "contact_table.png") as tmp:
+        fig.savefig(tmp, dpi=120, format="png")
     return {"amplitude": A, **con, "table": t}

@@ -29,6 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
+from axlebox._files import h5_bound, h5_reserved, write_text
 from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
 from axlebox.bearing.defects import Defect
@@ -64,11 +65,11 @@ def results(folder) -> list[Path]:
 def case_labels(path: Path) -> tuple[dict, dict]:
     """``(labels, config)`` of one vehicle result: speed, wheelset, each side's defect, the real side."""
     try:
-        with resultfile.open_result(path) as f:
+        with resultfile.reading(path) as f:
             cfg = tomllib.loads(str(f.attrs.get("config", "")))
             status = f.attrs.get("status", "done")
     except (OSError, ValueError) as err:
-        raise ParameterError(f"{path.name} is not an axlebox result file: {err}") from None
+        raise ParameterError(f"{path.name} is not a readable axlebox result file: {err}") from None
     if "rig" in cfg:
         raise ParameterError(f"{path.name} is a bearing-rig result (one sensor): a dataset needs the "
                              "two axle boxes of a vehicle sweep")
@@ -94,7 +95,7 @@ def case_labels(path: Path) -> tuple[dict, dict]:
 def windows(path: Path, sensors: tuple[str, str], window_s: float, hop_s: float):
     """``(fs, starts, left, right)``: window starts (index into the file's arrays) and the
     (window x sample) arrays, taken from the vertical column after the track's fade-in."""
-    with resultfile.open_result(path) as f:
+    with resultfile.reading(path) as f:
         x = []
         for n in sensors:
             if f"signals/{n}/acceleration" not in f:
@@ -224,9 +225,8 @@ def write(sweep_dir, out, *, window_s: float = 0.5, hop_s: float = 0.25, criteri
     ds = build(sweep_dir, window_s=window_s, hop_s=hop_s, criterion=criterion, log=log)
     out.mkdir(parents=True, exist_ok=True)
     path = out / "dataset.nc"
-    tmp = out / "dataset.nc.tmp"
-    ds.to_netcdf(tmp, engine="h5netcdf")
-    os.replace(tmp, path)
+    with h5_reserved(path, h5_bound(v.values for v in ds.variables.values())) as fo:
+        ds.to_netcdf(fo, engine="h5netcdf")
     lab = ds.drop_dims("sample").to_dataframe()
     table = []
     for case, g in lab.groupby("case", sort=True):
@@ -241,9 +241,7 @@ def write(sweep_dir, out, *, window_s: float = 0.5, hop_s: float = 0.25, criteri
                        n_win=ds.sizes["window"], n=ds.sizes["sample"], fs=ds.attrs["fs_hz"],
                        n_cases=ds.attrs["n_cases"], column=COLUMN, fade=TRACK_FADE_IN_S,
                        mode=criterion.mode, table="\n".join(table))
-    tmp = out / "README.md.tmp"
-    tmp.write_text(card)
-    os.replace(tmp, out / "README.md")
+    write_text(out / "README.md", card)
     log(f"dataset: wrote {path} ({ds.sizes['window']} windows of {ds.sizes['sample']} samples) "
         f"and {out / 'README.md'}")
     return path

@@ -8,11 +8,11 @@ is a ParameterError (exit status 2) whose one line names the option, variable or
 from __future__ import annotations
 
 import json
-import os
 from pathlib import Path
 
 import numpy as np
 
+from axlebox._files import write_text
 from axlebox._params import ParameterError
 from axlebox.bearing.diagnostics.channel import jsonable
 from axlebox.bearing.frequencies import FaultOrders, orders, shaft_hz
@@ -83,10 +83,7 @@ def write_json(path, data: dict) -> Path:
     path = Path(path)
     if not path.parent.is_dir():
         raise FileNotFoundError(f"--json: folder {str(path.parent)!r} does not exist")
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(json.dumps(data, indent=2, allow_nan=False) + "\n")
-    os.replace(tmp, path)
-    return path
+    return write_text(path, json.dumps(data, indent=2, allow_nan=False) + "\n")
 
 
 def analyse_file(path, *, left=None, right=None, fs=None, column: int = 2, scale: float = 1.0,

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from axlebox._files import write_text
 from axlebox.fem import bodyfile
 
 
@@ -98,11 +99,7 @@ def write_index(entries: list[tuple[bodyfile.ReducedBody, list[Path], list[str]]
                          f"<td>{esc(lab)}</td><td><img src='{esc(png.name)}' alt='mode {k + 1}'></td></tr>")
         parts.append("</table>")
     parts.append("</body></html>")
-    path = out_dir / "index.html"
-    tmp = out_dir / "index.html.part"
-    tmp.write_text("\n".join(parts))
-    os.replace(tmp, path)
-    return path
+    return write_text(out_dir / "index.html", "\n".join(parts))
 
 
 def report(body_dir: str | Path, out_dir: str | Path, *, max_modes: int | None = None,

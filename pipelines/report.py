@@ -18,7 +18,6 @@ from __future__ import annotations
 import csv
 import html
 import json
-import os
 import shutil
 import tomllib
 from dataclasses import dataclass
@@ -26,6 +25,7 @@ from pathlib import Path
 
 import h5py
 
+from axlebox._files import replaced, write_text
 from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
 from axlebox.bearing.diagnostics.channel import jsonable
@@ -73,7 +73,7 @@ def case_parameters(path) -> tuple[float, float, str | None]:
     """``(speed_kmh, width_mm, defect_side)`` from the config stored in an axlebox-result file;
     the side is that ("left"/"right", from ``defects[].side`` L/R) of the widest defect when it
     is on wheelset 2, whose axle-boxes the default channels ws2_L / ws2_R read; None otherwise."""
-    with resultfile.open_result(path) as f:
+    with resultfile.reading(path) as f:
         cfg = tomllib.loads(str(f.attrs.get("config", "")))
     speed = cfg.get("run", {}).get("speed_kmh", cfg.get("rig", {}).get("speed_kmh"))
     if speed is None:
@@ -123,27 +123,18 @@ def mode_pictures(source, modes_dir=None) -> list[Path]:
     return sorted(set(found))
 
 
-def _atomic_text(path: Path, text: str) -> Path:
-    tmp = path.with_name(path.name + ".part")
-    tmp.write_text(text)
-    os.replace(tmp, path)
-    return path
-
-
 def write_csv(path: Path, rows: list[dict]) -> Path:
     """``rows`` (same keys) as CSV through a temporary name; None is written empty."""
-    tmp = path.with_name(path.name + ".part")
-    with tmp.open("w", newline="") as fh:
+    with replaced(path) as tmp, tmp.open("w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
-    os.replace(tmp, path)
     return path
 
 
 def write_tables(cases: list[Case], out: Path) -> tuple[Path, Path]:
     rows = [jsonable(c.row()) for c in cases]
-    j = _atomic_text(out / "summary.json", json.dumps(
+    j = write_text(out / "summary.json", json.dumps(
         {"cases": rows, "diagnoses": [jsonable(c.pair.to_dict()) for c in cases]}, indent=1))
     return j, write_csv(out / "summary.csv", rows)
 
@@ -196,7 +187,7 @@ def write_html(cases, figures: list[tuple[str, Path]], modes: list[Path], out: P
         parts += [f"<img src='modes/{esc(m.name)}' alt='{esc(m.stem)}'>" for m in modes]
         parts.append("</div>")
     parts.append("</body></html>")
-    return _atomic_text(out / "index.html", "\n".join(parts))
+    return write_text(out / "index.html", "\n".join(parts))
 
 
 def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,

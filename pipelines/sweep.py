@@ -11,8 +11,14 @@ both (each entry once per side: faults on both sides of its wheelset).  Each cas
 ``DIR/v48_w2.h5`` (``.`` -> ``p``; ``DIR/v48_w2_inner_LR.h5`` when kinds and sides are swept)
 with its own config inside, through a temporary name; a rerun
 skips files that open as a result of the same config and removes ``*.tmp`` left by a killed run
-(one sweep per folder at a time; the rig's ``*.partial.h5`` checkpoints are kept, it resumes from
-them).  The summary per case and side goes to ``DIR/summary.csv``: two-sensor (vehicle) results
+(the checkpoints ``*.partial.h5`` are kept: a killed case resumes from its last one).
+
+What survives what: the sweep holds ``DIR/.sweep.lock`` (a second sweep on DIR is refused, naming
+the first); each case's runner holds ``DIR/.<case>.lock`` while it computes, so a case dask reruns
+after losing its worker (a kill, a lost connection) is never written by two runners at once; a
+worker's death reruns its case elsewhere (dask gives up after 3 deaths: the case is reported
+failed); a full disk fails the case before it writes anything (``DiskFullError``), the others
+go on.  The summary per case and side goes to ``DIR/summary.csv``: two-sensor (vehicle) results
 through :mod:`axlebox.pipelines.report`, the rig's one sensor through
 :func:`axlebox.bearing.diagnostics.channel.analyse`.
 """
@@ -24,6 +30,7 @@ import logging
 import math
 import os
 import signal
+import socket
 import threading
 import time
 import tomllib
@@ -33,12 +40,14 @@ from pathlib import Path
 import tomli_w
 
 from axlebox import configs
+from axlebox._files import is_locked, locked, replaced
 from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
 
 SWEEP_FIELDS = ("speeds_kmh", "widths_mm", "kinds", "sides")
 SIDES = ("L", "R", "LR")                             # LR: the defect on both sides of its wheelset
 RUN_SECTION = {"rig": "rig", "vehicle": "run"}       # where speed_kmh and duration live
+LOCK = ".sweep.lock"                                 # held by the sweep that owns the folder
 
 
 @dataclass(frozen=True)
@@ -189,38 +198,49 @@ def matrix(kind: str, cfg: dict, speeds=None, widths=None, duration=None, kinds=
     return list(cases.values())
 
 
+def case_lock(out) -> Path:
+    """The lock a case's runner holds while it computes ``out``: ``.<name>.lock`` beside it."""
+    out = Path(out)
+    return out.with_name(f".{out.name.split('.')[0]}.lock")
+
+
 def run_case(kind: str, toml_text: str, out: str, threads: int = 0) -> dict:
     """Run one case in this process (a dask worker) into ``out``, written through a temporary
     name by the runner.  A plain top-level function of plain arguments, so dask can ship it.
-    ``threads`` > 0: numba threads for the case (local workers share the cores between them)."""
+    ``threads`` > 0: numba threads for the case (local workers share the cores between them).
+    The case's lock is held while it runs: a second runner of the same case (dask rerunning it
+    after losing a worker that is in fact still computing, or another sweep) waits for the
+    first and then finds the case finished (``computed`` False) instead of writing it twice."""
     t0 = time.perf_counter()
-    if threads > 0:
-        import numba
-        numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
     out = Path(out)
-    if kind == "rig":
-        from axlebox.bearing.rig import config_from_dict, simulate
-        simulate(config_from_dict(tomllib.loads(toml_text)), out=out)      # resultfile.write: .tmp, rename
-    else:
-        from .simulate import run
-        cfg_path = out.with_suffix(".toml")          # the vehicle runner reads a file: the case's
-        tmp = cfg_path.with_name(cfg_path.name + ".tmp")
-        tmp.write_text(toml_text)
-        os.replace(tmp, cfg_path)
-        with contextlib.redirect_stderr(io.StringIO()):
-            res = run(cfg_path, out, log=lambda *a: None)
-        if not res.ok:
-            raise RuntimeError(f"{res.message}; what was computed is in {out}")
-    return {"path": str(out), "wall_s": time.perf_counter() - t0}
+    with locked(case_lock(out), what=f"pid {os.getpid()} on {socket.gethostname()}"):
+        if is_finished(out, toml_text):
+            return {"path": str(out), "wall_s": time.perf_counter() - t0, "computed": False}
+        if threads > 0:
+            import numba
+            numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
+        if kind == "rig":
+            from axlebox.bearing.rig import config_from_dict, simulate
+            simulate(config_from_dict(tomllib.loads(toml_text)), out=out)     # through a temporary name
+        else:
+            from .simulate import run
+            cfg_path = out.with_suffix(".toml")       # the vehicle runner reads a file: the case's
+            with replaced(cfg_path) as tmp:
+                tmp.write_text(toml_text)
+            with contextlib.redirect_stderr(io.StringIO()):
+                res = run(cfg_path, out, log=lambda *a: None)
+            if not res.ok:
+                raise RuntimeError(f"{res.message}; what was computed is in {out}")
+    return {"path": str(out), "wall_s": time.perf_counter() - t0, "computed": True}
 
 
 def is_finished(path, toml_text: str) -> bool:
     """``path`` opens as a complete axlebox-result of this very config that did not stop early."""
     try:
-        with resultfile.open_result(path) as f:
+        with resultfile.reading(path) as f:
             return (f.attrs.get("config") == toml_text and f.attrs.get("status", "done") == "done"
                     and "time" in f and "signals" in f)
-    except (OSError, ValueError):
+    except (OSError, ValueError):                    # missing, not a result, damaged
         return False
 
 
@@ -255,8 +275,9 @@ def run_cases(todo: list[Case], out, scheduler=None, workers=None, log=print) ->
         for k, fut in enumerate(as_completed(futs), 1):
             c, head = futs[fut], f"[{k}/{len(todo)}] {futs[fut].name}"
             try:
-                wall = fut.result()["wall_s"]
-                log(f"{head}: done in {wall:.1f} s (elapsed {time.perf_counter() - t0:.1f} s)")
+                r = fut.result()
+                log(f"{head}: done in {r['wall_s']:.1f} s (elapsed {time.perf_counter() - t0:.1f} s)"
+                    if r["computed"] else f"{head}: finished by another runner meanwhile: not computed again")
             except Exception as err:  # noqa: BLE001 - one case's failure does not stop the others
                 failed.append(c.name)
                 log(f"{head}: failed: {type(err).__name__}: {err}")
@@ -354,8 +375,22 @@ def sweep(config, out, *, speeds=None, widths=None, duration=None, scheduler=Non
     cases = matrix(*load_config(config), speeds, widths, duration, kinds, sides)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
+    note = (f"pid {os.getpid()} on {socket.gethostname()}, started "
+            f"{time.strftime('%Y-%m-%d %H:%M:%S')}")
+    try:
+        with locked(out / LOCK, wait=False, what=note):
+            return _sweep(cases, out, scheduler, workers, log)
+    except BlockingIOError as err:
+        raise ParameterError(f"--out {str(out)!r} is in use by another sweep ({err.strerror}): wait "
+                             "for it to finish, or give another --out") from None
+
+
+def _sweep(cases: list[Case], out: Path, scheduler, workers, log) -> dict:
     for p in sorted(out.glob("*.tmp")):
-        p.unlink()
+        if is_locked(case_lock(p)):             # a runner of an earlier sweep is still writing it
+            log(f"sweep: {p.name}: kept (its case is being computed by another runner)")
+            continue
+        p.unlink(missing_ok=True)
         log(f"sweep: removed {p.name} (left by an interrupted run)")
     todo = [c for c in cases if not is_finished(c.path(out), c.toml)]
     for c in cases:

@@ -1,12 +1,21 @@
 import os
+import shutil
 import tempfile
 from pathlib import Path
 
 import pytest
 
-# meshes go to a per-session cache unless the user points AXLEBOX_CACHE elsewhere
-os.environ.setdefault("AXLEBOX_CACHE", tempfile.mkdtemp(prefix="axlebox-test-cache-"))
+# meshes and numba's machine code go to a per-session cache (removed at the end) unless the user
+# points AXLEBOX_CACHE elsewhere
+_SESSION_CACHE = None if os.environ.get("AXLEBOX_CACHE") else tempfile.mkdtemp(prefix="axlebox-test-cache-")
+if _SESSION_CACHE:
+    os.environ["AXLEBOX_CACHE"] = _SESSION_CACHE
 os.environ.pop("DISPLAY", None)     # every rendering test runs with no display
+
+
+def pytest_sessionfinish(session, exitstatus):
+    if _SESSION_CACHE:
+        shutil.rmtree(_SESSION_CACHE, ignore_errors=True)
 
 
 def reference_dir() -> Path:

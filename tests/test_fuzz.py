@@ -1,5 +1,6 @@
 """Property-based fuzzing (hypothesis) of the entry points that read user input (issue 21, item 2):
-the vehicle and rig configs, the diagnose readers (CSV, HDF5, MATLAB v5) and diagnose's options.
+the vehicle and rig configs, the diagnose readers (CSV, HDF5, MATLAB v5), diagnose's, sweep's
+(with the ``[sweep]`` table) and dataset's options, and damaged axlebox result files.
 
 Every generated case either runs or is refused with :class:`ParameterError` (the CLI: exit 2)
 in one line; nothing else escapes (no traceback), and every case ends (hypothesis' deadline off,
@@ -13,6 +14,7 @@ import tempfile
 from collections import Counter
 from contextlib import contextmanager
 from pathlib import Path
+from unittest.mock import patch
 
 import h5py
 import numpy as np
@@ -22,7 +24,7 @@ from hypothesis import strategies as st
 
 from axlebox._params import ParameterError
 
-from conftest import full_size
+from conftest import full_size, write_pair_result
 
 N = 500 if full_size() else 30
 SETTINGS = settings(max_examples=N, deadline=None, database=None, derandomize=True,
@@ -223,15 +225,20 @@ OPTIONS = {"--fs": st.one_of(st.floats().map(repr), st.text(max_size=5)),
        st.data())
 def test_diagnose_options(record, chosen, data):
     """``axlebox diagnose REC.csv --fs 1e4 --rpm 303 [options]``: exit 0 or 2, one line on stderr."""
+    argv = ["diagnose", str(record), "--fs", "10000", "--speed-kmh", "48"]
+    for k in chosen:
+        argv += [k, data.draw(OPTIONS[k])]
+    cli_exits_0_or_2("diagnose options", argv)
+
+
+def cli_exits_0_or_2(entry: str, argv: list[str], limit_s: float = 60.0) -> int:
+    """``axlebox ARGV`` in this process: exit 0, or 2 with one line on stderr and no traceback."""
     import contextlib
     import io
 
     from axlebox.pipelines.cli import main
-    argv = ["diagnose", str(record), "--fs", "10000", "--speed-kmh", "48"]
-    for k in chosen:
-        argv += [k, data.draw(OPTIONS[k])]
     err = io.StringIO()
-    with time_limit(60.0), contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+    with time_limit(limit_s), contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
         try:
             rc = main(argv)
         except SystemExit as e:          # argparse
@@ -240,7 +247,111 @@ def test_diagnose_options(record, chosen, data):
     assert rc in (0, 2), (argv, rc, text)
     if rc == 2:
         assert len(text.splitlines()) == 1 and "Traceback" not in text, (argv, text)
-    SEEN.setdefault("diagnose options", Counter())[kind_of(text) if rc else "(ran)"] += 1
+    SEEN.setdefault(entry, Counter())[kind_of(text) if rc else "(ran)"] += 1
+    return rc
+
+
+# ------------------------------------------------------------------ sweep options and [sweep] table
+
+RIG_SWEEP = "[rig]\nduration = 0.1\n\n[[defects]]\nW = 0.001\n"
+numbers = st.one_of(st.floats().map(repr), st.integers(-5, 500).map(str),
+                    st.text("0123456789.-e", max_size=5))
+SWEEP_OPTIONS = {"--speeds": st.lists(numbers, max_size=3), "--widths": st.lists(numbers, max_size=3),
+                 "--kinds": st.lists(st.sampled_from(["outer", "inner", "roller", "x", ""]), max_size=3),
+                 "--sides": st.lists(st.sampled_from(["L", "R", "LR", "l", ""]), max_size=3),
+                 "--duration": numbers.map(lambda x: [x]), "--workers": numbers.map(lambda x: [x])}
+
+
+@SETTINGS
+@given(st.sampled_from(["rig", "vehicle"]),
+       st.dictionaries(st.sampled_from(sorted(SWEEP_OPTIONS)), st.just(None), max_size=3),
+       st.dictionaries(st.sampled_from(["speeds_kmh", "widths_mm", "kinds", "sides", "zz"]), values,
+                       max_size=2), st.data())
+def test_sweep_options_and_table(kind, chosen, table, data):
+    """``axlebox sweep CONFIG --out DIR [options]`` with a ``[sweep]`` table of any values: exit 0
+    or 2 in one line.  The cases are validated (every case's config) but not run: ``run_cases``
+    is replaced by one that records them."""
+    import tomli_w
+
+    from axlebox.pipelines import sweep
+    from axlebox.pipelines.simulate import load_config
+    with tempfile.TemporaryDirectory() as tmp:
+        if kind == "rig":
+            base = RIG_SWEEP
+        else:                               # the shipped vehicle config with one defect
+            _, text = load_config("vehicle")
+            base = text + '\n[[defects]]\nW = 0.002\n' if "[[defects]]" not in text else text
+        cfg = Path(tmp) / "c.toml"
+        cfg.write_text(base + ("\n" + tomli_w.dumps({"sweep": table}) if table else ""))
+        argv = ["sweep", str(cfg), "--out", str(Path(tmp) / "out")]
+        for k in chosen:
+            argv += [k, *data.draw(SWEEP_OPTIONS[k])]
+        with patch.object(sweep, "run_cases", lambda todo, *a, **k: []):
+            cli_exits_0_or_2("sweep options and [sweep]", argv)
+
+
+# ---------------------------------------------------- damaged result files, dataset options
+
+
+def _pair_results(folder: Path, n: int = 2) -> list[Path]:
+    from axlebox.bearing.diagnostics.synthetic import coaxial_pair
+    rng = np.random.default_rng(0)
+    out = []
+    for k in range(n):
+        a, b = coaxial_pair(1.5, 1e4, 80.0, rng, amplitude=float(k))
+        cfg = "[run]\nspeed_kmh = 48.0\n" + ('[[defects]]\nside = "L"\nW = 0.002\n' if k else "")
+        out.append(write_pair_result(folder / f"c{k}.h5", a, b, cfg, 1e4, k))
+    return out
+
+
+@SETTINGS
+@given(data=st.data())
+def test_damaged_result_files(data):
+    """An axlebox result cut short, overwritten or given a huge size field: the sweep's
+    ``is_finished`` answers False (never raises), ``axlebox diagnose`` and ``axlebox dataset`` on
+    it exit 0 or 2 in one line."""
+    from axlebox.pipelines.sweep import is_finished
+    with tempfile.TemporaryDirectory() as tmp:
+        good, other = _pair_results(Path(tmp))
+        raw = bytearray(good.read_bytes())
+        op = data.draw(st.sampled_from(["cut", "flip", "huge"]))
+        if op == "cut":
+            raw = raw[:data.draw(st.integers(0, len(raw) - 1))]
+        else:
+            for _ in range(data.draw(st.integers(1, 8))):
+                i = data.draw(st.one_of(st.integers(0, 4096), st.integers(0, len(raw) - 4)))
+                i = min(i, len(raw) - 4)
+                val = b"\xff\xff\xff\x7f" if op == "huge" else bytes([data.draw(st.integers(0, 255))])
+                raw[i:i + len(val)] = val
+        good.write_bytes(bytes(raw))
+        with time_limit(30.0):
+            assert is_finished(good, "") in (True, False)
+        cli_exits_0_or_2("result file: diagnose", ["diagnose", str(good)])
+        cli_exits_0_or_2("result file: dataset", ["dataset", tmp, "--out", str(Path(tmp) / "data"),
+                                                  "--window", "0.2", "--hop", "0.2"])
+
+
+@pytest.fixture(scope="module")
+def pair_folder(tmp_path_factory):
+    d = tmp_path_factory.mktemp("pairs")
+    _pair_results(d)
+    return d
+
+
+DATASET_OPTIONS = {"--window": numbers, "--hop": numbers,
+                   "--criterion": st.sampled_from(["relative", "absolute", "x", ""])}
+
+
+@SETTINGS
+@given(st.dictionaries(st.sampled_from(sorted(DATASET_OPTIONS)), st.just(None), min_size=1, max_size=3),
+       st.data())
+def test_dataset_options(pair_folder, chosen, data):
+    """``axlebox dataset DIR --out OUT [options]``: exit 0 or 2 in one line."""
+    with tempfile.TemporaryDirectory() as tmp:
+        argv = ["dataset", str(pair_folder), "--out", str(Path(tmp) / "data")]
+        for k in chosen:
+            argv += [k, data.draw(DATASET_OPTIONS[k])]
+        cli_exits_0_or_2("dataset options", argv)
 
 
 def teardown_module():
