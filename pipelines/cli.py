@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import math
 import sys
 from pathlib import Path
 
@@ -40,9 +41,9 @@ def _cmd_bodies_build(a) -> None:
         raise ParameterError("--param needs a single --body (parameters differ between bodies)")
     if a.modes is not None and a.modes < 1:
         raise ParameterError(f"--modes = {a.modes} is not allowed: expected an integer >= 1")
-    if a.fmax is not None and not a.fmax > 0:
+    if a.fmax is not None and not 0 < a.fmax < math.inf:
         raise ParameterError(f"--fmax = {a.fmax} is not allowed: expected a frequency > 0 Hz")
-    if a.mesh_size is not None and not a.mesh_size > 0:
+    if a.mesh_size is not None and not 0 < a.mesh_size < math.inf:
         raise ParameterError(f"--mesh-size = {a.mesh_size} is not allowed: expected a length > 0 m")
     if not 0 <= a.zeta < 1:
         raise ParameterError(f"--zeta = {a.zeta} is not allowed: expected 0 <= zeta < 1")
@@ -88,6 +89,13 @@ def _cmd_demo(a) -> None:
     demo(a.out, duration=DURATION if a.duration is None else a.duration)
 
 
+def _number(name: str, text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise ParameterError(f"{name} = {text!r} is not allowed: expected a number") from None
+
+
 def _cmd_bearing_simulate(a) -> None:
     from math import radians
 
@@ -97,7 +105,8 @@ def _cmd_bearing_simulate(a) -> None:
     if a.defect_width < 0:
         raise ParameterError(f"--defect-width = {a.defect_width} is not allowed: expected a width >= 0 mm "
                              "(0: healthy)")
-    overrides = {k: float(v) if k not in ("damping", "cage") else v for k, v in _params(a.param).items()}
+    overrides = {k: _number(f"--param {k}", v) if k not in ("damping", "cage") else v
+                 for k, v in _params(a.param).items()}
     if "Z" in overrides:
         z = overrides["Z"]
         overrides["Z"] = int(z) if float(z).is_integer() else z
