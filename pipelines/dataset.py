@@ -69,7 +69,7 @@ def case_labels(path: Path) -> tuple[dict, dict]:
             cfg = tomllib.loads(str(f.attrs.get("config", "")))
             status = f.attrs.get("status", "done")
     except (OSError, ValueError) as err:
-        raise ParameterError(f"{path.name} is not a readable axlebox result file: {err}") from None
+        raise ParameterError(f"{path.name} is not an axlebox result file: {err}") from None
     if "rig" in cfg:
         raise ParameterError(f"{path.name} is a bearing-rig result (one sensor): a dataset needs the "
                              "two axle boxes of a vehicle sweep")
