@@ -16,6 +16,7 @@ import ctypes
 import ctypes.util
 import errno
 import fcntl
+import functools
 import os
 import shutil
 from pathlib import Path
@@ -78,15 +79,21 @@ def h5_bound(arrays) -> int:
     return int(1.01 * sum(np.asarray(a).nbytes for a in arrays)) + (1 << 20) + (64 << 10) * len(arrays)
 
 
+@functools.cache
+def _fallocate():
+    """libc's ``fallocate``, or None where there is none (then free space is compared)."""
+    try:
+        fallocate = ctypes.CDLL(ctypes.util.find_library("c"), use_errno=True).fallocate
+    except (OSError, AttributeError, TypeError):
+        return None
+    fallocate.argtypes = [ctypes.c_int, ctypes.c_int, ctypes.c_int64, ctypes.c_int64]
+    return fallocate
+
+
 def _reserve(fo, nbytes: int, path) -> None:
     """Reserve ``nbytes`` behind the (empty) file ``fo``, or raise DiskFullError."""
-    try:
-        libc = ctypes.CDLL(ctypes.util.find_library("c"), use_errno=True)
-        fallocate = libc.fallocate
-    except (OSError, AttributeError, TypeError):      # no fallocate here: compare with what is free
-        fallocate = None
+    fallocate = _fallocate()
     if fallocate is not None:
-        fallocate.argtypes = [ctypes.c_int, ctypes.c_int, ctypes.c_int64, ctypes.c_int64]
         if fallocate(fo.fileno(), _FALLOC_FL_KEEP_SIZE, 0, nbytes) == 0:
             return
         code = ctypes.get_errno()

@@ -38,6 +38,14 @@ def check_ranges(obj) -> None:
                 f"expected a number in [{lo:g}, {hi:g}] {unit}".rstrip())
 
 
+def number(name: str, value) -> float:
+    """``value`` (text or a number) as a float, or a ParameterError naming ``name``."""
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} = {value!r} is not allowed: expected a number") from None
+
+
 def require(cond: bool, obj, field: str, message: str) -> None:
     """Cross-field check: refuse ``obj.field`` with ``message`` unless ``cond``."""
     if not cond:

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from axlebox._params import ParameterError
+from axlebox._params import ParameterError, number
 from axlebox.fem import assembly, bodyfile, eigen, interfaces
 from axlebox.fem.body import make_body
 from axlebox.fem.reduction import METHODS
@@ -91,15 +91,8 @@ def make_params(body: str, overrides: dict[str, float] | None = None):
         if k not in names:
             raise ParameterError(f"{cls.__name__}.{k} is not a parameter of the {body}: "
                                  f"expected one of {sorted(names)}")
-        kw[k] = v if names[k].type in ("str", str) else _number(cls, k, v)
+        kw[k] = v if names[k].type in ("str", str) else number(f"{cls.__name__}.{k}", v)
     return cls(**kw)
-
-
-def _number(cls, k, v):
-    try:
-        return float(v)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{cls.__name__}.{k} = {v!r} is not allowed: expected a number") from None
 
 
 def build_body(body: str, *, method: str = "craig-bampton", n_modes: int | None = 20,

@@ -11,7 +11,7 @@ import math
 import sys
 from pathlib import Path
 
-from axlebox._params import ParameterError
+from axlebox._params import ParameterError, number
 from axlebox.bearing.resultfile import ResultFileError
 from axlebox.fem.bodyfile import BodyFileError
 
@@ -89,13 +89,6 @@ def _cmd_demo(a) -> None:
     demo(a.out, duration=DURATION if a.duration is None else a.duration)
 
 
-def _number(name: str, text: str) -> float:
-    try:
-        return float(text)
-    except ValueError:
-        raise ParameterError(f"{name} = {text!r} is not allowed: expected a number") from None
-
-
 def _cmd_bearing_simulate(a) -> None:
     from math import radians
 
@@ -105,7 +98,7 @@ def _cmd_bearing_simulate(a) -> None:
     if a.defect_width < 0:
         raise ParameterError(f"--defect-width = {a.defect_width} is not allowed: expected a width >= 0 mm "
                              "(0: healthy)")
-    overrides = {k: _number(f"--param {k}", v) if k not in ("damping", "cage") else v
+    overrides = {k: number(f"--param {k}", v) if k not in ("damping", "cage") else v
                  for k, v in _params(a.param).items()}
     if "Z" in overrides:
         z = overrides["Z"]

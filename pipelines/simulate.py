@@ -23,6 +23,7 @@ import tomli_w
 
 from axlebox import configs
 from axlebox._cache import cache_dir
+from axlebox._files import tmp_path
 from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
 from axlebox.fem import bodyfile
@@ -237,7 +238,7 @@ def run(config_path, out, duration: float | None = None, log=print,
         raise ParameterError(f"--checkpoint-every = {checkpoint_every!r} is not allowed: expected "
                              "a simulated time >= 0 s (0: no checkpoints)")
     partial = partial_path(out)
-    partial.with_name(partial.name + ".tmp").unlink(missing_ok=True)     # a kill mid-write
+    tmp_path(partial).unlink(missing_ok=True)                            # a kill mid-write
     resume = None
     if partial.is_file():
         if restart:

@@ -377,12 +377,13 @@ def sweep(config, out, *, speeds=None, widths=None, duration=None, scheduler=Non
     out.mkdir(parents=True, exist_ok=True)
     note = (f"pid {os.getpid()} on {socket.gethostname()}, started "
             f"{time.strftime('%Y-%m-%d %H:%M:%S')}")
-    try:
-        with locked(out / LOCK, wait=False, what=note):
-            return _sweep(cases, out, scheduler, workers, log)
-    except BlockingIOError as err:
-        raise ParameterError(f"--out {str(out)!r} is in use by another sweep ({err.strerror}): wait "
-                             "for it to finish, or give another --out") from None
+    with contextlib.ExitStack() as held:
+        try:
+            held.enter_context(locked(out / LOCK, wait=False, what=note))
+        except BlockingIOError as err:         # only the lock's own refusal, not the sweep's
+            raise ParameterError(f"--out {str(out)!r} is in use by another sweep ({err.strerror}): "
+                                 "wait for it to finish, or give another --out") from None
+        return _sweep(cases, out, scheduler, workers, log)
 
 
 def _sweep(cases: list[Case], out: Path, scheduler, workers, log) -> dict:

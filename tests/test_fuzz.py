@@ -174,6 +174,23 @@ def _valid_files(folder: Path) -> dict[str, Path]:
     return {"hdf5": h5, "mat5": mat}
 
 
+def damaged(raw: bytes, data, anywhere: bool) -> bytes:
+    """``raw`` cut short, or with 1-8 bytes overwritten, or 1-8 4-byte fields set to 2^31-1 (a
+    huge declared size): in the first 4 KiB (the header, where sizes are declared), or
+    ``anywhere`` in the file as well."""
+    raw = bytearray(raw)
+    op = data.draw(st.sampled_from(["cut", "flip", "huge"]))
+    if op == "cut":
+        return bytes(raw[:data.draw(st.integers(0, len(raw) - 1))])
+    for _ in range(data.draw(st.integers(1, 8))):
+        where = st.one_of(st.integers(0, 4096), st.integers(0, len(raw) - 4)) if anywhere else \
+            st.integers(0, min(len(raw) - 4, 4096))
+        i = min(data.draw(where), len(raw) - 4)
+        val = b"\xff\xff\xff\x7f" if op == "huge" else bytes([data.draw(st.integers(0, 255))])
+        raw[i:i + len(val)] = val
+    return bytes(raw)
+
+
 @pytest.mark.parametrize("kind", ["hdf5", "mat5"])
 @SETTINGS
 @given(data=st.data())
@@ -182,17 +199,8 @@ def test_truncated_or_corrupted_files(kind, data):
     declared), or a size field set huge."""
     with tempfile.TemporaryDirectory() as tmp:
         src = _valid_files(Path(tmp))[kind]
-        raw = bytearray(src.read_bytes())
-        op = data.draw(st.sampled_from(["cut", "flip", "huge"]))
-        if op == "cut":
-            raw = raw[:data.draw(st.integers(0, len(raw) - 1))]
-        else:
-            for _ in range(data.draw(st.integers(1, 8))):
-                i = data.draw(st.integers(0, min(len(raw) - 4, 4096)))
-                val = b"\xff\xff\xff\x7f" if op == "huge" else bytes([data.draw(st.integers(0, 255))])
-                raw[i:i + len(val)] = val
         p = Path(tmp) / f"bad.{'h5' if kind == 'hdf5' else 'mat'}"
-        p.write_bytes(bytes(raw))
+        p.write_bytes(damaged(src.read_bytes(), data, anywhere=False))
         refused_or_ran(f"{kind} reader", _read, p, "a", "b", None)
 
 
@@ -402,18 +410,8 @@ def test_damaged_result_files(data):
     it exit 0 or 2 in one line."""
     from axlebox.pipelines.sweep import is_finished
     with tempfile.TemporaryDirectory() as tmp:
-        good, other = _pair_results(Path(tmp))
-        raw = bytearray(good.read_bytes())
-        op = data.draw(st.sampled_from(["cut", "flip", "huge"]))
-        if op == "cut":
-            raw = raw[:data.draw(st.integers(0, len(raw) - 1))]
-        else:
-            for _ in range(data.draw(st.integers(1, 8))):
-                i = data.draw(st.one_of(st.integers(0, 4096), st.integers(0, len(raw) - 4)))
-                i = min(i, len(raw) - 4)
-                val = b"\xff\xff\xff\x7f" if op == "huge" else bytes([data.draw(st.integers(0, 255))])
-                raw[i:i + len(val)] = val
-        good.write_bytes(bytes(raw))
+        good, _ = _pair_results(Path(tmp))
+        good.write_bytes(damaged(good.read_bytes(), data, anywhere=True))
         with time_limit(30.0):
             assert is_finished(good, "") in (True, False)
         cli_exits_0_or_2("result file: diagnose", ["diagnose", str(good)])
