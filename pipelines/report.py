@@ -20,20 +20,23 @@ import html
 import json
 import shutil
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import h5py
+import numpy as np
 
 from axlebox._files import replaced, write_text
 from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
 from axlebox.bearing.diagnostics.channel import jsonable
 from axlebox.bearing.diagnostics.pair import PairResult
+from axlebox.mbs.comfort import RideComfort, ride_comfort
 
 from . import conclusions
 from . import report_figures as figs
 from .diagnose import analyse_file
+from .readers import TRACK_FADE_IN_S
 
 SUMMARY_FIELDS = ("rms", "peak", "kurtosis", "crest", "spm_db", "spm_class", "FC", "VF")
 
@@ -45,8 +48,9 @@ class Case:
     path: Path
     speed_kmh: float
     width_mm: float
-    pair: PairResult
+    pair: PairResult | None             # None: the axle-box signals could not be diagnosed
     defect_side: str | None = None      # "left"/"right": the defective bearing's channel
+    ride: list[RideComfort] = field(default_factory=list)   # carbody floor sensors (vehicle runs)
 
     @property
     def label(self) -> str:
@@ -55,18 +59,37 @@ class Case:
 
     def row(self) -> dict:
         """The summary table's row: case, both sides' indicators, lag, VF difference, verdicts."""
+        r = {"file": self.path.name, "speed_kmh": self.speed_kmh, "width_mm": self.width_mm}
         p = self.pair
-        r = {"file": self.path.name, "speed_kmh": self.speed_kmh, "width_mm": self.width_mm,
-             "left": p.names[0], "right": p.names[1]}
-        for side in ("left", "right"):
-            c = getattr(p, side)
-            r.update({f"{side}_{k}": getattr(c, k) for k in SUMMARY_FIELDS})
-            r[f"{side}_lines"] = " ".join(c.detected)
-            r[f"{side}_verdict"] = p.verdicts[side][0]
-        lead = {"a": "left", "b": "right"}.get(p.lag.leading, "neither")
-        r.update(lag_s=p.lag.lag_s, leading=lead, lag_correlation=p.lag.peak, vf_diff=p.vf_diff,
-                 criterion_m=p.m)
+        if p is not None:
+            r.update(left=p.names[0], right=p.names[1])
+            for side in ("left", "right"):
+                c = getattr(p, side)
+                r.update({f"{side}_{k}": getattr(c, k) for k in SUMMARY_FIELDS})
+                r[f"{side}_lines"] = " ".join(c.detected)
+                r[f"{side}_verdict"] = p.verdicts[side][0]
+            lead = {"a": "left", "b": "right"}.get(p.lag.leading, "neither")
+            r.update(lag_s=p.lag.lag_s, leading=lead, lag_correlation=p.lag.peak, vf_diff=p.vf_diff,
+                     criterion_m=p.m)
+        for rc in self.ride:
+            r.update({f"{rc.sensor}_{k}": getattr(rc, k) for k in ("W_z", "W_y", "N_MV")})
         return r
+
+
+def carbody_comfort(path) -> list[RideComfort]:
+    """The comfort indices of a vehicle result's carbody floor sensors (``signals/carbody*``),
+    from the irregularity's fade-in on, as ``axlebox simulate`` computes them; none for a rig's
+    result or a run too short for them."""
+    with resultfile.reading(path) as f:
+        names = [n for n in f.get("signals", {}) if n.startswith("carbody")]
+        if not names or "time" not in f:
+            return []
+        t = f["time"][()]
+        acc = {n: f[f"signals/{n}/acceleration"][()] for n in names}
+    if t.size < 2 or t[-1] - t[0] <= TRACK_FADE_IN_S + 0.5:
+        return []
+    fs = 1.0 / np.median(np.diff(t))
+    return [ride_comfort(a, fs, n, TRACK_FADE_IN_S) for n, a in acc.items()]
 
 
 def case_parameters(path) -> tuple[float, float, str | None]:
@@ -124,9 +147,11 @@ def mode_pictures(source, modes_dir=None) -> list[Path]:
 
 
 def write_csv(path: Path, rows: list[dict]) -> Path:
-    """``rows`` (same keys) as CSV through a temporary name; None is written empty."""
+    """``rows`` as CSV through a temporary name, a column for every key of any row (rig cases
+    have no comfort columns); None and a missing key are written empty."""
+    keys = list(dict.fromkeys(k for r in rows for k in r))
     with replaced(path) as tmp, tmp.open("w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        w = csv.DictWriter(fh, fieldnames=keys)
         w.writeheader()
         w.writerows(rows)
     return path
@@ -135,7 +160,7 @@ def write_csv(path: Path, rows: list[dict]) -> Path:
 def write_tables(cases: list[Case], out: Path) -> tuple[Path, Path]:
     rows = [jsonable(c.row()) for c in cases]
     j = write_text(out / "summary.json", json.dumps(
-        {"cases": rows, "diagnoses": [jsonable(c.pair.to_dict()) for c in cases]}, indent=1))
+        {"cases": rows, "diagnoses": [jsonable(c.pair.to_dict()) for c in cases if c.pair]}, indent=1))
     return j, write_csv(out / "summary.csv", rows)
 
 
@@ -161,20 +186,45 @@ def _table_html(cases: list[Case]) -> str:
     return "\n".join(out)
 
 
+def _comfort_html(cases: list[Case]) -> str:
+    from axlebox.mbs.comfort import nmv_words, sperling_words
+    head = ["case", "sensor", "W_z", "W_y", "N_MV", "a_XP95, a_YP95, a_ZP95 m/s&sup2;", "record"]
+    out = ["<table><tr>" + "".join(f"<th>{h}</th>" for h in head) + "</tr>"]
+    for c in cases:
+        for r in c.ride:
+            cells = [html.escape(c.label), html.escape(r.sensor),
+                     f"{r.W_z:.2f} ({sperling_words(r.W_z)})", f"{r.W_y:.2f} ({sperling_words(r.W_y)})",
+                     f"{r.N_MV:.2f} ({nmv_words(r.N_MV)})", ", ".join(f"{v:.3g}" for v in r.a_P95),
+                     f"{r.duration_s:.3g} s, {r.windows} window(s)"]
+            out.append("<tr>" + "".join(f"<td>{v}</td>" for v in cells) + "</tr>")
+    out.append("</table>")
+    return "\n".join(out)
+
+
 def write_html(cases, figures: list[tuple[str, Path]], modes: list[Path], out: Path,
                claims=()) -> Path:
     esc = html.escape
-    crit = cases[0].pair.criterion
+    diagnosed = [c for c in cases if c.pair is not None]
+    criterion = ""
+    if diagnosed:
+        crit = diagnosed[0].pair.criterion
+        criterion = (f"Criterion: {esc(crit.mode)}, range [{crit.range[0]:.4g}, {crit.range[1]:.4g}] "
+                     f"{esc(crit.unit)}, compared {esc(', '.join(crit.compare))}. Hover a verdict "
+                     "for its reason. ")
     parts = ["<!doctype html><html><head><meta charset='utf-8'><title>axlebox report</title>",
              "<style>body{font-family:sans-serif;margin:2em;max-width:1300px}"
              "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #ccc;"
              "padding:3px 7px;text-align:right}img{max-width:100%}.modes img{width:380px}</style>",
              "</head><body><h1>Coaxial pseudo-fault report</h1>",
-             f"<p>{len(cases)} case(s). Criterion: {esc(crit.mode)}, range "
-             f"[{crit.range[0]:.4g}, {crit.range[1]:.4g}] {esc(crit.unit)}, compared "
-             f"{esc(', '.join(crit.compare))}. Hover a verdict for its reason. Tables: "
-             "<a href='summary.csv'>summary.csv</a>, <a href='summary.json'>summary.json</a>.</p>",
-             _table_html(cases)]
+             f"<p>{len(cases)} case(s), {len(diagnosed)} with axle-box diagnoses. {criterion}"
+             "Tables: <a href='summary.csv'>summary.csv</a>, <a href='summary.json'>summary.json"
+             "</a>.</p>", _table_html(diagnosed) if diagnosed else ""]
+    if any(c.ride for c in cases):
+        parts += ["<h2>Ride comfort of the carbody</h2>",
+                  "<p>Sperling's ride index (W_z vertical, W_y lateral) and EN 12299's mean comfort "
+                  "N_MV (standard method: W_d on x and y, W_b on z, 95th percentile of 5 s r.m.s.) "
+                  "of each floor sensor after the irregularity's fade-in. The standard evaluates "
+                  "5 min; a shorter record's N_MV is an indication.</p>", _comfort_html(cases)]
     if claims:
         parts += ["<h2>The paper's conclusions beside ours</h2>",
                   "<p>Each claim of the paper's conclusions (1)-(3) and of its Fig. 11, checked "
@@ -203,11 +253,20 @@ def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
         speed, width, side = case_parameters(path)
         if left is not None or right is not None:
             side = None                     # other channels than the default ws2_L / ws2_R
-        _, _, pair = analyse_file(path, left=left, right=right, **diagnose_kw)
-        cases.append(Case(path, speed, width, pair, side))
-        log(f"report: {path.name}: {cases[-1].label}: left {pair.verdicts['left'][0]}, "
-            f"right {pair.verdicts['right'][0]}")
+        ride = carbody_comfort(path)
+        try:
+            _, _, pair = analyse_file(path, left=left, right=right, **diagnose_kw)
+        except ParameterError as err:
+            if not ride:
+                raise
+            pair = None                     # e.g. a comfort run's 1 kHz record: the floor only
+            log(f"report: {path.name}: axle-box signals not diagnosed ({err}); ride comfort only")
+        cases.append(Case(path, speed, width, pair, side, ride))
+        if pair is not None:
+            log(f"report: {path.name}: {cases[-1].label}: left {pair.verdicts['left'][0]}, "
+                f"right {pair.verdicts['right'][0]}")
     cases.sort(key=lambda c: (c.speed_kmh, c.width_mm))
+    all_cases, cases = cases, [c for c in cases if c.pair is not None]
     figures = []
     for v in sorted({c.speed_kmh for c in cases}):
         at = [c for c in cases if c.speed_kmh == v]
@@ -218,21 +277,27 @@ def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
                         figs.envelope_spectra(at, out / f"fig10_envelope_{tag}.png")))
         figures.append((f"Fig. 12 - time and frequency comparison, {at[-1].label}",
                         figs.comparison(at[-1], out / f"fig12_comparison_{tag}.png")))
-    figures.append(("Fig. 11 - RMS and SPM", figs.indicators(cases, out / "fig11_rms_spm.png")))
-    if any(c.width_mm > 0 for c in cases):
-        figures.append(("Fig. 13 - lag", figs.lags(cases, out / "fig13_lag.png")))
-    figures.append(("Fig. 14 - VF", figs.vf(cases, out / "fig14_vf.png")))
+    if cases:
+        figures.append(("Fig. 11 - RMS and SPM", figs.indicators(cases, out / "fig11_rms_spm.png")))
+        if any(c.width_mm > 0 for c in cases):
+            figures.append(("Fig. 13 - lag", figs.lags(cases, out / "fig13_lag.png")))
+        figures.append(("Fig. 14 - VF", figs.vf(cases, out / "fig14_vf.png")))
+    if any(c.ride for c in all_cases):
+        figures.append(("Ride comfort - weighted floor spectra",
+                        figs.comfort_spectra(all_cases, out / "fig_comfort_spectra.png")))
+        figures.append(("Ride comfort - W_z, W_y and N_MV against speed",
+                        figs.comfort_indices(all_cases, out / "fig_comfort_speed.png")))
     figures.sort(key=lambda t: t[1].name)
     pictures = mode_pictures(source, modes_dir)
     if pictures:
         (out / "modes").mkdir(exist_ok=True)
         for p in pictures:
             shutil.copy2(p, out / "modes" / p.name)
-    write_tables(cases, out)
+    write_tables(all_cases, out)
     claims = conclusions.claims(cases) if any(c.defect_side for c in cases) else []
     if claims:
         write_csv(out / "conclusions.csv", conclusions.as_rows(claims))
-    page = write_html(cases, figures, pictures, out, claims)
-    log(f"report: {len(cases)} case(s), {len(figures)} figures, {len(pictures)} mode pictures "
+    page = write_html(all_cases, figures, pictures, out, claims)
+    log(f"report: {len(all_cases)} case(s), {len(figures)} figures, {len(pictures)} mode pictures "
         f"-> {page}")
     return page

@@ -206,3 +206,55 @@ def vf(cases, path: Path) -> Path:
     fig.suptitle("Frequency variance VF (Eq. 18) of both sides; numbers: the VF difference "
                  "(cf. paper Fig. 14)", fontsize=10)
     return _save(fig, path)
+
+
+def comfort_spectra(cases, path: Path, sensor: str = "carbody_centre") -> Path:
+    """The carbody floor's weighted spectra (W_d lateral, W_b vertical; EN 12299) at ``sensor``,
+    a panel per speed, a curve per defect width, Sperling's and EN 12299's indices in the
+    legend."""
+    speeds = sorted({c.speed_kmh for c in cases})
+    fig, ax = plt.subplots(len(speeds), 2, figsize=(11, 2.6 * len(speeds) + 0.6), squeeze=False,
+                           constrained_layout=True)
+    widths = {c.width_mm for c in cases}
+    for i, v in enumerate(speeds):
+        for c in (c for c in cases if c.speed_kmh == v):
+            rc = next((r for r in c.ride if r.sensor == sensor), None)
+            if rc is None:
+                continue
+            sel = (rc.f_hz >= 0.3) & (rc.f_hz <= 80)
+            for j, (key, idx) in enumerate((("lateral, weighted Wd", f"W_y {rc.W_y:.2f}"),
+                                            ("vertical, weighted Wb", f"W_z {rc.W_z:.2f}"))):
+                ax[i, j].loglog(rc.f_hz[sel], rc.spectra[key][sel], lw=0.8,
+                                color=_colour(widths, c.width_mm),
+                                label=f"{_width_label(c.width_mm)}: {idx}, N_MV {rc.N_MV:.2f}")
+        for j, d in enumerate(("lateral (W_d)", "vertical (W_b)")):
+            ax[i, j].set(xlabel="frequency (Hz)", ylabel="weighted amplitude (m/s$^2$)",
+                         title=f"{v:g} km/h, {sensor}, {d}")
+            ax[i, j].title.set_fontsize(9)
+            ax[i, j].legend(fontsize=7)
+    fig.suptitle("Carbody floor spectra weighted as EN 12299 / ISO 2631 weigh them", fontsize=10)
+    return _save(fig, path)
+
+
+def comfort_indices(cases, path: Path) -> Path:
+    """Sperling's W_z and W_y and EN 12299's N_MV against speed, a curve per floor sensor and
+    defect width, with the scales' bands (Sperling 2.5 'more pronounced but not unpleasant',
+    N_MV 1.5 / 2.5 comfortable / medium)."""
+    fig, ax = plt.subplots(1, 3, figsize=(13, 4.0), constrained_layout=True)
+    groups = _by_width([c for c in cases if c.ride])
+    sensors = sorted({r.sensor for c in cases for r in c.ride})
+    for k, (field, label, marks) in enumerate((("W_z", "Sperling W_z (vertical)", (2.5, 3.0)),
+                                               ("W_y", "Sperling W_y (lateral)", (2.5, 3.0)),
+                                               ("N_MV", "EN 12299 N_MV", (1.5, 2.5)))):
+        for w, cs in groups.items():
+            for s, ls in zip(sensors, ("-o", "--s", ":^")):
+                pts = [(c.speed_kmh, getattr(r, field)) for c in cs for r in c.ride if r.sensor == s]
+                if pts:
+                    ax[k].plot(*zip(*pts), ls, ms=4, color=_colour(groups, w),
+                               label=f"{s}, {_width_label(w)}")
+        for m in marks:
+            ax[k].axhline(m, color="0.6", lw=0.6, ls=":")
+        ax[k].set(xlabel="speed (km/h)", ylabel=field, title=label)
+    ax[0].legend(fontsize=7)
+    fig.suptitle("Ride comfort of the carbody floor against speed", fontsize=10)
+    return _save(fig, path)

@@ -27,6 +27,7 @@ from axlebox._files import tmp_path
 from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
 from axlebox.fem import bodyfile
+from axlebox.mbs import comfort
 from axlebox.mbs import config as vconfig
 from axlebox.mbs import dtrb, integrate, statics, track, vehicle
 from axlebox.mbs.wheelrail import element_kernel as ek
@@ -125,7 +126,20 @@ def settings(cfg: dict) -> integrate.Settings:
                               state_rate_hz=i["state_rate_hz"], rho_inf=i["rho_inf"])
 
 
-def write(path, run: integrate.Run, model, cfg_text: str, seed: int) -> Path:
+def ride_comfort(run: integrate.Run, skip_s: float) -> list[comfort.RideComfort]:
+    """Sperling's W_z, W_y and EN 12299's N_MV of each carbody floor sensor, from ``skip_s`` on
+    (the irregularity's fade-in left out); none for a run too short for them."""
+    if run.time.size < 2 or run.time[-1] - run.time[0] <= skip_s + 0.5:
+        return []
+    fs = 1.0 / np.median(np.diff(run.time))
+    return [comfort.ride_comfort(a, fs, name, skip_s) for name, a in run.sensors.items()
+            if name.startswith("carbody")]
+
+
+def write(path, run: integrate.Run, model, cfg_text: str, seed: int,
+          ride: list[comfort.RideComfort] = ()) -> Path:
+    """The result file; ``ride``: the carbody's comfort indices, group ``comfort`` (one
+    (6,) dataset a floor sensor, columns :attr:`comfort.RideComfort.COLUMNS`)."""
     fs = 1.0 / np.median(np.diff(run.time)) if run.time.size > 1 else 0.0
     signals = {name: {"acceleration": acc} for name, acc in run.sensors.items()}
     wr = {}
@@ -145,8 +159,14 @@ def write(path, run: integrate.Run, model, cfg_text: str, seed: int) -> Path:
         br[f"{name}/roller1_cup_force"] = (o[:, 2, :2], {"unit": "N", "columns": "row 1, row 2"})
         br[f"{name}/cage"] = (o[:, 2, 2:6], {"unit": "rad, rad, rad/s, rad/s",
                                             "columns": "angle row 1, row 2; rate row 1, row 2"})
+    ride_attrs = {"columns": ", ".join(comfort.RideComfort.COLUMNS), "unit": "1, 1, 1, m/s^2, m/s^2, "
+                  "m/s^2", "standards": "Sperling (W_z, W_y); EN 12299:2009 6.7.2 (N_MV: W_d on x, y, "
+                  "W_b on z; 95th percentile of 5 s r.m.s.)"}
+    cm = {rc.sensor: (rc.values(), {**ride_attrs, "record_s": rc.duration_s, "windows": rc.windows})
+          for rc in ride}
     groups = {"wheelrail": wr,
               **({"bearings": br} if br else {}),
+              **({"comfort": cm} if cm else {}),
               "states": {"time": run.state_time, "y": run.states,
                          "y_end": (run.y_end, {"t": float(run.time[-1]) if run.time.size else 0.0})}}
     return resultfile.write(path, config_toml=cfg_text, seed=seed, time=run.time, fs_hz=fs,
@@ -261,9 +281,12 @@ def run(config_path, out, duration: float | None = None, log=print,
     print(file=sys.stderr)
     if cfg["sensors"]["model"] != "ideal":          # what the acquisition records of it
         res = sensor.decimate_run(res, s.output_rate_hz, cfg["sensors"])
-    write(out, res, model, text, cfg["run"]["seed"])
+    ride = ride_comfort(res, model.system.track_ramp)
+    write(out, res, model, text, cfg["run"]["seed"], ride)
     partial.unlink(missing_ok=True)
     T = res.time[-1] if res.time.size else 0.0
     log(f"wrote {out}: {T:g} s simulated in {res.wall_s:.1f} s wall ({T / max(res.wall_s, 1e-9):.3f} "
         f"simulated s per wall s)")
+    for rc in ride:
+        log("ride comfort, " + rc.summary())
     return res

@@ -313,13 +313,22 @@ def rig_rows(c: Case, path: Path) -> list[dict]:
 
 def vehicle_rows(c: Case, path: Path):
     """Both sides of the defect's wheelset (``wheelset`` of the first defect, else ws2) as
-    ``axlebox diagnose`` does: ``(axlebox.pipelines.report.Case, rows)``."""
+    ``axlebox diagnose`` does, and the carbody's ride comfort: ``(axlebox.pipelines.report.Case,
+    rows)``; a run whose axle-box record cannot be diagnosed (a comfort run's 1 kHz) gives its
+    ride comfort alone and no rows."""
     from .diagnose import analyse_file
     from .report import Case as ReportCase
+    from .report import carbody_comfort
     defects = tomllib.loads(c.toml).get("defects", [])
     ws = defects[0].get("wheelset") if defects else None
-    _, _, p = analyse_file(path, **(dict(left=f"ws{ws}_L", right=f"ws{ws}_R") if ws else {}))
-    return ReportCase(path, c.speed_kmh, c.width_mm, p), [
+    ride = carbody_comfort(path)
+    try:
+        _, _, p = analyse_file(path, **(dict(left=f"ws{ws}_L", right=f"ws{ws}_R") if ws else {}))
+    except ParameterError:
+        if not ride:
+            raise
+        return ReportCase(path, c.speed_kmh, c.width_mm, None, ride=ride), []
+    return ReportCase(path, c.speed_kmh, c.width_mm, p, ride=ride), [
         _row(c, path, s, p.names[i], getattr(p, s), p.verdicts[s][0], p.lag.lag_s, p.vf_diff)
         for i, s in enumerate(("left", "right"))]
 
@@ -353,9 +362,13 @@ def summarise(cases: list[Case], out, log=print) -> list[dict]:
                 rows += r
         except ParameterError as err:
             log(f"summary: {c.name}: not analysed: {err}")
-    if not rows:
+    if not rows and not report_cases:
         return rows
-    log(table(rows))
+    if rows:
+        log(table(rows))
+    for rc in report_cases:
+        for r in rc.ride:
+            log(f"{rc.path.stem}: ride comfort, {r.summary()}")
     if report_cases:
         write_tables(report_cases, Path(out))          # summary.csv and summary.json, as axlebox report
     else:

@@ -41,15 +41,17 @@ def wheelset_fe():
     return p, fe, eigen.free_free_modes(fe, 30)
 
 
-def write_pair_result(path, left, right, config_toml: str, fs: float, seed: int = 0):
-    """Two axle-box signals as a vehicle result file (vertical column of ws2_L / ws2_R)."""
+def write_pair_result(path, left, right, config_toml: str, fs: float, seed: int = 0, more=None):
+    """Two axle-box signals as a vehicle result file (vertical column of ws2_L / ws2_R);
+    ``more``: further sensors, name -> (n, 3) accelerations."""
     import numpy as np
 
     from axlebox.bearing import resultfile
     z = np.zeros_like(left)
     return resultfile.write(path, config_toml=config_toml, seed=seed, time=np.arange(left.size) / fs,
                             fs_hz=fs, signals={"ws2_L": {"acceleration": np.c_[z, z, left]},
-                                               "ws2_R": {"acceleration": np.c_[z, z, right]}})
+                                               "ws2_R": {"acceleration": np.c_[z, z, right]},
+                                               **{n: {"acceleration": a} for n, a in (more or {}).items()}})
 
 
 def assert_windows_are_the_source(ds, folder) -> None:

@@ -4,7 +4,9 @@ or a sweep (pipelines/report.py, report_figures.py).
 The sweep is synthetic with known answers (bearing/diagnostics/synthetic.py): at every speed
 and width the defect side (left) carries outer-ring hits at BPFO whose amplitude grows with
 width and speed, the healthy side (right) the same hits 1.2 ms later through a 546 Hz mode at
-0.3 times the amplitude, both in wheel-rail noise; width 0 is noise alone.
+0.3 times the amplitude, both in wheel-rail noise; width 0 is noise alone.  The carbody floor
+(``carbody_centre``) moves as two sinusoids, vertical 4 Hz and lateral 2 Hz, growing with speed,
+so its ride indices have closed forms.
 """
 import csv
 import json
@@ -15,6 +17,7 @@ import pytest
 from axlebox.bearing.diagnostics.synthetic import coaxial_pair
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.params import BearingParams
+from axlebox.mbs import comfort, weighting
 from axlebox.pipelines import cli, report
 from axlebox.pipelines.diagnose import analyse_file
 
@@ -26,6 +29,17 @@ WIDTHS = (0.0, 3.0, 5.0)          # mm
 DELAY = 1.2e-3                    # s, the paper's typical lag
 
 
+def floor_peaks(speed):
+    """Peak floor accelerations (m/s^2): vertical at 4 Hz, lateral at 2 Hz."""
+    return 0.1 * speed / 20, 0.05 * speed / 20
+
+
+def floor(speed, n):
+    t = np.arange(n) / FS
+    az, ay = floor_peaks(speed)
+    return np.c_[0 * t, ay * np.sin(2 * np.pi * 2 * t), az * np.sin(2 * np.pi * 4 * t)]
+
+
 def write_case(folder, speed, width, seed):
     rng = np.random.default_rng(seed)
     bpfo = orders(BearingParams()).BPFO * shaft_hz(speed)
@@ -34,7 +48,8 @@ def write_case(folder, speed, width, seed):
     cfg = f"[run]\nspeed_kmh = {speed}\n[wheelset]\nr0 = 0.42\n"
     if width:
         cfg += f"[[defects]]\nW = {width * 1e-3}\nrow = 2\nside = \"L\"\n"
-    return write_pair_result(folder / f"v{speed:g}_w{width:g}.h5", left, right, cfg, FS, seed)
+    return write_pair_result(folder / f"v{speed:g}_w{width:g}.h5", left, right, cfg, FS, seed,
+                             more={"carbody_centre": floor(speed, left.size)})
 
 
 @pytest.fixture(scope="module")
@@ -60,7 +75,8 @@ def test_report_writes_every_figure_and_a_page_that_shows_them(sweep):
     runs, out, page = sweep
     text = page.read_text()
     names = {f"fig{k}_{v:g}kmh.png" for v in SPEEDS for k in ("09_time", "10_envelope", "12_comparison")}
-    names |= {"fig11_rms_spm.png", "fig13_lag.png", "fig14_vf.png"}
+    names |= {"fig11_rms_spm.png", "fig13_lag.png", "fig14_vf.png", "fig_comfort_spectra.png",
+              "fig_comfort_speed.png"}
     for n in names:
         assert (out / n).stat().st_size > 10_000, n           # a drawn figure, not an empty canvas
         assert f"src='{n}'" in text
@@ -68,6 +84,26 @@ def test_report_writes_every_figure_and_a_page_that_shows_them(sweep):
         assert (out / "modes" / f"wheelset_mode{k:02d}.png").exists()
         assert f"modes/wheelset_mode{k:02d}.png" in text
     assert not list(out.glob("*.part"))                      # everything renamed into place
+
+
+def test_report_gives_the_floors_ride_indices_of_their_closed_forms(sweep):
+    """The summary's Sperling indices of the floor are the closed form W = 0.896 (b^3 F(f)/f)^0.1
+    of its sinusoids (whole periods after the 0.5 s fade-in: exact to round-off), its N_MV that of
+    EN 12299 6.7.2 on their weighted r.m.s. (one window of the 3.5 s record, the filters' start
+    from rest inside it: 2 %), and the page shows them in words."""
+    runs, out, page = sweep
+    rows = list(csv.DictReader((out / "summary.csv").open()))
+    for r in rows:
+        v = float(r["speed_kmh"])
+        az, ay = floor_peaks(v)
+        assert float(r["carbody_centre_W_z"]) == pytest.approx(
+            float(comfort.sperling_line(az, 4.0, "vertical")), rel=1e-6)
+        assert float(r["carbody_centre_W_y"]) == pytest.approx(
+            float(comfort.sperling_line(ay, 2.0, "lateral")), rel=1e-6)
+        ref = 6 * np.hypot(ay * weighting.gain("Wd", 2.0), az * weighting.gain("Wb", 4.0)) / np.sqrt(2)
+        assert float(r["carbody_centre_N_MV"]) == pytest.approx(ref, rel=0.02)
+    assert "Ride comfort of the carbody" in page.read_text()
+    assert comfort.sperling_words(float(rows[0]["carbody_centre_W_z"])) in page.read_text()
 
 
 def test_summary_is_what_diagnose_computes(sweep):

@@ -100,6 +100,21 @@ def test_roller_contact_force_turns_with_the_cage(run):
 
 
 @pytest.mark.slow
+def test_the_carbody_ride_comfort_is_reported(run):
+    """Sperling's W_z, W_y and EN 12299's N_MV of the three floor sensors are in the result file
+    (group ``comfort``), finite, and of a metro car on class 5 track: Sperling between 1 ('just
+    noticeable') and 4, N_MV below 4.5 ('very uncomfortable' from there)."""
+    out = run[0]
+    with h5py.File(out, "r") as f:
+        got = {n: f[f"comfort/{n}"][()] for n in f["comfort"]}
+        cols = f["comfort/carbody_centre"].attrs["columns"]
+    assert set(got) == {"carbody_b1", "carbody_centre", "carbody_b2"}
+    assert cols.startswith("W_z, W_y, N_MV")
+    for v in got.values():
+        assert np.all(np.isfinite(v))
+        assert 1.0 < v[0] < 4.0 and 1.0 < v[1] < 4.0 and 0.0 < v[2] < 4.5
+
+
 def test_the_demo_concludes_as_the_paper(run):
     """What ``axlebox demo`` prints, on its own case and duration: the defect side (ws2_R) a real
     fault, the healthy side (ws2_L) a pseudo-fault by the relative criterion, the healthy side's
