@@ -58,6 +58,11 @@ def _cmd_bodies_build(a) -> None:
             print(f"{n}: wrote {bodyfile.export_vtu(rb, Path(a.out) / f'{n}.vtu')}")
 
 
+def _cmd_bodies_export(a) -> None:
+    from .export import export
+    print(f"wrote {export(a.body_file, a.format, a.out)}")
+
+
 def _cmd_bodies_report(a) -> None:
     from .render import report
     report(a.dir, a.out, max_modes=a.max_modes)
@@ -334,6 +339,20 @@ def parser() -> argparse.ArgumentParser:
     br.add_argument("--out", required=True, help="report folder")
     br.add_argument("--max-modes", type=int, default=None, help="render at most N modes a body")
     br.set_defaults(func=_cmd_bodies_report)
+
+    bx = bs.add_parser("export", help="a reduced body for another multibody code: Exudyn "
+                                      "(FEMinterface .hdf5) or MBDyn (modal element .fem)",
+                       description="Writes the reduced body for Exudyn's ObjectFFRFreducedOrder "
+                       "(FEMinterface.LoadFromFile data: mesh, full mass and stiffness reassembled "
+                       "from the mesh and material, the body's modes; .hdf5) or as MBDyn's modal "
+                       "element database (.fem: the master/output nodes, their mode shapes, modal "
+                       "mass, stiffness and damping, rigid-body inertia). SI units.")
+    bx.add_argument("body_file", metavar="BODY.h5", help="a reduced-body file (axlebox bodies build)")
+    bx.add_argument("--format", required=True, choices=["exudyn", "mbdyn"])
+    bx.add_argument("--out", required=True, metavar="PATH",
+                    help="file to write (exudyn: ending in .hdf5), or an existing folder "
+                         "(<folder>/<body>.hdf5 or .fem)")
+    bx.set_defaults(func=_cmd_bodies_export)
 
     be = sub.add_parser("bearing", help="the axle-box bearing (DTRB) alone")
     bes = be.add_subparsers(dest="bearing_command", required=True, parser_class=_Parser)
