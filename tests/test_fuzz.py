@@ -1,6 +1,7 @@
 """Property-based fuzzing (hypothesis) of the entry points that read user input (issue 21, item 2):
 the vehicle and rig configs, the diagnose readers (CSV, HDF5, MATLAB v5), diagnose's, sweep's
-(with the ``[sweep]`` table) and dataset's options, and damaged axlebox result files.
+(with the ``[sweep]`` table) and dataset's options, damaged axlebox result files, and ``bodies
+export`` on good and damaged reduced bodies.
 
 Every generated case either runs or is refused with :class:`ParameterError` (the CLI: exit 2)
 in one line; nothing else escapes (no traceback), and every case ends (hypothesis' deadline off,
@@ -440,6 +441,33 @@ def test_dataset_options(pair_folder, chosen, data):
         for k in chosen:
             argv += [k, data.draw(DATASET_OPTIONS[k])]
         cli_exits_0_or_2("dataset options", argv)
+
+
+# ----------------------------------------------------------- bodies export (issue 22, items 2-3)
+
+
+@pytest.fixture(scope="module")
+def tiny_body_bytes(tmp_path_factory) -> bytes:
+    from axlebox.fem import bodyfile
+
+    from test_export import tiny_body
+    return bodyfile.write(tiny_body(), tmp_path_factory.mktemp("tiny") / "tet.h5").read_bytes()
+
+
+EXPORT_OUT = ["(folder)", "x.fem", "x.hdf5", "x.h5", "nowhere/x.fem", "tet.h5"]
+
+
+@SETTINGS
+@given(st.sampled_from(["exudyn", "mbdyn", "adams", ""]), st.sampled_from(EXPORT_OUT), st.booleans(),
+       st.data())
+def test_bodies_export(tiny_body_bytes, fmt, out, damage, data):
+    """``axlebox bodies export BODY.h5 --format F --out PATH`` on a valid one-element body, or on
+    that body cut short, overwritten or given a huge size field: exit 0 or 2 in one line."""
+    with tempfile.TemporaryDirectory() as tmp:
+        src = Path(tmp) / "tet.h5"
+        src.write_bytes(damaged(tiny_body_bytes, data, anywhere=True) if damage else tiny_body_bytes)
+        cli_exits_0_or_2("bodies export", ["bodies", "export", str(src), "--format", fmt, "--out",
+                                           tmp if out == "(folder)" else str(Path(tmp) / out)])
 
 
 def teardown_module():
