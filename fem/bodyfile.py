@@ -131,32 +131,43 @@ def read(path: str | os.PathLike, *, fields: bool = True) -> ReducedBody:
         f = h5py.File(path, "r")
     except OSError as err:
         raise BodyFileError(f"reduced body {str(path)!r} is not an HDF5 file ({err})") from None
-    with f:
-        fmt = f.attrs.get("format")
-        fmt = fmt.decode() if isinstance(fmt, bytes) else fmt
-        if fmt != FORMAT:
-            raise BodyFileError(f"{str(path)!r} has format = {fmt!r}: expected {FORMAT!r}")
-        ver = f.attrs.get("version")
-        if ver is None or int(ver) != VERSION:
-            raise BodyFileError(f"{str(path)!r} has version = {ver!r}: this axlebox reads "
-                                f"version {VERSION} only")
-        a = lambda k: f[k][()]   # noqa: E731
-        nodes = {n: {"position": g["position"][()], "shapes": g["shapes"][()],
-                     "coupling": str(g.attrs.get("coupling", ""))} for n, g in f["nodes"].items()}
-        body = ReducedBody(
-            name=str(f.attrs["name"]), method=str(f.attrs["method"]), mass=float(a("mass")),
-            center_of_mass=a("center_of_mass"), inertia=a("inertia"),
-            frequencies_hz=a("frequencies_hz"), reduced_mass=a("reduced/mass"),
-            reduced_stiffness=a("reduced/stiffness"), reduced_damping=a("reduced/damping"),
-            nodes=nodes, invariants={k: v[()] for k, v in f["invariants"].items()},
-            component={k: v[()] for k, v in f["component"].items()},
-            meta=json.loads(f.attrs.get("meta", "{}")))
-        if fields and "mesh" in f:
-            body.mesh_points, body.mesh_cells = a("mesh/points"), a("mesh/cells")
-        if fields and "modes" in f:
-            body.mode_shapes = a("modes/shapes")
-        if "reference" in f:
-            body.reference_frequencies_hz = a("reference/frequencies_hz")
+    try:
+        return _read(f, path, fields)
+    except BodyFileError:
+        raise
+    except (KeyError, OSError, ValueError, TypeError, RuntimeError) as err:   # a damaged file
+        why = " ".join(f"{type(err).__name__}: {err}".split())
+        raise BodyFileError(f"reduced body {str(path)!r} cannot be read ({why})") from None
+    finally:
+        f.close()
+
+
+def _read(f, path: Path, fields: bool) -> ReducedBody:
+    fmt = f.attrs.get("format")
+    fmt = fmt.decode() if isinstance(fmt, bytes) else fmt
+    if fmt != FORMAT:
+        raise BodyFileError(f"{str(path)!r} has format = {fmt!r}: expected {FORMAT!r}")
+    ver = f.attrs.get("version")
+    if ver is None or int(ver) != VERSION:
+        raise BodyFileError(f"{str(path)!r} has version = {ver!r}: this axlebox reads "
+                            f"version {VERSION} only")
+    a = lambda k: f[k][()]   # noqa: E731
+    nodes = {n: {"position": g["position"][()], "shapes": g["shapes"][()],
+                 "coupling": str(g.attrs.get("coupling", ""))} for n, g in f["nodes"].items()}
+    body = ReducedBody(
+        name=str(f.attrs["name"]), method=str(f.attrs["method"]), mass=float(a("mass")),
+        center_of_mass=a("center_of_mass"), inertia=a("inertia"),
+        frequencies_hz=a("frequencies_hz"), reduced_mass=a("reduced/mass"),
+        reduced_stiffness=a("reduced/stiffness"), reduced_damping=a("reduced/damping"),
+        nodes=nodes, invariants={k: v[()] for k, v in f["invariants"].items()},
+        component={k: v[()] for k, v in f["component"].items()},
+        meta=json.loads(f.attrs.get("meta", "{}")))
+    if fields and "mesh" in f:
+        body.mesh_points, body.mesh_cells = a("mesh/points"), a("mesh/cells")
+    if fields and "modes" in f:
+        body.mode_shapes = a("modes/shapes")
+    if "reference" in f:
+        body.reference_frequencies_hz = a("reference/frequencies_hz")
     return body
 
 

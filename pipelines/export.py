@@ -36,23 +36,11 @@ def target(src: str | os.PathLike, fmt: str, out: str | os.PathLike) -> Path:
     return out
 
 
-def read_body(src: str | os.PathLike, *, fields: bool) -> bodyfile.ReducedBody:
-    """:func:`axlebox.fem.bodyfile.read`, with a damaged file's low-level error (h5py, a missing
-    dataset) turned into a one-line BodyFileError."""
-    try:
-        return bodyfile.read(src, fields=fields)
-    except bodyfile.BodyFileError as err:
-        raise bodyfile.BodyFileError(" ".join(str(err).split())) from None
-    except (KeyError, OSError, ValueError, TypeError, RuntimeError) as err:
-        why = " ".join(f"{type(err).__name__}: {err}".split())
-        raise bodyfile.BodyFileError(f"reduced body {str(src)!r} cannot be read ({why})") from None
-
-
 def export(src: str | os.PathLike, fmt: str, out: str | os.PathLike) -> Path:
     """Write the reduced body ``src`` in format ``fmt`` ('exudyn' or 'mbdyn') to ``out``."""
     path = target(src, fmt, out)
     if fmt == "exudyn":
         from axlebox.fem import export_exudyn
-        return export_exudyn.write(read_body(src, fields=True), path)
+        return export_exudyn.write(bodyfile.read(src, fields=True), path)
     from axlebox.fem import export_mbdyn
-    return export_mbdyn.write(read_body(src, fields=False), path)
+    return export_mbdyn.write(bodyfile.read(src, fields=False), path)

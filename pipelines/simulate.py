@@ -244,14 +244,18 @@ def write_checkpoint(path: Path, text: str, snap: dict) -> None:
 
 
 def run(config_path, out, duration: float | None = None, log=print,
-        overrides: dict | None = None, checkpoint_every: float = 1.0,
+        overrides: dict | None = None, checkpoint_every: float | None = None,
         restart: bool = False) -> integrate.Run:
-    """The whole command.  ``checkpoint_every`` (simulated s, 0: none): snapshots to
+    """The whole command.  ``checkpoint_every`` (simulated s, 0: none; None: 1 s, or a twentieth
+    of the run when longer, since each snapshot rewrites the outputs so far and a snapshot every
+    second would make a long run's writing grow with its square): snapshots to
     ``<out>.partial.h5``; a rerun of the same config resumes from it and gives the same file
     as an uninterrupted run; another config is refused (exit 2, naming what changed) unless
     ``restart``."""
     cfg, text = load_config(config_path, duration, overrides)
     out = Path(out)
+    if checkpoint_every is None:
+        checkpoint_every = max(1.0, cfg["run"]["duration"] / 20)
     if not out.parent.is_dir():
         raise FileNotFoundError(f"--out: folder {str(out.parent)!r} does not exist")
     if not (math.isfinite(checkpoint_every) and checkpoint_every >= 0):

@@ -142,3 +142,24 @@ def test_ride_comfort_of_a_short_record_says_it_is_short():
     assert all(np.isfinite(rc.values()))
     with pytest.raises(ValueError, match="expected"):
         comfort.ride_comfort(a[:, :2], fs)
+
+
+def test_the_comfort_config_runs_and_reports_ride_comfort_alone(tmp_path):
+    """configs/comfort.toml (rigid car, 1 kHz output) for 2 s: the run writes the floor's indices,
+    and `axlebox report` on it gives the comfort table and figures without an axle-box diagnosis
+    (its 1 kHz record has no band for one) and agrees with the file to the last bit."""
+    import h5py
+
+    from axlebox import configs
+    from axlebox.pipelines import report
+    from axlebox.pipelines import simulate as psim
+    out = tmp_path / "comfort.h5"
+    psim.run(configs.path("comfort"), out, duration=2.0, log=lambda *_: None, checkpoint_every=0)
+    with h5py.File(out, "r") as f:
+        stored = f["comfort/carbody_centre"][()]
+    page = report.report(out, tmp_path / "report", log=lambda *_: None)
+    assert (tmp_path / "report" / "fig_comfort_speed.png").stat().st_size > 10_000
+    assert "Ride comfort of the carbody" in page.read_text()
+    row = next(__import__("csv").DictReader((tmp_path / "report" / "summary.csv").open()))
+    assert [float(row[f"carbody_centre_{k}"]) for k in ("W_z", "W_y", "N_MV")] == list(stored[:3])
+    assert "left_verdict" not in row
