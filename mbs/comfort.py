@@ -52,8 +52,8 @@ SPERLING_SCALE = ((1.0, "just noticeable"), (2.0, "clearly noticeable"),
                   (3.0, "strong, irregular, but still tolerable"), (3.25, "very irregular"),
                   (3.5, "extremely irregular, unpleasant"),
                   (4.0, "extremely unpleasant, harmful if prolonged"))
-# EN 12299 mean comfort scale (clause 6.7.2; as quoted in the literature, the text was not
-# available here): the value each class starts at
+# EN 12299 mean comfort scale (clause 6.7.2), as open EN 12299 implementations give it (the
+# standard's text was not available here): the value each class starts at
 NMV_SCALE = ((0.0, "very comfortable"), (1.5, "comfortable"), (2.5, "medium"),
              (3.5, "uncomfortable"), (4.5, "very uncomfortable"))
 
@@ -189,3 +189,14 @@ def ride_comfort(a_xyz, fs: float, sensor: str = "floor", skip_s: float = 0.0) -
                "vertical, weighted Wb": amp(a[:, 2]) * weighting.gain("Wb", f)}
     return RideComfort(sensor, sperling(a[:, 2], fs, "vertical"), sperling(a[:, 1], fs, "lateral"),
                        N, p95, windows, n / fs, f, spectra)
+
+
+def floor_comfort(time, sensors: dict, skip_s: float, prefix: str = "carbody") -> list[RideComfort]:
+    """:func:`ride_comfort` of each sensor named ``prefix...`` in ``sensors`` (name -> (n, 3)
+    accelerations at the instants ``time``), from ``skip_s`` on; none when less than 0.5 s is
+    left after it (too short for a line of the band's lowest frequency)."""
+    t = np.asarray(time, float)
+    if t.size < 2 or t[-1] - t[0] <= skip_s + 0.5:
+        return []
+    fs = 1.0 / np.median(np.diff(t))
+    return [ride_comfort(a, fs, name, skip_s) for name, a in sensors.items() if name.startswith(prefix)]

@@ -24,14 +24,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import h5py
-import numpy as np
 
 from axlebox._files import replaced, write_text
 from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
 from axlebox.bearing.diagnostics.channel import jsonable
 from axlebox.bearing.diagnostics.pair import PairResult
-from axlebox.mbs.comfort import RideComfort, ride_comfort
+from axlebox.mbs.comfort import RideComfort, floor_comfort
 
 from . import conclusions
 from . import report_figures as figs
@@ -86,10 +85,7 @@ def carbody_comfort(path) -> list[RideComfort]:
             return []
         t = f["time"][()]
         acc = {n: f[f"signals/{n}/acceleration"][()] for n in names}
-    if t.size < 2 or t[-1] - t[0] <= TRACK_FADE_IN_S + 0.5:
-        return []
-    fs = 1.0 / np.median(np.diff(t))
-    return [ride_comfort(a, fs, n, TRACK_FADE_IN_S) for n, a in acc.items()]
+    return floor_comfort(t, acc, TRACK_FADE_IN_S)
 
 
 def case_parameters(path) -> tuple[float, float, str | None]:

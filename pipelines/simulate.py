@@ -126,16 +126,6 @@ def settings(cfg: dict) -> integrate.Settings:
                               state_rate_hz=i["state_rate_hz"], rho_inf=i["rho_inf"])
 
 
-def ride_comfort(run: integrate.Run, skip_s: float) -> list[comfort.RideComfort]:
-    """Sperling's W_z, W_y and EN 12299's N_MV of each carbody floor sensor, from ``skip_s`` on
-    (the irregularity's fade-in left out); none for a run too short for them."""
-    if run.time.size < 2 or run.time[-1] - run.time[0] <= skip_s + 0.5:
-        return []
-    fs = 1.0 / np.median(np.diff(run.time))
-    return [comfort.ride_comfort(a, fs, name, skip_s) for name, a in run.sensors.items()
-            if name.startswith("carbody")]
-
-
 def write(path, run: integrate.Run, model, cfg_text: str, seed: int,
           ride: list[comfort.RideComfort] = ()) -> Path:
     """The result file; ``ride``: the carbody's comfort indices, group ``comfort`` (one
@@ -285,7 +275,7 @@ def run(config_path, out, duration: float | None = None, log=print,
     print(file=sys.stderr)
     if cfg["sensors"]["model"] != "ideal":          # what the acquisition records of it
         res = sensor.decimate_run(res, s.output_rate_hz, cfg["sensors"])
-    ride = ride_comfort(res, model.system.track_ramp)
+    ride = comfort.floor_comfort(res.time, res.sensors, model.system.track_ramp)   # fade-in left out
     write(out, res, model, text, cfg["run"]["seed"], ride)
     partial.unlink(missing_ok=True)
     T = res.time[-1] if res.time.size else 0.0
