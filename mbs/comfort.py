@@ -97,17 +97,25 @@ def sperling_line(b_peak, f_hz, direction: str) -> np.ndarray:
     return 0.896 * (b ** 3 * sperling_F(f, direction) / f) ** 0.1
 
 
-def sperling(a, fs: float, direction: str, band=SPERLING_BAND_HZ) -> float:
-    """Eq. (S.2) over the FFT lines of record ``a`` (m/s^2 at ``fs`` Hz) inside ``band``."""
+def amplitude_lines(a, fs: float) -> tuple[np.ndarray, np.ndarray]:
+    """``(f, b)``: the FFT lines of record ``a`` (mean removed, rectangular window) and the peak
+    amplitude of each, in ``a``'s unit (a sinusoid of whole periods gives its exact peak)."""
     a = np.asarray(a, float)
-    a = a - a.mean()
-    n = a.size
-    f = np.fft.rfftfreq(n, 1.0 / fs)
-    b = 2.0 * np.abs(np.fft.rfft(a)) / n                   # peak amplitude of each line
+    return np.fft.rfftfreq(a.size, 1.0 / fs), 2.0 * np.abs(np.fft.rfft(a - a.mean())) / a.size
+
+
+def sperling_lines(f_hz, b_peak, direction: str, band=SPERLING_BAND_HZ) -> float:
+    """Eq. (S.2) over the lines (``f_hz``, peaks ``b_peak`` in m/s^2) inside ``band``."""
+    f, b = np.asarray(f_hz, float), np.asarray(b_peak, float)
     sel = (f >= band[0]) & (f <= band[1])
     if not sel.any():
         return math.nan
     return float(np.sum(sperling_line(b[sel], f[sel], direction) ** 10) ** 0.1)
+
+
+def sperling(a, fs: float, direction: str, band=SPERLING_BAND_HZ) -> float:
+    """Eq. (S.2) over the FFT lines of record ``a`` (m/s^2 at ``fs`` Hz) inside ``band``."""
+    return sperling_lines(*amplitude_lines(a, fs), direction, band)
 
 
 def window_rms(a, fs: float, window: float = WINDOW_S) -> np.ndarray:
@@ -125,8 +133,7 @@ def mean_comfort(a_xyz, fs: float, window: float = WINDOW_S) -> tuple[float, np.
     """EN 12299 6.7.2: ``(N_MV, (a_XP95, a_YP95, a_ZP95), windows)`` of floor accelerations
     ``a_xyz`` ((n, 3), m/s^2, x along the track, z up) at ``fs`` Hz."""
     a = np.asarray(a_xyz, float)
-    aw = np.column_stack([weighting.weigh(a[:, 0], fs, "Wd"), weighting.weigh(a[:, 1], fs, "Wd"),
-                          weighting.weigh(a[:, 2], fs, "Wb")])
+    aw = np.column_stack([weighting.weigh(a[:, :2], fs, "Wd"), weighting.weigh(a[:, 2], fs, "Wb")])
     rms = [window_rms(aw[:, j], fs, window) for j in range(3)]
     p95 = np.array([np.percentile(r, PERCENTILE) for r in rms])
     return float(6.0 * np.sqrt(np.sum(p95 ** 2))), p95, len(rms[0])
@@ -181,14 +188,13 @@ def ride_comfort(a_xyz, fs: float, sensor: str = "floor", skip_s: float = 0.0) -
         raise ValueError(f"accelerations of shape {np.shape(a_xyz)} from {skip_s:g} s: expected "
                          "(n, 3) with at least two samples left")
     N, p95, windows = mean_comfort(a, fs)
-    n = a.shape[0]
-    f = np.fft.rfftfreq(n, 1.0 / fs)
-    amp = lambda x: 2.0 * np.abs(np.fft.rfft(x - x.mean())) / n     # noqa: E731
-    spectra = {"lateral": amp(a[:, 1]), "vertical": amp(a[:, 2]),
-               "lateral, weighted Wd": amp(a[:, 1]) * weighting.gain("Wd", f),
-               "vertical, weighted Wb": amp(a[:, 2]) * weighting.gain("Wb", f)}
-    return RideComfort(sensor, sperling(a[:, 2], fs, "vertical"), sperling(a[:, 1], fs, "lateral"),
-                       N, p95, windows, n / fs, f, spectra)
+    f, lat = amplitude_lines(a[:, 1], fs)
+    _, vert = amplitude_lines(a[:, 2], fs)
+    spectra = {"lateral": lat, "vertical": vert,
+               "lateral, weighted Wd": lat * weighting.gain("Wd", f),
+               "vertical, weighted Wb": vert * weighting.gain("Wb", f)}
+    return RideComfort(sensor, sperling_lines(f, vert, "vertical"), sperling_lines(f, lat, "lateral"),
+                       N, p95, windows, a.shape[0] / fs, f, spectra)
 
 
 def floor_comfort(time, sensors: dict, skip_s: float, prefix: str = "carbody") -> list[RideComfort]:

@@ -88,12 +88,20 @@ def gain(name: str, f_hz) -> np.ndarray:
     return np.abs(response(name, f_hz))
 
 
-def weigh(a, fs: float, name: str) -> np.ndarray:
-    """The record ``a`` ((n, ...) at ``fs`` Hz, along axis 0) weighted by ``name``: the exact
-    transfer function on the FFT grid of the record padded to twice its length, so the output
-    is the filter's response to the record preceded by rest (no wrap-around)."""
+def filtered(a, fs: float, H) -> np.ndarray:
+    """The record ``a`` ((n, ...) at ``fs`` Hz, along axis 0) through the linear filter of
+    complex gain ``H(f_hz)``, applied exactly on the FFT grid of the record padded to twice its
+    length, so the output is the filter's response to the record preceded by rest (no
+    wrap-around, no bilinear warping, any sampling rate)."""
     a = np.asarray(a, float)
     n = a.shape[0]
     f = np.fft.rfftfreq(2 * n, 1.0 / fs)
-    H = response(name, f).reshape((-1,) + (1,) * (a.ndim - 1))
-    return np.fft.irfft(np.fft.rfft(a, 2 * n, axis=0) * H, 2 * n, axis=0)[:n]
+    G = np.asarray(H(f)).reshape((-1,) + (1,) * (a.ndim - 1))
+    return np.fft.irfft(np.fft.rfft(a, 2 * n, axis=0) * G, 2 * n, axis=0)[:n]
+
+
+def weigh(a, fs: float, name: str) -> np.ndarray:
+    """The record ``a`` ((n, ...) at ``fs`` Hz, along axis 0) weighted by ``name``
+    (:func:`filtered` with :func:`response`)."""
+    _params(name)
+    return filtered(a, fs, lambda f: response(name, f))

@@ -30,7 +30,7 @@ from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
 from axlebox.bearing.diagnostics.channel import jsonable
 from axlebox.bearing.diagnostics.pair import PairResult
-from axlebox.mbs.comfort import RideComfort, floor_comfort
+from axlebox.mbs.comfort import RideComfort, floor_comfort, nmv_words, sperling_words
 
 from . import conclusions
 from . import report_figures as figs
@@ -86,6 +86,24 @@ def carbody_comfort(path) -> list[RideComfort]:
         t = f["time"][()]
         acc = {n: f[f"signals/{n}/acceleration"][()] for n in names}
     return floor_comfort(t, acc, TRACK_FADE_IN_S)
+
+
+def diagnosed_case(path, speed_kmh: float, width_mm: float, side: str | None, log=print, /,
+                   **analyse_kw) -> Case:
+    """The case of result file ``path``: its diagnosis as ``axlebox diagnose`` makes it
+    (:func:`analyse_file` with ``analyse_kw``) and its carbody's ride comfort.  A record that
+    cannot be diagnosed but has floor sensors (a comfort run's 1 kHz) is a case of its comfort
+    alone (``pair`` None); one with neither raises the diagnosis' ParameterError.  The case's
+    own arguments are positional only: ``analyse_kw`` may hold the diagnosis' ``speed_kmh``."""
+    ride = carbody_comfort(path)
+    try:
+        _, _, pair = analyse_file(path, **analyse_kw)
+    except ParameterError as err:
+        if not ride:
+            raise
+        pair = None
+        log(f"{Path(path).name}: axle-box signals not diagnosed ({err}); ride comfort only")
+    return Case(Path(path), speed_kmh, width_mm, pair, side, ride)
 
 
 def case_parameters(path) -> tuple[float, float, str | None]:
@@ -183,7 +201,6 @@ def _table_html(cases: list[Case]) -> str:
 
 
 def _comfort_html(cases: list[Case]) -> str:
-    from axlebox.mbs.comfort import nmv_words, sperling_words
     head = ["case", "sensor", "W_z", "W_y", "N_MV", "a_XP95, a_YP95, a_ZP95 m/s&sup2;", "record"]
     out = ["<table><tr>" + "".join(f"<th>{h}</th>" for h in head) + "</tr>"]
     for c in cases:
@@ -249,15 +266,9 @@ def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
         speed, width, side = case_parameters(path)
         if left is not None or right is not None:
             side = None                     # other channels than the default ws2_L / ws2_R
-        ride = carbody_comfort(path)
-        try:
-            _, _, pair = analyse_file(path, left=left, right=right, **diagnose_kw)
-        except ParameterError as err:
-            if not ride:
-                raise
-            pair = None                     # e.g. a comfort run's 1 kHz record: the floor only
-            log(f"report: {path.name}: axle-box signals not diagnosed ({err}); ride comfort only")
-        cases.append(Case(path, speed, width, pair, side, ride))
+        cases.append(diagnosed_case(path, speed, width, side, lambda m: log(f"report: {m}"),
+                                    left=left, right=right, **diagnose_kw))
+        pair = cases[-1].pair
         if pair is not None:
             log(f"report: {path.name}: {cases[-1].label}: left {pair.verdicts['left'][0]}, "
                 f"right {pair.verdicts['right'][0]}")

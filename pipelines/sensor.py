@@ -27,6 +27,7 @@ import numpy as np
 from scipy import signal
 
 from axlebox._params import ParameterError
+from axlebox.mbs.weighting import filtered
 
 STOPBAND_DB = 80.0      # attenuation from fs/2 on: aliases below 1e-4 of what is filtered out
 
@@ -60,11 +61,8 @@ def measure(a: np.ndarray, fs_in: float, s: dict) -> np.ndarray:
                              f"output rate {fs_in:g} Hz over a whole number >= 2")
     k = int(round(k))
     n = a.shape[0]
-    nfft = 2 * n
-    f = np.fft.rfftfreq(nfft, 1.0 / fs_in)
-    H = response(f, s["resonance_hz"], s["resonance_q"], s["highpass_hz"])
+    x = filtered(a, fs_in, lambda f: response(f, s["resonance_hz"], s["resonance_q"], s["highpass_hz"]))
     shape = (-1,) + (1,) * (a.ndim - 1)
-    x = np.fft.irfft(np.fft.rfft(a, nfft, axis=0) * H.reshape(shape), nfft, axis=0)[:n]
     h = antialias(fs_in, s["fs_hz"], s["passband"])
     d = (h.size - 1) // 2
     y = signal.oaconvolve(x, h.reshape(shape), mode="full", axes=0)[d:d + n]

@@ -316,19 +316,15 @@ def vehicle_rows(c: Case, path: Path):
     ``axlebox diagnose`` does, and the carbody's ride comfort: ``(axlebox.pipelines.report.Case,
     rows)``; a run whose axle-box record cannot be diagnosed (a comfort run's 1 kHz) gives its
     ride comfort alone and no rows."""
-    from .diagnose import analyse_file
-    from .report import Case as ReportCase
-    from .report import carbody_comfort
+    from .report import diagnosed_case
     defects = tomllib.loads(c.toml).get("defects", [])
     ws = defects[0].get("wheelset") if defects else None
-    ride = carbody_comfort(path)
-    try:
-        _, _, p = analyse_file(path, **(dict(left=f"ws{ws}_L", right=f"ws{ws}_R") if ws else {}))
-    except ParameterError:
-        if not ride:
-            raise
-        return ReportCase(path, c.speed_kmh, c.width_mm, None, ride=ride), []
-    return ReportCase(path, c.speed_kmh, c.width_mm, p, ride=ride), [
+    rc = diagnosed_case(path, c.speed_kmh, c.width_mm, None, lambda *_: None,
+                        **(dict(left=f"ws{ws}_L", right=f"ws{ws}_R") if ws else {}))
+    p = rc.pair
+    if p is None:
+        return rc, []
+    return rc, [
         _row(c, path, s, p.names[i], getattr(p, s), p.verdicts[s][0], p.lag.lag_s, p.vf_diff)
         for i, s in enumerate(("left", "right"))]
 
