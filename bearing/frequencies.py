@@ -29,7 +29,11 @@ class FaultOrders:
     BSF: float
 
     def at(self, shaft_hz: float) -> dict[str, float]:
-        return {k: v * shaft_hz for k, v in vars(self).items()}
+        """The lines in Hz at shaft frequency ``shaft_hz``: the four orders and ``2BSF``, the
+        rolling element's defect frequency (it strikes both races once per spin turn)."""
+        out = {k: v * shaft_hz for k, v in vars(self).items()}
+        out["2BSF"] = 2.0 * out["BSF"]
+        return out
 
 
 def orders(p: BearingParams, alpha: float | None = None) -> FaultOrders:

@@ -1,12 +1,13 @@
-"""Faults on both sides, or one fault and its copy: the figures the rule rests on
-(bearing/diagnostics/own.py), one row per result file.
+"""Faults on both sides, or one fault and its copy, in the coupled car: the evidence the verdict
+reads (bearing/diagnostics/coherence.py, criterion.py), one row per result file.
 
-    axlebox sweep validation_48kmh --speeds 48 80 --widths 2 --sides R LR --duration 1.6 --out DIR
-    python3 benchmarks/both_sides.py DIR/*.h5 [CWRU .mat options as axlebox diagnose's: none]
+    axlebox sweep study_both --out DIR --workers 2
+    python3 benchmarks/both_sides.py DIR/*.h5
 
-Per file: each side's defect (from the stored config), RMS, the BPFO/BPFI lines detected, each
-side's share (its line over the other side's, in the other side's envelope band; * where the
-line is not detected there), the impulse lag, and the relative criterion's verdicts.
+Per file: each side's defect (from the stored config), RMS, the lines detected, for each line
+seen on both sides the copy-or-source test (decision and least coherent fraction of a
+significant harmonic) and the bands each side's line stands higher in, the impulse lag, the
+relative criterion's verdicts and the rule that decided.
 """
 from __future__ import annotations
 
@@ -29,19 +30,22 @@ def defects(path) -> dict:
 
 
 def main(paths):
-    print("| file | left / right defect | RMS m/s^2 | lines L / R | share L / R | lag | verdicts |")
-    print("| --- | --- | --- | --- | --- | --- | --- |")
+    print("| file | left / right defect | RMS m/s^2 | lines L / R | timing (c) | bands L / R | lag "
+          "| verdicts | rule |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for p in paths:
         d = defects(p)
         _, _, r = analyse_file(p, criterion=Criterion(mode="relative"))
-        sh = "; ".join(f"{n} {x.share['left']:.3g}{'' if x.seen['left'] else '*'} / "
-                       f"{x.share['right']:.3g}{'' if x.seen['right'] else '*'}"
-                       for n, x in r.shares.items()) or "-"
+        both = [e for e in r.evidence if e.timing is not None]
+        tim = "; ".join(f"{e.line} {e.timing.decision}"
+                        + ("" if e.timing.c_min is None else f" ({e.timing.c_min:.2g})")
+                        for e in both) or "-"
+        votes = "; ".join(f"{e.votes['left']} / {e.votes['right']}" for e in both) or "-"
         lead = {"a": "left", "b": "right"}.get(r.lag.leading, "neither")
         print(f"| {Path(p).stem} | {d['L']} / {d['R']} | {r.left.rms:.2f} / {r.right.rms:.2f} | "
-              f"{','.join(r.left.detected) or '-'} / {','.join(r.right.detected) or '-'} | {sh} | "
-              f"{lead} {r.lag.lag_s * 1e3:.2g} ms ({100 * r.lag.agreement:.0f} %) | "
-              f"{r.verdicts['left'][0]} / {r.verdicts['right'][0]} |")
+              f"{','.join(r.left.detected) or '-'} / {','.join(r.right.detected) or '-'} | {tim} | "
+              f"{votes} | {lead} {r.lag.lag_s * 1e3:.2g} ms ({100 * r.lag.agreement:.0f} %) | "
+              f"{r.verdicts['left'][0]} / {r.verdicts['right'][0]} | {r.verdict.rule} |")
 
 
 if __name__ == "__main__":

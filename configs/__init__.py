@@ -44,12 +44,13 @@ def resolve(config) -> Path:
     p = Path(config)
     if p.is_file():
         return p
-    if p.parent == Path(".") and not p.exists():
+    if p.parent == Path("."):          # a folder of that name (a sweep's --out) is no config
         try:
             return path(p.name)
         except ParameterError:
             pass
-    raise ParameterError(f"config = {str(config)!r} is not allowed: no such file, and not a shipped "
+    what = "a folder" if p.is_dir() else "no such file"
+    raise ParameterError(f"config = {str(config)!r} is not allowed: {what}, and not a shipped "
                          f"config ({', '.join(names())}; axlebox configs)")
 
 

@@ -168,7 +168,9 @@ def _analysis_options(a) -> dict:
                      lag="off" if a.no_lag else a.lag)
     return dict(left=a.left, right=a.right, fs=a.fs, column=a.column, scale=a.scale,
                 shaft=a.shaft_hz, speed_kmh=a.speed_kmh, wheel_radius=a.wheel_radius, rpm=a.rpm,
-                orders_text=a.orders, bore=a.bore,
+                orders_text=a.orders, bore=a.bore, bearing=a.bearing, orders_left=a.orders_left,
+                orders_right=a.orders_right, bearing_left=a.bearing_left,
+                bearing_right=a.bearing_right, bore_left=a.bore_left, bore_right=a.bore_right,
                 band=parse_pair(a.band, "--band") if a.band else None, criterion=crit,
                 nperseg=a.nperseg, guided=not a.no_guide)
 
@@ -265,10 +267,19 @@ def _add_analysis_options(dg) -> None:
     sp.add_argument("--rpm", type=float, help="shaft speed in rev/min")
     sp.add_argument("--speed-kmh", type=float, help="vehicle speed (with --wheel-radius)")
     dg.add_argument("--wheel-radius", type=float, default=0.42, metavar="M", help="default 0.42")
+    dg.add_argument("--bearing", metavar="NAME", help="both sides' bearing from the catalogue "
+                    "(dtrb, 6205, 6203; default: the file's, else dtrb)")
+    dg.add_argument("--bearing-left", metavar="NAME", help="the left side's bearing (e.g. 6205)")
+    dg.add_argument("--bearing-right", metavar="NAME", help="the right side's bearing (e.g. 6203)")
     dg.add_argument("--orders", metavar="BPFO=..,BPFI=..,FTF=..,BSF=..",
-                    help="fault orders (multiples of the shaft speed; default: the DTRB's)")
-    dg.add_argument("--bore", type=float, metavar="M", help="bearing bore for SPM (default 0.130, "
-                                                            "the DTRB; required with --orders)")
+                    help="both sides' fault orders (multiples of the shaft speed; BSF the roller "
+                         "spin, half the rolling element's defect order)")
+    dg.add_argument("--orders-left", metavar="BPFO=..,...", help="the left side's fault orders")
+    dg.add_argument("--orders-right", metavar="BPFO=..,...", help="the right side's fault orders")
+    dg.add_argument("--bore", type=float, metavar="M", help="bearing bore for SPM (default: the "
+                    "bearing's, 0.130 for the DTRB; required with --orders)")
+    dg.add_argument("--bore-left", type=float, metavar="M", help="the left side's bore")
+    dg.add_argument("--bore-right", type=float, metavar="M", help="the right side's bore")
     dg.add_argument("--band", metavar="LO,HI", help="envelope band in Hz (default: spectral kurtosis)")
     dg.add_argument("--no-guide", action="store_true",
                     help="keep each side's spectral-kurtosis band even where the other side shows "

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from axlebox.bearing.diagnostics.criterion import Criterion, verdict
+from axlebox.bearing.diagnostics.criterion import Criterion
 
 AGREES, DIFFERS, PARTLY, NA = "agrees", "differs", "partly", "no cases"
 
@@ -187,16 +187,16 @@ def claims(cases) -> list[Claim]:
     base = [c for c in cases if c.width_mm == 0]
 
     def named_right(c, crit):
-        v = verdict(c.pair.left, c.pair.right, c.pair.lag, crit)
+        v = c.pair.redecide(crit)
         healthy = "left" if c.defect_side == "right" else "right"
-        return v[c.defect_side][0] == "real fault" and v[healthy][0] == "pseudo-fault"
+        return v.words[c.defect_side] == "real fault" and v.words[healthy] == "pseudo-fault"
 
     for key, mode in (("3", "absolute"), ("3r", "relative")):
-        crit = Criterion(mode=mode)
+        crit = Criterion(mode=mode, source="paper")
         right = [c for c in exp if named_right(c, crit)]
-        alone = sum(named_right(c, Criterion(mode=mode, lag="off")) for c in exp)
-        quiet = sum(all(v[0] in ("healthy", "undecided") for v in
-                        verdict(c.pair.left, c.pair.right, c.pair.lag, crit).values()) for c in base)
+        alone = sum(named_right(c, Criterion(mode=mode, lag="off", source="paper")) for c in exp)
+        quiet = sum(all(w in ("healthy", "undecided") for w in c.pair.redecide(crit).words.values())
+                    for c in base)
         rng = f"{crit.mode} range [{crit.range[0]:.3g}, {crit.range[1]:.3g}]"
         paper = ("(3) The VF-difference criterion (0.8e4-7.49e4 Hz^2) with RMS and SPM names the "
                  "real and the pseudo-fault." if key == "3" else

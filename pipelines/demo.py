@@ -17,7 +17,7 @@ from pathlib import Path
 
 from axlebox import configs
 from axlebox._params import ParameterError
-from axlebox.bearing.diagnostics.criterion import PAPER, Criterion, verdict
+from axlebox.bearing.diagnostics.criterion import PAPER_ALONE, Criterion
 
 from .bodies import BODIES, build_body
 
@@ -86,9 +86,9 @@ def conclusion(pair) -> list[str]:
                    f"({lag.n_impulses} impulses, {100 * lag.agreement:.0f} % of resamples agree)")
     else:
         out.append(f"lag: no side named ({lag.n_impulses} impulses, {100 * lag.agreement:.0f} % agree)")
-    v = verdict(pair.left, pair.right, pair.lag, PAPER)
-    lo, hi = PAPER.range
+    v = pair.redecide(PAPER_ALONE)
+    lo, hi = PAPER_ALONE.range
     out.append(f"the paper's absolute range: VF difference {pair.vf_diff:.3g} Hz^2 against "
-               f"[{lo:.3g}, {hi:.3g}] -> ws2_R {v['right'][0]}, ws2_L {v['left'][0]} (VF "
+               f"[{lo:.3g}, {hi:.3g}] -> ws2_R {v.words['right']}, ws2_L {v.words['left']} (VF "
                f"{pair.right.VF:.3g} / {pair.left.VF:.3g} Hz^2 on ws2_R / ws2_L)")
     return out

@@ -8,6 +8,7 @@ is a ParameterError (exit status 2) whose one line names the option, variable or
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -15,15 +16,15 @@ import numpy as np
 from axlebox._files import write_text
 from axlebox._params import ParameterError
 from axlebox.bearing.diagnostics.channel import jsonable
-from axlebox.bearing.frequencies import FaultOrders, orders, shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.catalogue import custom, lookup
+from axlebox.bearing.frequencies import FaultOrders, shaft_hz
 
 from .readers import Record, read
 
-DTRB_BORE = 0.130            # m: the assumed 130 x 230 x 160 mm unit of bearing/params.py
+DTRB_BORE = 0.130            # m: the assumed 130 x 230 x 160 mm unit of bearing/params.py (catalogue "dtrb")
 
 
-def parse_orders(text: str) -> FaultOrders:
+def parse_orders(text: str, option: str = "--orders") -> FaultOrders:
     """``"BPFO=3.5848,BPFI=5.4152,FTF=0.39828,BSF=2.357"`` (multiples of the shaft frequency)."""
     keys = ("BPFO", "BPFI", "FTF", "BSF")
     vals = {}
@@ -35,14 +36,56 @@ def parse_orders(text: str) -> FaultOrders:
         except ValueError:
             x = float("nan")
         if k not in keys or not np.isfinite(x) or not x > 0:
-            raise ParameterError(f"--orders item {item.strip()!r} is not allowed: expected "
+            raise ParameterError(f"{option} item {item.strip()!r} is not allowed: expected "
                                  "NAME=ORDER > 0 with NAME one of " + ", ".join(keys))
         vals[k] = x
     missing = [k for k in keys if k not in vals]
     if missing:
-        raise ParameterError(f"--orders lacks {', '.join(missing)}: expected all of "
+        raise ParameterError(f"{option} lacks {', '.join(missing)}: expected all of "
                              + ", ".join(f"{k}=.." for k in keys))
     return FaultOrders(**vals)
+
+
+def side_bearings(rec: Record, *, orders_text=None, bore=None, bearing=None, orders_left=None,
+                  orders_right=None, bearing_left=None, bearing_right=None, bore_left=None,
+                  bore_right=None) -> dict:
+    """Each side's :class:`axlebox.bearing.catalogue.Bearing` and where it came from: a side's
+    own option (``--orders-left``/``--bearing-left``, ...), else the option for both sides
+    (``--orders``/``--bearing``), else the file's bearing (a rig's result), else the DTRB.
+    Given orders need a bore (``--bore``, or the side's ``--bore-left``/``--bore-right``)."""
+    out = {}
+    for side, o_side, b_side, bore_side in (("left", orders_left, bearing_left, bore_left),
+                                            ("right", orders_right, bearing_right, bore_right)):
+        given = [(f"--orders-{side}", o_side), (f"--bearing-{side}", b_side)]
+        if o_side is not None and b_side is not None:
+            raise ParameterError(f"--orders-{side} and --bearing-{side} both given: expected one "
+                                 f"bearing for the {side} side")
+        if o_side is None and b_side is None:
+            given = [("--orders", orders_text), ("--bearing", bearing)]
+            if orders_text is not None and bearing is not None:
+                raise ParameterError("--orders and --bearing both given: expected one bearing")
+        opt, text = next(((o, v) for o, v in given if v is not None), (None, None))
+        D = bore_side if bore_side is not None else bore
+        if D is not None and not (np.isfinite(D) and D > 0):
+            raise ParameterError(f"--bore{'-' + side if bore_side is not None else ''} = {D!r} is "
+                                 "not allowed: expected a diameter > 0 m")
+        if opt is not None and opt.startswith("--orders"):
+            fo = parse_orders(text, opt)
+            if D is None:
+                raise ParameterError(f"--bore is missing: {opt} names a bearing by its orders; give "
+                                     f"its bore diameter in m (--bore or --bore-{side}; SPM, Eq. 17)")
+            b, src = custom(fo, D, name=f"{opt} bearing"), opt
+        elif opt is not None:
+            b, src = lookup(text, opt), f"{opt} {text}"
+        elif rec.orders is not None:
+            b, src = custom(rec.orders, DTRB_BORE if D is None else D, name="the file's bearing"), \
+                "the file's bearing"
+        else:
+            b, src = lookup("dtrb"), "the DTRB (bearing/params.py)"
+        if D is not None and opt is not None and not opt.startswith("--orders"):
+            b = replace(b, bore=float(D))
+        out[side] = (b, src)
+    return out
 
 
 def parse_pair(text: str, option: str) -> tuple[float, float]:
@@ -89,9 +132,11 @@ def write_json(path, data: dict) -> Path:
 def analyse_file(path, *, left=None, right=None, fs=None, column: int = 2, scale: float = 1.0,
                  shaft=None, speed_kmh=None, wheel_radius: float = 0.42, rpm=None,
                  orders_text=None, bore=None, band=None, criterion=None, nperseg=None,
-                 guided: bool = True):
+                 guided: bool = True, bearing=None, orders_left=None, orders_right=None,
+                 bearing_left=None, bearing_right=None, bore_left=None, bore_right=None):
     """Read ``path`` and analyse both sides: ``(record, input info, PairResult)``.  The shaft
-    speed and the bearing come from the options, else from the file, else the DTRB."""
+    speed comes from the options, else from the file; each side's bearing as
+    :func:`side_bearings` says."""
     from axlebox.bearing.diagnostics.criterion import Criterion
     from axlebox.bearing.diagnostics.pair import analyse_pair
     criterion = Criterion() if criterion is None else criterion
@@ -99,23 +144,20 @@ def analyse_file(path, *, left=None, right=None, fs=None, column: int = 2, scale
         raise ParameterError(f"--scale = {scale!r} is not allowed: expected a factor > 0")
     rec = read(path, left, right, fs, column)
     f_shaft = shaft_speed(rec, shaft, speed_kmh, wheel_radius, rpm)
-    if orders_text is not None:
-        fo, o_src = parse_orders(orders_text), "--orders"
-        if bore is None:
-            raise ParameterError("--bore is missing: --orders names another bearing than the "
-                                 "DTRB; give its bore diameter in m (SPM, Eq. 17)")
-    elif rec.orders is not None:
-        fo, o_src = rec.orders, "the file's bearing"
-    else:
-        fo, o_src = orders(BearingParams()), "the DTRB (bearing/params.py)"
-    D = DTRB_BORE if bore is None else bore
-    if not (np.isfinite(D) and D > 0):
-        raise ParameterError(f"--bore = {bore!r} is not allowed: expected a diameter > 0 m")
-    res = analyse_pair(rec.left * scale, rec.right * scale, rec.fs, f_shaft, fo, D, criterion,
-                       band, names=rec.names, nperseg=nperseg, guided=guided)
+    sides = side_bearings(rec, orders_text=orders_text, bore=bore, bearing=bearing,
+                          orders_left=orders_left, orders_right=orders_right,
+                          bearing_left=bearing_left, bearing_right=bearing_right,
+                          bore_left=bore_left, bore_right=bore_right)
+    (bl, src_l), (br, src_r) = sides["left"], sides["right"]
+    res = analyse_pair(rec.left * scale, rec.right * scale, rec.fs, f_shaft,
+                       (bl.orders, br.orders), (bl.bore, br.bore), criterion, band,
+                       names=rec.names, nperseg=nperseg, guided=guided,
+                       bearings=(bl.name, br.name))
     info = {"file": str(path), "kind": rec.kind, "left": rec.names[0], "right": rec.names[1],
             "fs_hz": rec.fs, "n_samples": int(rec.left.size), "scale": scale,
-            "shaft_hz": f_shaft, "orders": vars(fo), "orders_from": o_src, "bore_m": D,
+            "shaft_hz": f_shaft,
+            "bearings": {"left": {**bl.to_dict(), "from": src_l},
+                         "right": {**br.to_dict(), "from": src_r}},
             "band": list(band) if band is not None else
             "spectral kurtosis" + (", guided on the side without the other's fault line" if guided else ""),
             "notes": rec.notes}
@@ -128,10 +170,11 @@ def run(path, *, json_out=None, figures=None, log=print, **options):
     if json_out is not None and not Path(json_out).parent.is_dir():
         raise FileNotFoundError(f"--json: folder {str(Path(json_out).parent)!r} does not exist")
     rec, info, res = analyse_file(path, **options)
-    fo = info["orders"]
+    b = info["bearings"]
+    bear = "; ".join(f"{s} {b[s]['name']}: BPFO {b[s]['orders']['BPFO'] * info['shaft_hz']:.4g} Hz "
+                     f"({b[s]['from']})" for s in ("left", "right"))
     log(f"{Path(path).name} ({rec.kind}): {rec.left.size} samples at {rec.fs:g} Hz, shaft "
-        f"{info['shaft_hz']:.4g} Hz, BPFO {fo['BPFO'] * info['shaft_hz']:.4g} Hz "
-        f"({info['orders_from']})" + "".join(f"; {n}" for n in rec.notes))
+        f"{info['shaft_hz']:.4g} Hz; {bear}" + "".join(f"; {n}" for n in rec.notes))
     log(res.summary())
     for s, (v, why) in res.verdicts.items():
         log(f"{s}: {v}: {why}")

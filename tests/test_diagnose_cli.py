@@ -1,8 +1,9 @@
 """``axlebox diagnose``: a real two-sensor recording, the file readers, and bad input.
 
 The recording is CWRU record 130 (../shared/reference/cwru/README.md): drive-end 6205 bearing
-with a 0.007 in outer-race fault, fan-end bearing healthy, one shaft at 1796 rpm, 12 kHz.  The
-drive end must come out as the real fault and the fan end as the pseudo-fault.
+with a 0.007 in outer-race fault, fan-end 6203 bearing healthy, one shaft at 1796 rpm, 12 kHz.
+The drive end must come out as the real fault and the fan end as the pseudo-fault.  Every shared
+record is scored in tests/test_real_records.py.
 """
 import json
 import subprocess
@@ -27,8 +28,9 @@ from conftest import reference_dir
 CWRU = reference_dir() / "cwru" / "cwru_130_OR007_6_0_DE12k.mat"
 # CWRU's published fault orders of the drive-end 6205 (README there); BSF = rolling element / 2
 CWRU_ORDERS = "BPFO=3.5848,BPFI=5.4152,FTF=0.39828,BSF=2.35675"
-CWRU_ARGS = ["--left", "X130_DE_time", "--right", "X130_FE_time", "--fs", "12000", "--rpm", "1796",
-             "--orders", CWRU_ORDERS, "--bore", "0.025", "--scale", "9.80665"]
+CWRU_CH = ["--left", "X130_DE_time", "--right", "X130_FE_time", "--fs", "12000", "--rpm", "1796",
+           "--scale", "9.80665"]
+CWRU_ARGS = [*CWRU_CH, "--bearing-left", "6205", "--bearing-right", "6203"]
 # Absolute thresholds for that rig: VF grows with the square of the frequency scale, so the
 # paper's range is carried over by the ratio of the VF of a flat spectrum over the band where
 # each machine's signal lies: the CWRU accelerometers fill 0-6 kHz (VF = 6000^2/12 = 3e6 Hz^2),
@@ -43,6 +45,8 @@ needs_cwru = pytest.mark.skipif(not CWRU.is_file(), reason=f"reference recording
 @pytest.mark.parametrize("setting", [["--vf-range", CWRU_RANGE], ["--relative"]],
                          ids=["absolute-rig-range", "relative"])
 def test_cwru_drive_end_is_real_and_fan_end_pseudo(setting, tmp_path, capsys):
+    """Each end with its own bearing: the drive end's BPFO (its 6205's order, 3.5848 x 1796/60 =
+    107.3 Hz) is its own; on the fan end the same line is the other bearing's, carried."""
     out = tmp_path / "cwru.json"
     rc = main(["diagnose", str(CWRU), *CWRU_ARGS, *setting, "--json", str(out),
                "--figures", str(tmp_path / "fig")])
@@ -50,13 +54,19 @@ def test_cwru_drive_end_is_real_and_fan_end_pseudo(setting, tmp_path, capsys):
     d = json.loads(out.read_text())
     assert d["verdicts"]["left"]["verdict"] == "real fault", d["verdicts"]
     assert d["verdicts"]["right"]["verdict"] == "pseudo-fault", d["verdicts"]
-    # the rig's own fault frequency: BPFO = 3.5848 x 1796/60 = 107.3 Hz, found on both sides
-    # within the +-3 % slip window (CWRU's outer-race records show it within 1 %)
-    for s in ("left", "right"):
-        assert d[s]["lines"]["BPFO"]["detected"]
-        assert d[s]["lines"]["BPFO"]["f_found"] == pytest.approx(3.5848 * 1796 / 60, rel=0.01)
+    v = d["verdict"]
+    assert v["rule"] == "one side owns the lines" and v["real"] == "left"
+    bpfo = [ln for ln in v["evidence"]["lines"] if ln["key"] == "BPFO (left bearing)"]
+    assert bpfo and bpfo[0]["how"] == "bearing order" and bpfo[0]["seen"] == {"left": True, "right": True}
+    # CWRU's outer-race records show the line within 1 % of the published order
+    assert d["left"]["lines"]["BPFO"]["f_found"] == pytest.approx(3.5848 * 1796 / 60, rel=0.01)
+    assert d["right"]["carried"]["BPFO"]["detected"]
+    assert d["right"]["carried"]["BPFO"]["f_found"] == pytest.approx(3.5848 * 1796 / 60, rel=0.01)
+    assert not d["right"]["lines"]["BPFO"]["detected"]            # the 6203's BPFO, 91.4 Hz
+    assert d["input"]["bearings"]["left"]["name"] == "6205"
+    assert d["input"]["bearings"]["right"]["orders"]["BPFO"] == 3.0530
     # the faulty drive end leads the fan end (its impulses start there)
-    assert d["lag"]["leading"] == "a" and d["lag"]["peak"] > Criterion().lag_min_peak
+    assert d["lag"]["leading"] == "a"
     assert d["input"]["fs_hz"] == 12000 and d["input"]["n_samples"] == 121991
     assert (tmp_path / "fig" / f"{CWRU.stem}_diagnose.png").stat().st_size > 10_000
     assert "real fault" in capsys.readouterr().out
@@ -65,32 +75,47 @@ def test_cwru_drive_end_is_real_and_fan_end_pseudo(setting, tmp_path, capsys):
 @needs_cwru
 @pytest.mark.parametrize("swap", [False, True], ids=["DE-left", "DE-right"])
 def test_cwru_one_faulty_end_is_not_faults_on_both_sides(swap, tmp_path):
-    """The both-sides rule (bearing/diagnostics/own.py) leaves the real record's verdict as it
-    was, whichever channel is given first: the fan end's BPFO in the drive end's band is 0.15
-    of the drive end's (under 0.25: a copy), the drive end's in the fan end's 1.04 (its own)."""
-    args = list(CWRU_ARGS)
-    if swap:
-        args[1], args[3] = args[3], args[1]
+    """Whichever channel is given first, with its own bearing: the drive end real, the fan end
+    a pseudo-fault."""
+    args = ["--left", "X130_FE_time", "--right", "X130_DE_time", *CWRU_CH[4:],
+            "--bearing-left", "6203", "--bearing-right", "6205"] if swap else CWRU_ARGS
     out = tmp_path / "c.json"
     assert main(["diagnose", str(CWRU), *args, "--relative", "--json", str(out)]) == 0
     d = json.loads(out.read_text())
     de, fe = ("right", "left") if swap else ("left", "right")
     assert (d["verdicts"][de]["verdict"], d["verdicts"][fe]["verdict"]) == ("real fault", "pseudo-fault")
-    share = d["shares"]["BPFO"]["share"]
-    assert share[fe] == pytest.approx(0.153, abs=0.02) and share[fe] < Criterion().own_share
-    assert share[de] > 1.0
+    assert d["verdict"]["real"] == de
+
+
+@needs_cwru
+def test_cwru_read_with_one_bearing_for_both_ends(tmp_path):
+    """Read as if both ends had the drive end's 6205 (one ``--orders`` for both: the case the
+    per-side bearings are for): the fan end's BPFO is then a line of its own bearing type, and
+    the copy-or-source test finds it the drive end's train (coherent), so the fan end is still
+    not a second fault."""
+    out = tmp_path / "c.json"
+    assert main(["diagnose", str(CWRU), *CWRU_CH, "--orders", CWRU_ORDERS, "--bore", "0.025",
+                 "--relative", "--json", str(out)]) == 0
+    d = json.loads(out.read_text())
+    assert d["verdicts"]["right"]["verdict"] in ("pseudo-fault", "healthy"), d["verdicts"]
+    ln = [x for x in d["verdict"]["evidence"]["lines"] if x["key"] == "BPFO"][0]
+    assert ln["timing"]["decision"] == "coherent" and ln["how"] == "coherent"
 
 
 @needs_cwru
 def test_cwru_with_the_paper_metro_range_is_undecided(tmp_path, capsys):
     """The paper's Hz^2 range belongs to the metro car: on the 12 kHz rig the VF difference
-    (8.4e5 Hz^2) is above it, and the criterion says so instead of guessing."""
+    (8.4e5 Hz^2) is above it, and the paper's criterion alone says so instead of guessing."""
     out = tmp_path / "c.json"
-    assert main(["diagnose", str(CWRU), *CWRU_ARGS, "--json", str(out)]) == 0
+    assert main(["diagnose", str(CWRU), *CWRU_CH, "--orders", CWRU_ORDERS, "--bore", "0.025",
+                 "--json", str(out)]) == 0
     d = json.loads(out.read_text())
     assert d["vf_diff_hz2"] > VF_RANGE_PAPER[1]
-    assert d["verdicts"]["left"]["verdict"] == "undecided"
-    assert "above the range" in d["verdicts"]["left"]["reason"]
+    from axlebox.pipelines.diagnose import analyse_file
+    _, _, pair = analyse_file(CWRU, left="X130_DE_time", right="X130_FE_time", fs=12000, rpm=1796,
+                              scale=9.80665, orders_text=CWRU_ORDERS, bore=0.025)
+    v = pair.redecide(Criterion(source="paper"))
+    assert v.words["left"] == "undecided" and v.rule == "VF above the range"
 
 
 # ------------------------------------------------------------------------------ the readers
@@ -256,6 +281,15 @@ def bad_inputs(tmp_path, left, right):
                        ["--orders lacks", "BPFI"]),
         "orders without bore": ([str(files["csv with header"][0]), "--fs", str(FS), *sh, "--orders",
                                  CWRU_ORDERS], ["--bore is missing"]),
+        "unknown bearing": ([str(files["csv with header"][0]), "--fs", str(FS), *sh,
+                             "--bearing-right", "6206"], ["--bearing-right '6206'", "6203, 6205, dtrb"]),
+        "two bearings for a side": ([str(files["csv with header"][0]), "--fs", str(FS), *sh,
+                                     "--bearing-left", "6205", "--orders-left", CWRU_ORDERS],
+                                    ["--orders-left and --bearing-left"]),
+        "side orders without bore": ([str(files["csv with header"][0]), "--fs", str(FS), *sh,
+                                      "--orders-left", CWRU_ORDERS], ["--bore is missing", "--bore-left"]),
+        "bad side bore": ([str(files["csv with header"][0]), "--fs", str(FS), *sh, "--bearing",
+                           "6205", "--bore-right", "-1"], ["--bore-right", "-1"]),
         "no shaft speed": ([str(files["csv with header"][0]), "--fs", str(FS)], ["shaft speed is missing"]),
     }
 
@@ -263,7 +297,8 @@ def bad_inputs(tmp_path, left, right):
 CASES = ["missing variable", "missing sensor", "missing fs", "missing fs (mat v7.3)", "NaNs",
          "too short for the lines", "too short for the Welch segment", "unknown file type",
          "unreadable file", "no file",
-         "bad orders", "orders without bore", "no shaft speed"]
+         "bad orders", "orders without bore", "unknown bearing", "two bearings for a side",
+         "side orders without bore", "bad side bore", "no shaft speed"]
 
 
 @pytest.mark.parametrize("case", CASES)

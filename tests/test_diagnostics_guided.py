@@ -90,11 +90,13 @@ def test_the_pair_searches_the_healthy_side_again_for_the_other_sides_line():
     assert res.right.band_source == "guided by BPFO" and "BPFO" in res.right.detected
     assert res.right == analyse(b, FS, SHAFT, ORDERS, BORE, guide="BPFO")   # only the band redone
     assert res.verdicts["left"][0] == "real fault" and res.verdicts["right"][0] == "pseudo-fault"
-    assert res.verdicts["right"][1].startswith("BPFO detected here too")
-    assert res.lag.leading == "a"
+    bpfo = res.verdict.evidence["lines"][0]
+    assert bpfo["key"] == "BPFO" and bpfo["seen"] == {"left": True, "right": True}
+    assert res.lag.leading == "a" and res.verdict.rule == "lag"
     off = analyse_pair(a, b, FS, SHAFT, ORDERS, BORE, rel, guided=False)
     assert off.right.band_source == "spectral kurtosis" and "BPFO" not in off.right.detected
-    assert off.verdicts["right"][1].startswith("no fault line found here")
+    assert off.verdict.rule == "one side owns the lines" and off.verdict.real == "left"
+    assert "no fault line here" in off.verdicts["right"][1]
     # with no line on either side nothing is searched again
     rng = np.random.default_rng(5)
     n = int(T * FS)

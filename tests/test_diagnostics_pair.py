@@ -4,9 +4,10 @@
 Signals are built with known answers: a delay made exactly (integer shift, or a phase ramp in
 the frequency ___domain for a fractional one), and a pair whose side A carries outer-ring impulses
 while side B carries a delayed, attenuated, resonance-filtered copy, both in wheel-rail-like
-noise.  The criterion is the paper's (section "Difference analyses ...", Fig. 14, conclusions
-(2)-(3)): a VF difference in 0.8e4-7.49e4 Hz^2 means a pseudo-fault; the side with the larger
-RMS and SPM is the real fault.
+noise.  The paper's criterion (section "Difference analyses ...", Fig. 14, conclusions (2)-(3)):
+a VF difference in 0.8e4-7.49e4 Hz^2 means a pseudo-fault; the side with the larger RMS and SPM
+is the real fault; the decision procedure around it (criterion.decide) is tested rule by rule
+on stand-in evidence.
 """
 import json
 from types import SimpleNamespace
@@ -16,10 +17,11 @@ import pytest
 
 from axlebox._params import ParameterError
 from axlebox.bearing.diagnostics.criterion import (REL_RANGE_DEFAULT, VF_METRO, VF_RANGE_PAPER,
-                                                   Criterion, verdict, vf_difference)
+                                                   Criterion, decide, vf_difference)
 from axlebox.bearing.diagnostics.lag import impulse_lag, time_lag
 from axlebox.bearing.diagnostics.pair import analyse_pair
 from axlebox.bearing.diagnostics.synthetic import impulse_train, resonance, wheel_rail_noise
+from axlebox.bearing.diagnostics.verdict import RULES, SIDES, LineEvidence
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.params import BearingParams
 
@@ -187,16 +189,22 @@ def test_a_louder_transmitted_side_is_named_by_its_lag():
     1.5 times as strong (the healthy journal carrying more of the wheelset's bending), so RMS
     and SPM are larger on the healthy side.  The paper's RMS and SPM alone (``lag="off"``) name
     the wrong side; ``veto`` leaves both undecided; ``decide`` (the default) names A, whose
-    impulses lead in every bootstrap resample."""
+    impulses lead in every bootstrap resample.  Whatever the lag policy, the default criterion
+    names A too: A's line stands higher in most bands (the copy passed the 546 Hz mode only)."""
     a, b, _, _ = pair(seed=3, gain_b=1.5)
-    got = {}
+    got, ours = {}, {}
     for policy in ("decide", "veto", "off"):
-        res = analyse_pair(a, b, FS, SHAFT, ORDERS, BORE, Criterion(mode="relative", lag=policy))
+        res = analyse_pair(a, b, FS, SHAFT, ORDERS, BORE,
+                           Criterion(mode="relative", lag=policy, source="paper"))
         got[policy] = (res.verdicts["left"][0], res.verdicts["right"][0])
+        ours[policy] = res.redecide(Criterion(mode="relative", lag=policy)).words["left"]
     assert res.right.rms > res.left.rms and res.right.spm_db > res.left.spm_db
     assert res.lag.leading == "a" and res.lag.agreement == 1.0 and res.lag.n_impulses > 100
     assert got == {"decide": ("real fault", "pseudo-fault"), "veto": ("undecided", "undecided"),
                    "off": ("pseudo-fault", "real fault")}
+    assert ours == {p: "real fault" for p in got}
+    ev = res.evidence[0]
+    assert ev.votes["left"] >= 2 * ev.votes["right"]
 
 
 def test_pair_figure_is_written(synthetic, tmp_path):
@@ -225,9 +233,23 @@ def test_pair_refuses_bad_records(synthetic):
 
 
 def side(VF, rms, spm_db, lines=("BPFO",)):
-    """A stand-in ChannelResult: only what verdict() reads."""
+    """A stand-in ChannelResult: only what decide() reads."""
     return SimpleNamespace(VF=VF, rms=rms, spm_db=spm_db,
-                           lines={"BPFO": SimpleNamespace(detected="BPFO" in lines)})
+                           lines={"BPFO": SimpleNamespace(detected="BPFO" in lines, snr_db=20.0)})
+
+
+def timing(decision, c_min=None):
+    """A stand-in :class:`.coherence.Timing` with its decision."""
+    return SimpleNamespace(decision=decision, c_min=c_min,
+                           to_dict=lambda: {"decision": decision, "c_min": c_min})
+
+
+def line(bearing="both", seen=("left", "right"), decision="coherent", best=(30.0, 30.0),
+         votes=None):
+    """A stand-in line's evidence: BPFO of ``bearing`` seen on ``seen``."""
+    return LineEvidence("BPFO", bearing, {s: s in seen for s in SIDES}, {s: 20.0 for s in SIDES},
+                        timing(decision) if len(seen) == 2 and bearing == "both" else None, None,
+                        best_snr_db=dict(zip(SIDES, best)), votes=votes or {})
 
 
 def test_paper_range_and_its_relative_mapping():
@@ -243,25 +265,48 @@ def test_paper_range_and_its_relative_mapping():
     assert REL_RANGE_DEFAULT[1] == 1.0                      # 1 - VF_min/VF_max < 1 always
 
 
-@pytest.mark.parametrize("left,right,expect,words", [
-    # paper: in range, RMS and SPM larger on the left -> left real, right pseudo
-    (side(2e4, 2.0, 40), side(5e4, 1.0, 30), ("real fault", "pseudo-fault"), "conclusion 3"),
-    (side(5e4, 1.0, 30), side(2e4, 2.0, 40), ("pseudo-fault", "real fault"), "conclusion 3"),
-    # RMS says left, SPM says right: contradicting indicators
-    (side(2e4, 2.0, 30), side(5e4, 1.0, 40), ("undecided",) * 2, "RMS larger on left; SPM larger on right"),
-    # VF difference below the range (5e3 < 8e3) although lines are seen
-    (side(2e4, 2.0, 40), side(2.5e4, 1.0, 30), ("undecided",) * 2, "below the range"),
-    # above the range (9e4 > 7.49e4)
-    (side(1e4, 2.0, 40), side(1e5, 1.0, 30), ("undecided",) * 2, "above the range"),
-    # no fault line on either side -> healthy whatever the VF difference
-    (side(2e4, 2.0, 40, ()), side(5e4, 1.0, 30, ()), ("healthy",) * 2, "no BPFO/BPFI line"),
-    # the larger side shows no line but the smaller does
-    (side(2e4, 2.0, 40, ()), side(5e4, 1.0, 30), ("undecided",) * 2, "only right shows fault lines"),
+IN_RANGE = (side(2e4, 2.0, 40), side(5e4, 1.0, 30))          # VF difference 3e4 Hz^2, in range
+BELOW = (side(2e4, 2.0, 40), side(2.5e4, 1.0, 30))           # 5e3, below the paper's range
+
+
+@pytest.mark.parametrize("sides,lines,words,rule", [
+    # whose line: nothing seen -> healthy whatever the VF difference
+    (IN_RANGE, [line(seen=())], ("healthy", "healthy"), "no fault line"),
+    # a line of both sides' bearing seen on one side only is that side's; the other a
+    # pseudo-fault where the VF difference says one is present, else healthy
+    (IN_RANGE, [line(seen=("left",))], ("real fault", "pseudo-fault"), "one side owns the lines"),
+    (IN_RANGE, [line(seen=("right",))], ("undecided", "undecided"), "one side only, not the louder"),
+    (BELOW, [line(seen=("right",))], ("undecided", "undecided"), "one side only, spectra alike"),
+    # a line at the left bearing's own order (the bearings differ), wherever it is seen: the
+    # right side carries it, a pseudo-fault whatever the VF difference
+    (BELOW, [line("left", seen=("right",))], ("real fault", "pseudo-fault"),
+     "one side owns the lines"),
+    # seen on both sides, two impulse trains: each side's own, both standing clear of a healthy
+    # bearing's level; one faint: only the other is called; both faint: neither
+    (IN_RANGE, [line(decision="independent")], ("faults on both sides",) * 2, "each side owns a line"),
+    (IN_RANGE, [line(decision="independent", best=(30.0, 12.0))], ("real fault", "undecided"),
+     "second line faint"),
+    (IN_RANGE, [line(decision="independent", best=(11.0, 12.0))], ("undecided", "undecided"),
+     "both lines faint"),
+    (IN_RANGE, [line(decision="independent", best=(14.0, 10.0))], ("real fault", "undecided"),
+     "second line faint"),
+    # distinct bearings, each its own line
+    (BELOW, [line("left", seen=("left",)), line("right", seen=("right",))],
+     ("faults on both sides",) * 2, "each side owns a line"),
+    # one train (a copy), the source by where the line rings: left higher in 12 bands of 14
+    (BELOW, [line(votes={"left": 12, "right": 2})], ("real fault", "pseudo-fault"), "ringing"),
+    # a copy and no sure lag or ringing: the paper's criterion, RMS and SPM larger on the left
+    (IN_RANGE, [line()], ("real fault", "pseudo-fault"), "RMS and SPM"),
+    (IN_RANGE, [line(decision="inconclusive")], ("real fault", "pseudo-fault"), "RMS and SPM"),
+    ((side(2e4, 2.0, 30), side(5e4, 1.0, 40)), [line()], ("undecided",) * 2, "indicators disagree"),
+    (BELOW, [line()], ("undecided",) * 2, "VF below the range"),
+    ((side(1e4, 2.0, 40), side(1e5, 1.0, 30)), [line()], ("undecided",) * 2, "VF above the range"),
 ])
-def test_decision_table(left, right, expect, words):
-    v = verdict(left, right, None, Criterion())
-    assert (v["left"][0], v["right"][0]) == expect
-    assert words in v["left"][1] and words in v["right"][1]
+def test_decision_table(sides, lines, words, rule):
+    v = decide(*sides, None, Criterion(), lines)
+    assert (v.words["left"], v.words["right"], v.rule) == words + (rule,)
+    assert v.rule in RULES and RULES[v.rule] in v["left"][1]
+    json.dumps(v.to_dict(), allow_nan=False)
 
 
 def impulses_lag(leading, n=40, agreement=1.0):
@@ -271,61 +316,76 @@ def impulses_lag(leading, n=40, agreement=1.0):
                            n_impulses=n, agreement=agreement)
 
 
-def test_the_lag_policies():
-    """RMS and SPM larger on the left while the right side's impulses come first (the study's
-    1 mm, 40 km/h case, README): ``decide`` (default) names the leading side real and says the
-    indicators point the other way; ``veto`` leaves both undecided; ``off`` is the paper's RMS
-    and SPM alone and only quotes the lag.  Where RMS and SPM disagree, ``decide`` and ``veto``
-    name the leading side, ``off`` stays undecided.  A lag by correlation never decides against
-    the indicators (it vetoes) and below ``lag_min_peak`` it is not used at all."""
-    left, right = side(2e4, 2.0, 40), side(5e4, 1.0, 30)
+def test_a_copys_source_by_its_lag_and_where_it_rings():
+    """One fault and its copy: the impulses' lag names the source (the paper's conclusion 2:
+    the real side leads) whatever RMS and SPM say; where the lines ring agrees, or is silent;
+    where it names the other side the verdict is undecided, not a guess."""
+    left, right = IN_RANGE
+    v = decide(left, right, impulses_lag("b"), Criterion(), [line()])
+    assert (v.words["left"], v.words["right"], v.rule, v.real) == ("pseudo-fault", "real fault",
+                                                                  "lag", "right")
+    assert "right leads by 1.2 ms" in v["right"][1]
+    v = decide(left, right, impulses_lag("b"), Criterion(), [line(votes={"left": 2, "right": 9})])
+    assert v.rule == "lag" and v.real == "right"
+    v = decide(left, right, impulses_lag("b"), Criterion(), [line(votes={"left": 9, "right": 2})])
+    assert v.words == {"left": "undecided", "right": "undecided"}
+    assert v.rule == "lag and ringing disagree"
+    # a tie in the bands is no evidence: the lag decides
+    v = decide(left, right, impulses_lag("a"), Criterion(), [line(votes={"left": 3, "right": 3})])
+    assert v.real == "left" and v.rule == "lag"
+
+
+def test_the_lag_policies_of_the_papers_criterion():
+    """The paper's criterion alone (``source="paper"``), RMS and SPM larger on the left while
+    the right side's impulses come first (the study's 1 mm, 40 km/h case, README): ``decide``
+    (default) names the leading side real; ``veto`` leaves both undecided; ``off`` is the
+    paper's RMS and SPM alone.  Where RMS and SPM disagree, ``decide`` and ``veto`` name the
+    leading side, ``off`` stays undecided.  A lag by correlation never decides against the
+    indicators (it vetoes) and below ``lag_min_peak`` it is not used at all."""
+    left, right = IN_RANGE
     lag = impulses_lag("b")
-    v = verdict(left, right, lag, Criterion())
-    assert (v["left"][0], v["right"][0]) == ("pseudo-fault", "real fault"), v
-    assert "right leads" in v["right"][1] and "point to the other" in v["right"][1]
-    v = verdict(left, right, lag, Criterion(lag="veto"))
-    assert v["left"][0] == v["right"][0] == "undecided" and "right leads" in v["left"][1]
-    v = verdict(left, right, lag, Criterion(lag="off"))
-    assert v["left"][0] == "real fault" and "contradicts" in v["left"][1]
-    # the leading side shows no fault line: the lag cannot name it; the indicators' call is vetoed
-    v = verdict(left, side(5e4, 1.0, 30, ()), lag, Criterion())
-    assert v["left"][0] == v["right"][0] == "undecided"
-    # by correlation: a veto, never a decision against the indicators
+
+    def words(l_, r_, lag_, **kw):
+        v = decide(l_, r_, lag_, Criterion(source="paper", **kw), [line()])
+        return v.words["left"], v.words["right"], v.rule
+    assert words(left, right, lag) == ("pseudo-fault", "real fault", "lag")
+    assert words(left, right, lag, lag="veto") == ("undecided", "undecided", "lag contradicts")
+    assert words(left, right, lag, lag="off") == ("real fault", "pseudo-fault", "RMS and SPM")
     corr = SimpleNamespace(leading="b", lag_s=1.2e-3, peak=0.8, method="correlation")
-    assert verdict(left, right, corr, Criterion())["left"][0] == "undecided"
+    assert words(left, right, corr)[:2] == ("undecided", "undecided")
     weak = SimpleNamespace(leading="b", lag_s=1.2e-3, peak=0.1, method="correlation")
-    assert verdict(left, right, weak, Criterion())["left"][0] == "real fault"
+    assert words(left, right, weak)[:2] == ("real fault", "pseudo-fault")
     split_l, split_r = side(2e4, 2.0, 30), side(5e4, 1.0, 40)   # RMS says left, SPM right
     for lead, real in (("a", "left"), ("b", "right")):
         for policy in ("decide", "veto"):
-            v = verdict(split_l, split_r, impulses_lag(lead), Criterion(lag=policy))
-            assert v[real][0] == "real fault" and "names the real side" in v[real][1], v
-        assert verdict(split_l, split_r, impulses_lag(lead), Criterion(lag="off"))["left"][0] == "undecided"
-    # agreeing: the same call under every policy, the agreement said
+            v = decide(split_l, split_r, impulses_lag(lead),
+                       Criterion(source="paper", lag=policy), [line()])
+            assert v.words[real] == "real fault" and v.rule == "lag", v
+        assert words(split_l, split_r, impulses_lag(lead), lag="off")[0] == "undecided"
     for policy in ("decide", "veto", "off"):
-        v = verdict(left, right, impulses_lag("a"), Criterion(lag=policy))
-        assert v["left"][0] == "real fault" and "agrees" in v["left"][1]
+        assert words(left, right, impulses_lag("a"), lag=policy)[0] == "real fault"
 
 
 def test_relative_mode_is_invariant_to_a_frequency_scale():
     """VF scales with the square of a frequency scale k (a machine k times faster): the relative
     difference does not move, the absolute one moves by k^2."""
-    left, right = side(2e4, 2.0, 40), side(5e4, 1.0, 30)
+    left, right = IN_RANGE
     rel = Criterion(mode="relative")
     k2 = 7.5 ** 2
     fast_l, fast_r = side(2e4 * k2, 2.0, 40), side(5e4 * k2, 1.0, 30)
     assert vf_difference(fast_l.VF, fast_r.VF, rel) == pytest.approx(vf_difference(2e4, 5e4, rel))
     assert vf_difference(fast_l.VF, fast_r.VF) == pytest.approx(k2 * 3e4)
-    words = {k: v for k, (v, _) in verdict(fast_l, fast_r, None, rel).items()}
-    assert words == {k: v for k, (v, _) in verdict(left, right, None, rel).items()}
-    assert words == {"left": "real fault", "right": "pseudo-fault"}
-    assert verdict(fast_l, fast_r, None, Criterion())["left"][0] == "undecided"   # paper's Hz^2 range
+    assert decide(fast_l, fast_r, None, rel, [line()]).words == \
+        decide(left, right, None, rel, [line()]).words == {"left": "real fault", "right": "pseudo-fault"}
+    assert decide(fast_l, fast_r, None, Criterion(), [line()]).rule == "VF above the range"
 
 
 @pytest.mark.parametrize("kw,field", [({"mode": "ratio"}, "mode"), ({"vf_range": (7e4, 8e3)}, "vf_range"),
                                       ({"rel_range": (-0.1, 1)}, "rel_range"),
                                       ({"compare": ("loudness",)}, "compare"), ({"lines": ()}, "lines"),
-                                      ({"lag": "trust"}, "lag")])
+                                      ({"lag": "trust"}, "lag"), ({"lines": ("BSF",)}, "lines"),
+                                      ({"source": "RMS"}, "source"), ({"source_ratio": 1.0}, "source_ratio"),
+                                      ({"second_db": -1.0}, "second_db")])
 def test_criterion_refuses_bad_settings(kw, field):
     with pytest.raises(ParameterError, match=f"Criterion.{field}"):
         Criterion(**kw)

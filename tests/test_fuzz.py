@@ -226,7 +226,13 @@ OPTIONS = {"--fs": st.one_of(st.floats().map(repr), st.text(max_size=5)),
            "--orders": st.text("BPFOIT=,.0123456789", max_size=20), "--bore": st.floats().map(repr),
            "--scale": st.floats().map(repr), "--vf-range": st.text(",0123456789.-e", max_size=10),
            "--left": st.sampled_from(["a", "b", "c", ""]), "--lag": st.text("decidvto", max_size=6),
-           "--column": st.integers(-3, 5).map(str), "--nperseg": st.integers(-5, 10**6).map(str)}
+           "--column": st.integers(-3, 5).map(str), "--nperseg": st.integers(-5, 10**6).map(str),
+           "--bearing": st.sampled_from(["dtrb", "6205", "6203", "DTRB", "6206", "", " "]),
+           "--bearing-left": st.sampled_from(["6205", "6203", "x", ""]),
+           "--bearing-right": st.text("620513", max_size=5),
+           "--orders-left": st.text("BPFOIT=,.0123456789", max_size=20),
+           "--orders-right": st.sampled_from(["BPFO=3.05,BPFI=4.95,FTF=0.38,BSF=1.99", "BPFO=0"]),
+           "--bore-left": st.floats().map(repr), "--bore-right": st.floats().map(repr)}
 
 
 @SETTINGS

@@ -1,51 +1,72 @@
-"""The paper's criterion for telling a real fault from a coaxial pseudo-fault on two channels.
+"""The verdicts on two channels: a small decision procedure, :func:`decide`, that returns a
+:class:`.verdict.Verdict` (the rule that decided and the evidence it read);
+:func:`.verdict.sentence` renders it.
 
-Paper, section "Difference analyses of vibration characteristics ...", Fig. 14 and conclusions
-(2)-(3): if the difference of the frequency variances (VF, Eq. 18) of the two axle-box signals of
-a wheelset lies in 0.8e4-7.49e4 (Hz^2), a pseudo-fault is present on one side; the side with the
-larger RMS and SPM (Eq. 17) is the real fault, the other the pseudo-fault.  Below that range the
-two spectra are alike (the paper's healthy wheelset, Fig. 14a); above it lies outside what the
-criterion was found on.
+The paper's criterion (section "Difference analyses of vibration characteristics ...", Fig. 14,
+conclusions (2)-(3)): if the difference of the frequency variances (VF, Eq. 18) of the two
+axle-box signals of a wheelset lies in 0.8e4-7.49e4 Hz^2, a pseudo-fault is present on one
+side; the side with the larger RMS and SPM (Eq. 17) is the real fault, the other the
+pseudo-fault.  It names the source of one fault seen on both sides; it cannot say whether there
+is a fault, nor whether both bearings have one.  :func:`decide` asks those first, from the fault
+lines' evidence (:class:`.verdict.LineEvidence`, built by :mod:`.pair`):
 
-:func:`verdict` applies it in this order (each side gets "real fault", "pseudo-fault",
-"healthy", "faults on both sides" or "undecided", with the reason in words):
+1. *No line* (rule ``no fault line``): none of ``Criterion.lines`` (BPFO outer ring, BPFI inner
+   ring, 2BSF a rolling element with its cage sidebands; :mod:`.faultlines`) is detected on
+   either side, for either side's bearing -> both healthy.
+2. *Whose line*.  Each line seen gets its source side(s) (``how`` in the evidence):
 
-1. fault evidence (ours): a side shows a fault when one of ``Criterion.lines`` (BPFO, the paper's
-   outer-ring faults, and BPFI, inner-ring faults) is detected in its envelope spectrum
-   (:mod:`.faultlines`: the fundamental and two harmonics over the noise floor).  No line on
-   either side -> both healthy.  The paper's VF difference alone cannot say this: gearbox load
-   transfer alone gives a VF difference (Fig. 14a), and in relative mode the VF levels no longer
-   tell defects from none.
-1b. faults on both sides (ours, beyond the paper): when each side *owns* a fault line
-   (:mod:`.own`: in the band where the other side's line stands best, this side's line is at
-   least ``Criterion.own_share`` of the other's; a transmitted copy is far weaker there), both
-   sides are "faults on both sides", whatever the VF difference and the lag say (two faults'
-   impulse trains coincide or interleave, so neither a lead nor a pseudo-fault pattern is to be
-   expected).  Only with the shares given (:func:`.pair.analyse_pair` computes them).
-2. the VF difference ``m`` against the range (paper): below -> both undecided (lines are seen,
-   yet no pseudo-fault pattern: a fault not transmitted, or faults on both sides of unlike size,
-   are outside the paper's criterion); above -> both undecided.
-3. in the range (paper): the side where every indicator of ``Criterion.compare`` (RMS and SPM)
-   is larger is the real fault, the other the pseudo-fault; if they disagree -> undecided.  If
-   the larger side shows no fault line while the other does -> undecided.
-4. the lag (the paper, Fig. 13 and conclusion 2: the healthy side lags by 1.1-4.2 ms, so the
-   real side leads), by ``Criterion.lag`` (ours: the paper states the lag as a finding, not as
-   part of its criterion):
+   * ``bearing order``: where the two sides' bearings differ (the CWRU motor's 6205 and 6203),
+     a line at one bearing's order is that bearing's, on whichever side it is seen;
+   * ``one side only``: a line of a bearing type both sides share, seen on one side only (the
+     other side was searched again in the band where the line stands highest);
+   * seen on both sides, the copy-or-source test (:mod:`.coherence`): two impulse trains
+     (``own timing``: a harmonic whose coherent fraction is ``C_INDEPENDENT``, 0.2, or less)
+     are a fault on each side; otherwise one fault and its copy (``coherent``, ``partly coherent``,
+     ``inconclusive``: a weak line is never shown to be its own, the safe side).
 
-   * ``"decide"`` (default): a lag read on the impulses (:func:`.lag.impulse_lag`, which names
-     a side only with at least five impulses and 90 % of its bootstrap resamples agreeing)
-     names the real side, on the side that shows fault lines, whatever RMS and SPM say; where
-     they point the other way the reason says so.  The paper's conclusion (1) is that
-     amplitude indicators alone cannot tell the two apart; the lag is the causal evidence:
-     the impulses start at the defect.  A lag read by envelope correlation (records without
-     separable impulses) only vetoes, as below;
-   * ``"veto"``: a leading side that contradicts step 3 makes both undecided rather than a
-     wrong call, and where RMS and SPM disagree the leading side is named real;
-   * ``"off"`` (``--lag off``, ``--no-lag``): the paper's RMS and SPM alone; the lag is only
-     quoted.
+3. *Both own*: each side's own line must stand ``second_db`` (15 dB) over its floor in its best
+   band (:func:`.guided.band_scan`) -> faults on both sides (``each side owns a line``).  Every
+   bearing shows its own pass lines faintly (rollers passing the load zone; the model's healthy
+   bearings, no-defect runs at 20-80 km/h, reach 13 dB with a detected line, benchmarks/
+   README.md "Copy or source"), so a fainter own line beside the other side's clear one is
+   ``second line faint``: the side whose own line stands ``CLEARER_DB`` (3 dB, twice the
+   scatter of a line's SNR read over a median floor of some 40 bins) over the other's is real,
+   the faint one undecided; lines within 3 dB of each other, neither clear, are ``both lines
+   faint`` (both undecided): a healthy bearing called faulty is the worst error.
+4. *One owns* (``one side owns the lines``): that side the real fault; the other a pseudo-fault
+   where it shows a line (a copy, or the other bearing's line carried) or where the VF
+   difference lies in the range (the paper's sign of a pseudo-fault), else healthy.  A line of
+   a bearing type both sides share, seen on one side only with nothing on the other, is its
+   side's fault only where the paper's signs agree: the two spectra differ (VF difference not
+   below the range, else ``one side only, spectra alike``) and its side is the louder (every
+   indicator of ``Criterion.compare`` larger, else ``one side only, not the louder``); both
+   undecided otherwise.  A healthy bearing shows its own pass lines too (the model's no-defect
+   car at 20 km/h shows BPFO with two harmonics on its quieter side, 13 dB over the floor),
+   while a defect raises its side's vibration and changes its spectrum (the paper's Figs. 11,
+   14).
+5. *One fault and its copy*, the source named (``Criterion.source = "ringing"``, default):
 
-   A lag by correlation is used only when its correlation reaches ``lag_min_peak``.  And, in
-   the reason, which side is more dispersed (the paper's healthy side has the larger VF).
+   * by the impulses' lag (``lag``; the paper, Fig. 13 and conclusion 2: the healthy side lags
+     by 1.1-4.2 ms; :func:`.lag.impulse_lag`: at least five impulses, 90 % of the bootstrap
+     agreeing; with ``Criterion.lag = "decide"``) and by where the line rings (``ringing``: the
+     side whose line stands higher in at least ``source_ratio`` times as many bands of the grid
+     as the other's, and in at least 3, :func:`.pair.band_votes`: a copy is its source through
+     a path that passes some bands and stops others).  Where both speak and disagree: ``lag
+     and ringing disagree``, both undecided (the lag is ambiguous by whole fault periods; a
+     path resonance can lift a copy over its source in that band);
+   * else by the paper's criterion: the VF difference ``m`` against the range, below (``VF below
+     the range``) or above (``VF above the range``) -> both undecided; in range, the side where
+     every indicator of ``Criterion.compare`` (RMS and SPM) is larger (``RMS and SPM``), unless
+     they disagree (``indicators disagree``) or a lag by envelope correlation contradicts
+     them (``lag contradicts``); the side named must show the line (``no line on the source``).
+
+   ``Criterion.source = "paper"`` is the paper's criterion alone for this step (what
+   :mod:`axlebox.pipelines.conclusions` checks the paper's claims with), the lag entering by
+   ``Criterion.lag``: ``"decide"`` (a lag read on the impulses names the real side whatever
+   RMS and SPM say, the paper's conclusion 1: amplitudes alone cannot tell the two apart),
+   ``"veto"`` (a leading side that contradicts RMS and SPM makes both undecided, and breaks
+   their tie) or ``"off"`` (RMS and SPM alone, the lag quoted).  A lag by correlation is used
+   only from ``lag_min_peak``, and only to veto.
 
 Carrying the range to another machine.  VF is in Hz^2, so the paper's range belongs to the metro
 car's frequencies: a machine whose resonances sit k times higher has VF (and VF differences) k^2
@@ -58,15 +79,12 @@ times larger.  Two settings:
 * ``mode="relative"``: ``m = |VF_L - VF_R| / max(VF_L, VF_R) = 1 - VF_min / VF_max``, in
   [0, 1): the share of the more dispersed side's variance the other lacks.  It is unchanged when
   all frequencies scale together and does not depend on the sampling rate once the band holds
-  the signal (dividing by (fs/2)^2 instead would tie the threshold to the acquisition, not the
-  machine: on the CWRU rig ``ΔVF / (fs/2)^2 = 0.023``, eight times the top of the paper's range
-  mapped that way, 3.2e-4-3.0e-3, while its relative difference, 0.82, sits inside the range
-  below).
-  Mapping the paper's range: the paper gives the VF differences, not the levels; its healthy
-  side's spectrum lies in 0-200 Hz and 300-800 Hz (Fig. 12), whose VF, for a flat PSD over those
-  bands, is ``VF_METRO = 5.72e4 Hz^2``.  So the lower bound is ``0.8e4 / 5.72e4 = 0.14``.  The
-  upper bound 7.49e4 / 5.72e4 = 1.31 exceeds what ``m`` can reach (``ΔVF <= VF_max``): it was the
-  largest difference simulated, not a limit, so the relative upper bound is 1.
+  the signal.  Mapping the paper's range: the paper gives the VF differences, not the levels;
+  its healthy side's spectrum lies in 0-200 Hz and 300-800 Hz (Fig. 12), whose VF, for a flat
+  PSD over those bands, is ``VF_METRO = 5.72e4 Hz^2``.  So the lower bound is ``0.8e4 / 5.72e4 =
+  0.14``.  The upper bound 7.49e4 / 5.72e4 = 1.31 exceeds what ``m`` can reach (``dVF <=
+  VF_max``): it was the largest difference simulated, not a limit, so the relative upper bound
+  is 1.
 """
 from __future__ import annotations
 
@@ -76,16 +94,17 @@ import numpy as np
 
 from axlebox._params import ParameterError
 
-from .own import owned
+from .verdict import SIDES, LineEvidence, Verdict
 
 VF_RANGE_PAPER = (0.8e4, 7.49e4)        # Hz^2, paper Fig. 14 and conclusion (3)
 VF_METRO = 5.72e4                       # Hz^2, VF of a flat PSD on 0-200 and 300-800 Hz (Fig. 12)
 REL_RANGE_DEFAULT = (round(VF_RANGE_PAPER[0] / VF_METRO, 2), 1.0)
 MODES = ("absolute", "relative")
 LAG_POLICIES = ("decide", "veto", "off")
+SOURCE_RULES = ("ringing", "paper")
+CLEARER_DB = 3.0        # one side's own line this much over the other's: the clearer one is real
 COMPARABLE = ("rms", "spm_db", "peak", "kurtosis", "crest", "SV")
-VERDICTS = ("real fault", "pseudo-fault", "healthy", "faults on both sides", "undecided")
-SIDES = ("left", "right")
+FAULT_LINES = ("BPFO", "BPFI", "2BSF")
 _LABEL = {"rms": "RMS", "spm_db": "SPM", "peak": "peak", "kurtosis": "kurtosis", "crest": "crest",
           "SV": "SV"}
 
@@ -97,18 +116,22 @@ class Criterion:
     that must all be larger on the real side; ``lines``: fault lines whose detection counts as a
     fault; ``lag``: how the lag between the sides enters (one of ``LAG_POLICIES``, module
     docstring, step 4); ``lag_min_peak``: envelope correlation needed to use a lag read by
-    correlation (one read on the impulses carries its own test); ``own_share``: the share of the
-    other side's line, in the other side's band, above which a side's line is its own (step 1b,
-    :mod:`.own`)."""
+    correlation (one read on the impulses carries its own test); ``source``: how one fault and
+    its copy get their source, ``"ringing"`` (the lag and the bands' votes, then the paper's
+    criterion) or ``"paper"`` (the paper's criterion alone); ``source_ratio``: the votes a side
+    needs over the other's; ``second_db``: how far over its floor each side's own line must
+    stand for faults on both sides (module docstring, steps 3 and 5)."""
 
     mode: str = "absolute"
     vf_range: tuple[float, float] = VF_RANGE_PAPER
     rel_range: tuple[float, float] = REL_RANGE_DEFAULT
     compare: tuple[str, ...] = ("rms", "spm_db")
-    lines: tuple[str, ...] = ("BPFO", "BPFI")
+    lines: tuple[str, ...] = ("BPFO", "BPFI", "2BSF")
     lag: str = "decide"
     lag_min_peak: float = 0.3
-    own_share: float = 0.25
+    source: str = "ringing"
+    source_ratio: float = 2.0
+    second_db: float = 15.0
 
     def __post_init__(self):
         if self.mode not in MODES:
@@ -124,18 +147,24 @@ class Criterion:
         if bad or not self.compare:
             raise ParameterError(f"Criterion.compare = {self.compare!r} is not allowed: expected "
                                  "names among " + ", ".join(COMPARABLE))
-        if not self.lines:
-            raise ParameterError("Criterion.lines = () is not allowed: expected at least one line "
-                                 "name (e.g. BPFO)")
+        if not self.lines or any(n not in FAULT_LINES for n in self.lines):
+            raise ParameterError(f"Criterion.lines = {self.lines!r} is not allowed: expected names "
+                                 "among " + ", ".join(FAULT_LINES))
         if self.lag not in LAG_POLICIES:
             raise ParameterError(f"Criterion.lag = {self.lag!r} is not allowed: expected one of "
                                  + ", ".join(LAG_POLICIES))
         if not 0 <= self.lag_min_peak <= 1:
             raise ParameterError(f"Criterion.lag_min_peak = {self.lag_min_peak!r} is not allowed: "
                                  "expected a correlation in [0, 1]")
-        if not (np.isfinite(self.own_share) and self.own_share > 0):
-            raise ParameterError(f"Criterion.own_share = {self.own_share!r} is not allowed: "
-                                 "expected a ratio > 0")
+        if not (np.isfinite(self.second_db) and self.second_db >= 0):
+            raise ParameterError(f"Criterion.second_db = {self.second_db!r} is not allowed: "
+                                 "expected a level >= 0 dB")
+        if self.source not in SOURCE_RULES:
+            raise ParameterError(f"Criterion.source = {self.source!r} is not allowed: expected one "
+                                 "of " + ", ".join(SOURCE_RULES))
+        if not (np.isfinite(self.source_ratio) and self.source_ratio > 1):
+            raise ParameterError(f"Criterion.source_ratio = {self.source_ratio!r} is not allowed: "
+                                 "expected a ratio > 1")
 
     @property
     def range(self) -> tuple[float, float]:
@@ -151,7 +180,8 @@ class Criterion:
         return d
 
 
-PAPER = Criterion()                     # the paper's absolute range, RMS and SPM compared
+PAPER = Criterion()                     # the paper's absolute range; the source by lag and ringing
+PAPER_ALONE = Criterion(source="paper")  # the paper's criterion alone names the source
 
 
 def vf_difference(vf_left: float, vf_right: float, criterion: Criterion = PAPER) -> float:
@@ -163,112 +193,171 @@ def vf_difference(vf_left: float, vf_right: float, criterion: Criterion = PAPER)
     return float(d / top) if top > 0 else 0.0
 
 
-def _fmt(v: float) -> str:
-    return f"{v:.3g}"
 
 
-def _both_sides(left, right, shares: dict, criterion: Criterion) -> str | None:
-    """The reason for "faults on both sides" when each side owns a line (:mod:`.own`), else None."""
-    own = owned(left, right, shares, criterion.lines, criterion.own_share)
-    if not (own["left"] and own["right"]):
-        return None
-    how = []
-    for s in SIDES:
-        for n in own[s]:
-            if n in shares:
-                sh = shares[n]
-                o = "right" if s == "left" else "left"
-                b = getattr(sh, f"band_{o}")
-                how.append(f"{s}'s {n} is {sh.share[s]:.2g} of {o}'s in {o}'s band "
-                           f"{b[0]:.0f}-{b[1]:.0f} Hz")
-            else:
-                how.append(f"{s}'s {n} is found on {s} only")
-    return (f"each side carries its own fault line ({'; '.join(how)}; a copy carried across "
-            f"would be under {criterion.own_share:g} of its source there)")
+def _sources(ev: LineEvidence, criterion: Criterion) -> tuple[tuple[str, ...], str]:
+    """``(source sides, how)`` of one line (module docstring, step 2)."""
+    seen = [s for s in SIDES if ev.seen[s]]
+    if not seen:
+        return (), "not seen"
+    if ev.bearing in SIDES:
+        return (ev.bearing,), "bearing order"
+    if len(seen) == 1:
+        return (seen[0],), "one side only"
+    decision = "inconclusive" if ev.timing is None else ev.timing.decision
+    if decision == "independent":
+        return SIDES, "own timing"
+    return (), decision
 
 
-def verdict(left, right, lag=None, criterion: Criterion = PAPER,
-            shares: dict | None = None) -> dict[str, tuple[str, str]]:
-    """``{"left": (verdict, reason), "right": (...)}`` from two :class:`.channel.ChannelResult`
-    (``FC``/``VF``, ``rms``, ``spm_db``, ``lines``), an optional :class:`.lag.LagResult`
-    whose channel ``a`` is ``left`` and the fault lines' shares (:func:`.own.shares`; without
-    them step 1b is left out)."""
+def evidence_from_channels(left, right, lines) -> list[LineEvidence]:
+    """Line evidence from two :class:`.channel.ChannelResult` alone (no timing, no shares): each
+    of ``lines`` of a bearing both sides share, and each carried line."""
+    ch = {"left": left, "right": right}
+    out = []
+    for n in lines:
+        def seen(r, key):
+            return key in r and r[key].detected
+        out.append(LineEvidence(n, "both", {s: seen(ch[s].lines, n) for s in SIDES},
+                                {s: _snr(ch[s].lines, n) for s in SIDES}))
+        for b, o in (("left", "right"), ("right", "left")):
+            carried = getattr(ch[o], "carried", {})
+            if n in carried:        # bearing b's line, searched on side o too
+                out.append(LineEvidence(n, b, {b: False, o: seen(carried, n)},
+                                        {b: float("nan"), o: _snr(carried, n)}))
+    return out
+
+
+def _snr(found: dict, key: str) -> float:
+    return float(found[key].snr_db) if key in found else float("nan")
+
+
+def decide(left, right, lag=None, criterion: Criterion = PAPER,
+           lines: list[LineEvidence] | None = None) -> Verdict:
+    """The :class:`.verdict.Verdict` on two :class:`.channel.ChannelResult` (``FC``/``VF``,
+    ``rms``, ``spm_db``, ``lines``), an optional :class:`.lag.LagResult` whose channel ``a`` is
+    ``left``, and the lines' evidence (default :func:`evidence_from_channels`: no timing, so a
+    line seen on both sides is a copy)."""
     ch = {"left": left, "right": right}
     other = {"left": "right", "right": "left"}
+    lines = evidence_from_channels(left, right, criterion.lines) if lines is None else \
+        [ev for ev in lines if ev.line in criterion.lines]
+    src = {}
+    for ev in lines:
+        sides, how = _sources(ev, criterion)
+        src[ev.key] = {"sources": list(sides), "how": how}
     m = vf_difference(left.VF, right.VF, criterion)
     lo, hi = criterion.range
-    m_txt = f"VF difference {_fmt(m)} {criterion.unit}"
-    rng_txt = f"[{_fmt(lo)}, {_fmt(hi)}]"
+    evidence = {
+        "lines": [{**ev.to_dict(), **src[ev.key]} for ev in lines],
+        "vf": {"left": float(left.VF), "right": float(right.VF), "m": m, "range": [lo, hi],
+               "unit": criterion.unit, "in_range": bool(lo <= m <= hi)},
+        "indicators": {c: {s: float(getattr(ch[s], c)) for s in SIDES} for c in criterion.compare},
+        "lag": _lag_evidence(lag, criterion),
+    }
+    owns = {s: [e for e in lines if s in src[e.key]["sources"]] for s in SIDES}
+    copies = [e for e in lines if all(e.seen.values()) and not src[e.key]["sources"]]
+    shows = {s: [e for e in lines if e.seen[s]] for s in SIDES}
 
-    def both(v, why):
-        return {s: (v, why) for s in SIDES}
-    seen = {s: [n for n in criterion.lines if n in ch[s].lines and ch[s].lines[n].detected]
-            for s in SIDES}
-    names = "/".join(criterion.lines)
-    if not seen["left"] and not seen["right"]:
-        return both("healthy", f"no {names} line (fundamental and harmonics over the noise floor) "
-                               f"on either side; {m_txt}")
-    where = " and ".join(f"{s} ({', '.join(seen[s])})" for s in SIDES if seen[s])
-    both_txt = None if shares is None else _both_sides(left, right, shares, criterion)
-    if both_txt is not None:
-        return both("faults on both sides", f"fault lines on {where}: {both_txt}; {m_txt}")
+    def verdict(words, rule, real=None, **more):
+        return Verdict(dict(zip(SIDES, words)), rule, real, {**evidence, **more})
+    if not shows["left"] and not shows["right"]:
+        return verdict(("healthy", "healthy"), "no fault line")
+    if owns["left"] and owns["right"]:
+        strength = {s: max(e.best_snr_db.get(s, e.snr_db[s]) for e in owns[s]) for s in SIDES}
+        evidence["strength_db"] = strength
+        evidence["second_db"] = criterion.second_db
+        if min(strength.values()) >= criterion.second_db:
+            return verdict(("faults on both sides",) * 2, "each side owns a line")
+        s = max(SIDES, key=strength.get)
+        if strength[s] < min(strength.values()) + CLEARER_DB:
+            return verdict(("undecided",) * 2, "both lines faint")
+        return verdict(tuple("real fault" if x == s else "undecided" for x in SIDES),
+                       "second line faint", real=s)
+    for s in SIDES:
+        if owns[s] and not owns[other[s]]:
+            o = other[s]
+            alone = all(src[e.key]["how"] == "one side only" for e in owns[s])
+            if alone and not shows[o]:
+                if evidence["vf"]["m"] < evidence["vf"]["range"][0]:
+                    return verdict(("undecided",) * 2, "one side only, spectra alike")
+                if any(getattr(ch[s], c) <= getattr(ch[o], c) for c in criterion.compare):
+                    return verdict(("undecided",) * 2, "one side only, not the louder")
+            word_o = "pseudo-fault" if shows[o] or evidence["vf"]["in_range"] else "healthy"
+            return verdict(tuple("real fault" if x == s else word_o for x in SIDES),
+                           "one side owns the lines", real=s)
+    return _paper(ch, copies, evidence, criterion, verdict)
+
+
+def _lag_evidence(lag, criterion) -> dict | None:
+    """The lag as the verdict reads it: the leading side where it may be used, else None."""
+    if lag is None:
+        return None
+    method = getattr(lag, "method", "correlation")
+    lead = None
+    if lag.leading in ("a", "b") and (method == "impulses" or lag.peak >= criterion.lag_min_peak):
+        lead = "left" if lag.leading == "a" else "right"
+    return {"leading": lead, "lag_s": float(lag.lag_s), "method": method,
+            "n_impulses": int(getattr(lag, "n_impulses", 0)),
+            "agreement": float(getattr(lag, "agreement", 1.0)), "peak": float(lag.peak)}
+
+
+def _ringing(copies, criterion) -> str | None:
+    """The source of one fault and its copy by where the lines ring (step 5): the side whose
+    line stands higher in at least ``source_ratio`` times as many bands of the grid as the
+    other's (:func:`.pair.band_votes`; a copy is its source through a path that passes some
+    bands and stops others); None where no line tells or the lines disagree."""
+    named = set()
+    for e in copies:
+        v = e.votes
+        if not v:
+            continue
+        hi, lo = sorted(SIDES, key=v.get, reverse=True)
+        if v[hi] >= criterion.source_ratio * max(v[lo], 1) and v[hi] >= 3:
+            named.add(hi)
+    return named.pop() if len(named) == 1 else None
+
+
+def _paper(ch, copies, evidence, criterion, verdict) -> Verdict:
+    """Step 5: one fault and its copy, the source named by where the lines ring, else by the
+    paper's criterion and the lag."""
+    def named(real, rule):
+        return verdict(tuple("real fault" if s == real else "pseudo-fault" for s in SIDES), rule,
+                       real=real)
+    lag = evidence["lag"]
+    if criterion.source == "ringing":
+        lead = lag["leading"] if lag is not None and lag["method"] == "impulses" and \
+            criterion.lag == "decide" else None
+        ring = _ringing(copies, criterion)
+        evidence["ringing"] = ring
+        if lead is not None and ring is not None and lead != ring:
+            return verdict(("undecided",) * 2, "lag and ringing disagree")
+        if lead is not None or ring is not None:
+            return named(lead or ring, "lag" if lead is not None else "ringing")
+    m = evidence["vf"]["m"]
+    lo, hi = evidence["vf"]["range"]
     if m < lo:
-        return both("undecided", f"fault lines on {where}, but the {m_txt} is below the range "
-                                 f"{rng_txt}: no pseudo-fault pattern (a fault not transmitted, or "
-                                 "faults on both sides of unlike size, are outside the paper's "
-                                 "criterion)")
+        return verdict(("undecided",) * 2, "VF below the range")
     if m > hi:
-        return both("undecided", f"{m_txt} is above the range {rng_txt} the criterion was "
-                                 f"found on; fault lines on {where}")
-    larger = {c: ("left" if getattr(left, c) > getattr(right, c) else "right")
+        return verdict(("undecided",) * 2, "VF above the range")
+    larger = {c: ("left" if getattr(ch["left"], c) > getattr(ch["right"], c) else "right")
               for c in criterion.compare}
-    vals = ", ".join(f"{_LABEL[c]} {_fmt(getattr(left, c))} / {_fmt(getattr(right, c))}"
-                     for c in criterion.compare)
-    lead, sure = None, False    # the side the lag names, where it is sure enough to quote
-    if lag is not None and lag.leading in ("a", "b"):
-        sure = getattr(lag, "method", "correlation") == "impulses"
-        if sure or lag.peak >= criterion.lag_min_peak:
-            lead = "left" if lag.leading == "a" else "right"
-            how = (f"{lag.n_impulses} impulses, {100 * lag.agreement:.0f} % of resamples agree"
-                   if sure else f"envelope correlation {lag.peak:.2f}")
-            lag_txt = f"{lead} leads by {lag.lag_s * 1e3:.3g} ms ({how})"
+    evidence["indicators_larger"] = larger
     split = len(set(larger.values())) > 1
     by_indicators = None if split else next(iter(larger.values()))
-    split_txt = "; ".join(f"{_LABEL[c]} larger on {s}" for c, s in larger.items())
-    notes = []
+    lead = None if lag is None else lag["leading"]
+    sure = lag is not None and lag["method"] == "impulses"
+    seen = {s: any(e.seen[s] for e in copies) for s in SIDES}
     if lead is not None and criterion.lag != "off" and seen[lead] and (
             (sure and criterion.lag == "decide") or split):
-        real = lead             # the paper's conclusion (2): the real side's impulses come first
-        if split:
-            notes.append(f"the indicators disagree ({split_txt}); {lag_txt} names the real side")
-        elif by_indicators != real:
-            notes.append(f"{lag_txt} names the real side; "
-                         f"{' and '.join(_LABEL[c] for c in criterion.compare)} point to the other "
-                         "(the transmitted response can be the larger: the paper's conclusion 1)")
-        else:
-            notes.append(f"{lag_txt}; agrees")
+        real, rule = lead, "lag"
     elif split:
-        return both("undecided", f"{m_txt} in {rng_txt} (a pseudo-fault is present), but the "
-                                 f"indicators disagree: {split_txt} (left / right: {vals})")
+        return verdict(("undecided",) * 2, "indicators disagree")
     else:
-        real = by_indicators
-        if lead is not None:
-            agree = lead == real
-            notes.append(f"{lag_txt}; {'agrees' if agree else 'contradicts'}")
-            if not agree and criterion.lag != "off":
-                return both("undecided", f"{m_txt} in {rng_txt} and {vals} (left / right) point "
-                                         f"to {real}, but {notes[-1]}")
-    pseudo = other[real]
+        real, rule = by_indicators, "RMS and SPM"
+        if lead is not None and lead != real and criterion.lag != "off":
+            return verdict(("undecided",) * 2, "lag contradicts")
     if not seen[real]:
-        return both("undecided", f"{m_txt} in {rng_txt} and {vals} (left / right) point to {real}, "
-                                 f"but only {pseudo} shows fault lines")
-    wider = "left" if left.VF > right.VF else "right"
-    notes.append(f"{wider} more dispersed (VF {_fmt(left.VF)} / {_fmt(right.VF)} Hz^2; the paper's "
-                 f"pseudo-fault side is: {'agrees' if wider == pseudo else 'contradicts'})")
-    common = f"{m_txt} in {rng_txt}: a pseudo-fault is present (paper, conclusion 3); " \
-             f"{vals} (left / right); " + "; ".join(notes)
-    own = {real: f"{', '.join(seen[real])} detected",
-           pseudo: f"{', '.join(seen[pseudo])} detected here too" if seen[pseudo]
-           else "no fault line found here"}
-    return {real: ("real fault", f"{own[real]}; {common}"),
-            pseudo: ("pseudo-fault", f"{own[pseudo]}; {common}")}
+        return verdict(("undecided",) * 2, "no line on the source", real=real)
+    return verdict(tuple("real fault" if s == real else "pseudo-fault" for s in SIDES), rule,
+                   real=real)

@@ -56,14 +56,43 @@ def band_grid(fs: float, n: int, min_width_hz: float,
     return out
 
 
-def guided_band(x, fs: float, name: str, f_line: float, *, nperseg: int, n_harmonics: int = 3,
-                slip: float = 0.03, p_fa: float = 1e-3, n_required: int = 2,
-                levels: tuple[int, ...] = (3, 4, 5, 6, 7, 8, 9),
-                max_samples: int = 2 ** 19) -> GuidedBand:
-    """The band of the grid (module docstring) where line ``name`` at ``f_line`` Hz stands
-    highest in the envelope spectrum of ``x`` (Welch segments of ``nperseg``); the search uses
-    the first ``max_samples`` samples.  Bands are at least ``2 (n_harmonics + 1) f_line`` wide,
-    so that the envelope carries the harmonics searched."""
+@dataclass(frozen=True)
+class BandScan:
+    """Line ``name`` in every band of the grid: ``bands``, the line's result in each
+    (``lines``), the per-band false-alarm probability ``p_fa`` (``p_fa / n_bands``) and each
+    band's score (detected, harmonics passing, summed SNR)."""
+
+    name: str
+    bands: tuple[tuple[float, float], ...]
+    lines: tuple[faultlines.LineResult, ...]
+    p_fa: float
+
+    def score(self, i: int) -> tuple:
+        r = self.lines[i]
+        snr = [s for *_, s, _t in r.searched if np.isfinite(s)]
+        return (r.detected, len(r.harmonics), sum(snr))
+
+    @property
+    def best(self) -> int:
+        return max(range(len(self.bands)), key=self.score)
+
+    def near_best(self, within_db: float) -> list[int]:
+        """The bands where the line is detected with a fundamental within ``within_db`` of the
+        best detecting band's (best first); empty when no band detects it."""
+        det = [i for i, r in enumerate(self.lines) if r.detected]
+        if not det:
+            return []
+        top = max(self.lines[i].snr_db for i in det)
+        keep = [i for i in det if self.lines[i].snr_db >= top - within_db]
+        return sorted(keep, key=self.score, reverse=True)
+
+
+def band_scan(x, fs: float, name: str, f_line: float, *, nperseg: int, n_harmonics: int = 3,
+              slip: float = 0.03, p_fa: float = 1e-3, n_required: int = 2,
+              levels: tuple[int, ...] = (3, 4, 5, 6, 7, 8, 9), max_samples: int = 2 ** 19,
+              sideband_hz: float | None = None) -> BandScan:
+    """Line ``name`` at ``f_line`` Hz searched in the envelope spectrum of ``x`` in every band of
+    the grid (module docstring; arguments as :func:`guided_band`)."""
     x = _signal(x)[:max_samples]
     fs = check_fs(fs)
     if not (np.isfinite(f_line) and f_line > 0):
@@ -75,14 +104,28 @@ def guided_band(x, fs: float, name: str, f_line: float, *, nperseg: int, n_harmo
     seg = min(int(nperseg), x.size)
     n_avg = faultlines.welch_averages(x.size, seg)
     p = p_fa / len(bands)
-    best = None
+    found = []
     for b in bands:
         f, A = envelope_spectrum(x, fs, b, nperseg=seg)
-        r = faultlines.detect(f, A, {name: f_line}, n_harmonics=n_harmonics, slip=slip, p_fa=p,
-                              n_required=n_required, n_avg=n_avg)[name]
-        snr = [s for *_, s, _t in r.searched if np.isfinite(s)]
-        score = (r.detected, len(r.harmonics), sum(snr))
-        if best is None or score > best[0]:
-            best = (score, b, r)
-    return GuidedBand(band=(float(best[1][0]), float(best[1][1])), n_bands=len(bands), p_fa=p,
-                      line=best[2])
+        found.append(faultlines.detect(
+            f, A, {name: f_line}, n_harmonics=n_harmonics, slip=slip, p_fa=p,
+            n_required=n_required, n_avg=n_avg,
+            sidebands=None if sideband_hz is None else {name: sideband_hz})[name])
+    return BandScan(name, tuple((float(lo), float(hi)) for lo, hi in bands), tuple(found), p)
+
+
+def guided_band(x, fs: float, name: str, f_line: float, *, nperseg: int, n_harmonics: int = 3,
+                slip: float = 0.03, p_fa: float = 1e-3, n_required: int = 2,
+                levels: tuple[int, ...] = (3, 4, 5, 6, 7, 8, 9),
+                max_samples: int = 2 ** 19, sideband_hz: float | None = None) -> GuidedBand:
+    """The band of the grid (module docstring) where line ``name`` at ``f_line`` Hz stands
+    highest in the envelope spectrum of ``x`` (Welch segments of ``nperseg``); the search uses
+    the first ``max_samples`` samples.  Bands are at least ``2 (n_harmonics + 1) f_line`` wide,
+    so that the envelope carries the harmonics searched.  ``sideband_hz``: the offset of the
+    line's sidebands that count as its components (:func:`.faultlines.detect`)."""
+    scan = band_scan(x, fs, name, f_line, nperseg=nperseg, n_harmonics=n_harmonics, slip=slip,
+                     p_fa=p_fa, n_required=n_required, levels=levels, max_samples=max_samples,
+                     sideband_hz=sideband_hz)
+    i = scan.best
+    return GuidedBand(band=scan.bands[i], n_bands=len(scan.bands), p_fa=scan.p_fa,
+                      line=scan.lines[i])

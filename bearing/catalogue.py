@@ -1,0 +1,74 @@
+"""A small catalogue of bearings by name: fault orders and bore, with where they come from.
+
+Each side of a diagnosed pair has its own bearing (the two ends of a machine may differ: the
+CWRU test motor carries an SKF 6205 at its drive end and a 6203 at its fan end), so that a line
+at one bearing's own order can be told from a line carried over from the other bearing.
+
+* ``dtrb``: the metro car's double-row tapered roller bearing of :mod:`.params` (the assumed
+  130 x 230 x 160 mm unit), orders from its geometry by :func:`.frequencies.orders`.
+* ``6205``, ``6203``: the SKF 6205-2RS JEM and 6203-2RS JEM deep-groove ball bearings of the
+  Case Western Reserve University bearing test rig, with the fault orders (multiples of the shaft
+  speed) the CWRU Bearing Data Center publishes for them ("Bearing information" page; also
+  W. A. Smith and R. B. Randall, Mech. Syst. Signal Process. 64-65 (2015) 100-131, Table 2):
+  6205 inner ring 5.4152, outer ring 3.5848, cage 0.39828, rolling element 4.7135; 6203 4.9469,
+  3.0530, 0.3817, 3.9874.  The published "rolling element" order is the ball's defect frequency,
+  twice the ball spin (2 BSF), so ``BSF`` is half of it.  Bores: 25 mm and 17 mm (ISO 15, the
+  6205 and 6203 sizes).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cache
+
+from axlebox._params import ParameterError
+
+from .frequencies import FaultOrders, orders
+from .params import BearingParams
+
+
+@dataclass(frozen=True)
+class Bearing:
+    """A bearing's ``name``, fault ``orders`` (multiples of the shaft frequency), ``bore`` (m,
+    for the SPM level, Eq. 17) and the ``source`` of those numbers."""
+
+    name: str
+    orders: FaultOrders
+    bore: float
+    source: str
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "orders": {**vars(self.orders), "2BSF": 2 * self.orders.BSF},
+                "bore_m": self.bore, "source": self.source}
+
+
+_CWRU = ("CWRU Bearing Data Center, 'Bearing information' (Smith and Randall, MSSP 64-65 (2015), "
+         "Table 2)")
+
+
+@cache
+def catalogue() -> dict[str, Bearing]:
+    """``{name: Bearing}`` of every bearing known by name."""
+    return {
+        "dtrb": Bearing("dtrb", orders(BearingParams()), 0.130,
+                        "axlebox's DTRB (bearing/params.py: Z = 20 a row, the assumed 130 x 230 x "
+                        "160 mm unit), orders from its geometry"),
+        "6205": Bearing("6205", FaultOrders(FTF=0.39828, BPFO=3.5848, BPFI=5.4152,
+                                            BSF=4.7135 / 2), 0.025, "SKF 6205-2RS JEM, " + _CWRU),
+        "6203": Bearing("6203", FaultOrders(FTF=0.3817, BPFO=3.0530, BPFI=4.9469,
+                                            BSF=3.9874 / 2), 0.017, "SKF 6203-2RS JEM, " + _CWRU),
+    }
+
+
+def lookup(name: str, field: str = "bearing") -> Bearing:
+    """The catalogue's bearing ``name`` (case-insensitive), or a ParameterError naming ``field``."""
+    known = catalogue()
+    key = str(name).strip().lower()
+    if key not in known:
+        raise ParameterError(f"{field} {name!r} is not allowed: expected one of "
+                             + ", ".join(sorted(known)))
+    return known[key]
+
+
+def custom(orders_: FaultOrders, bore: float, name: str = "custom") -> Bearing:
+    """A bearing given by its orders and bore (``--orders``/``--bore``)."""
+    return Bearing(name, orders_, float(bore), "given by the user")

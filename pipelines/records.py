@@ -1,0 +1,134 @@
+"""Diagnose a manifest of labelled two-channel recordings and score the verdicts against their
+ground truth: one confusion table per fault kind, for the faulty end and for the healthy end.
+
+The manifest is a CSV with one record a row: ``file`` (beside the manifest), ``faulty_end`` and
+``healthy_end`` (the ends' names, e.g. DE and FE), ``fault`` (its kind: outer race, inner race,
+ball ...), ``rpm`` (the shaft speed), ``fs_hz``, and a channel column per end,
+``<end>_channel`` with the end spelled as in :data:`END_COLUMNS` (``drive_end_channel``,
+``fan_end_channel``).  Each end's bearing is given by name (:mod:`axlebox.bearing.catalogue`),
+or by an optional column ``<end>_bearing``.  The first end of :data:`END_COLUMNS` is the left
+channel.
+
+Every record is read and diagnosed as ``axlebox diagnose`` does (:func:`.diagnose.analyse_file`,
+each end with its own bearing); the verdict words of each end are counted under its role
+(faulty or healthy) and the record's fault kind.
+"""
+from __future__ import annotations
+
+import csv
+from collections import Counter
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from axlebox._params import ParameterError
+from axlebox.bearing.diagnostics.verdict import VERDICTS
+
+from .diagnose import analyse_file
+
+END_COLUMNS = {"DE": "drive_end", "FE": "fan_end"}
+WORDS = ("real fault", "faults on both sides", "pseudo-fault", "healthy", "undecided")
+REQUIRED = ("file", "faulty_end", "healthy_end", "fault", "rpm", "fs_hz")
+
+
+@dataclass
+class Scored:
+    """One record: its manifest row, each end's verdict word and the rule that decided."""
+
+    row: dict
+    words: dict
+    rule: str
+    sentences: dict = field(default_factory=dict)
+
+    @property
+    def faulty(self) -> str:
+        return self.words[self.row["faulty_end"]]
+
+    @property
+    def healthy(self) -> str:
+        return self.words[self.row["healthy_end"]]
+
+
+@dataclass
+class Score:
+    """All records' verdicts and the confusion tables: ``tables[role][fault][word]`` counts."""
+
+    records: list[Scored]
+
+    @property
+    def tables(self) -> dict:
+        out = {"faulty": {}, "healthy": {}}
+        for r in self.records:
+            for role, word in (("faulty", r.faulty), ("healthy", r.healthy)):
+                out[role].setdefault(r.row["fault"], Counter())[word] += 1
+        return out
+
+    def count(self, role: str, words, fault: str | None = None) -> int:
+        """How many ends of ``role`` (of ``fault``, default every kind) got one of ``words``."""
+        words = (words,) if isinstance(words, str) else tuple(words)
+        return sum(c[w] for f, c in self.tables[role].items() if fault in (None, f) for w in words)
+
+    def markdown(self) -> str:
+        """Both confusion tables and one line a record, as Markdown."""
+        out = []
+        for role in ("faulty", "healthy"):
+            out += [f"{role} end | " + " | ".join(WORDS) + " | records",
+                    "--- | " + " | ".join("---" for _ in WORDS) + " | ---"]
+            for fault, c in sorted(self.tables[role].items()):
+                out.append(f"{fault} | " + " | ".join(str(c[w]) for w in WORDS)
+                           + f" | {sum(c.values())}")
+            out.append("")
+        out += ["| file | faulty end | fault | faulty end called | healthy end called | rule |",
+                "| --- | --- | --- | --- | --- | --- |"]
+        for r in self.records:
+            out.append(f"| {r.row['file']} | {r.row['faulty_end']} | {r.row['fault']} | {r.faulty} "
+                       f"| {r.healthy} | {r.rule} |")
+        return "\n".join(out)
+
+
+def read_manifest(path) -> list[dict]:
+    """The manifest's rows, every required column present (a ParameterError names the first
+    missing one)."""
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"manifest {str(path)!r} does not exist")
+    with open(path, newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    if not rows:
+        raise ParameterError(f"manifest {str(path)!r} has no records")
+    for i, r in enumerate(rows, 2):
+        for col in REQUIRED + tuple(f"{c}_channel" for c in END_COLUMNS.values()):
+            if not (r.get(col) or "").strip():
+                raise ParameterError(f"manifest {path.name} line {i}: column {col!r} is missing or "
+                                     "empty")
+        for end in ("faulty_end", "healthy_end"):
+            if r[end] not in END_COLUMNS:
+                raise ParameterError(f"manifest {path.name} line {i}: {end} = {r[end]!r} is not "
+                                     f"allowed: expected one of {', '.join(END_COLUMNS)}")
+    return rows
+
+
+def score(manifest, bearings: dict, *, scale: float = 1.0, criterion=None,
+          log=print) -> Score:
+    """Diagnose every record of ``manifest`` (each end's bearing from ``bearings``, end ->
+    catalogue name, unless the row names it; ``scale`` multiplies the samples, e.g. 9.80665 for
+    records in g) and count the verdicts."""
+    from axlebox.bearing.diagnostics.criterion import Criterion
+    criterion = Criterion(mode="relative") if criterion is None else criterion
+    path = Path(manifest)
+    ends = list(END_COLUMNS)            # the first end is the left channel
+    out = []
+    for row in read_manifest(path):
+        bear = {e: (row.get(f"{END_COLUMNS[e]}_bearing") or bearings[e]).strip() for e in ends}
+        _, _, pair = analyse_file(
+            path.parent / row["file"], left=row[f"{END_COLUMNS[ends[0]]}_channel"],
+            right=row[f"{END_COLUMNS[ends[1]]}_channel"], fs=float(row["fs_hz"]),
+            rpm=float(row["rpm"]), scale=scale, criterion=criterion,
+            bearing_left=bear[ends[0]], bearing_right=bear[ends[1]])
+        v = pair.verdict
+        words = {ends[0]: v.words["left"], ends[1]: v.words["right"]}
+        assert all(w in VERDICTS for w in words.values())
+        out.append(Scored(row, words, v.rule,
+                          {ends[0]: v["left"][1], ends[1]: v["right"][1]}))
+        log(f"{row['file']}: {row['fault']} at {row['faulty_end']}: {ends[0]} {words[ends[0]]}, "
+            f"{ends[1]} {words[ends[1]]} ({v.rule})")
+    return Score(out)
