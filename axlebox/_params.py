@@ -38,6 +38,23 @@ def check_ranges(obj) -> None:
                 f"expected a number in [{lo:g}, {hi:g}] {unit}".rstrip())
 
 
+def from_table(cls, fields, where: str, **objects):
+    """``cls(**fields, **objects)`` from a config table ``[where]``: a table that is not one, an
+    unknown key or a value the dataclass refuses is a :class:`ParameterError` naming
+    ``where.key``, the value and what is allowed (never a TypeError from the constructor)."""
+    if not isinstance(fields, dict):
+        raise ParameterError(f"{where} = {fields!r} is not allowed: expected a [{where}] table")
+    known = [f.name for f in dataclasses.fields(cls) if f.name not in objects]
+    for k in fields:
+        if k not in known:
+            raise ParameterError(f"{where}.{k} is not a field of [{where}]: expected one of "
+                                 f"{', '.join(known)}")
+    try:
+        return cls(**fields, **objects)
+    except TypeError as err:
+        raise ParameterError(f"[{where}] {fields!r} is not allowed: {err}") from None
+
+
 def number(name: str, value) -> float:
     """``value`` (text or a number) as a float, or a ParameterError naming ``name``."""
     try:

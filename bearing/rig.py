@@ -27,7 +27,7 @@ import numpy as np
 import tomli_w
 from scipy.signal import resample_poly
 
-from axlebox._params import ParameterError, check_ranges, param, require
+from axlebox._params import ParameterError, check_ranges, from_table, param, require
 
 from . import defects as _defects
 from . import resultfile
@@ -188,19 +188,6 @@ def config_from_dict(d: dict) -> RigConfig:
     """A :class:`RigConfig` from a parsed rig TOML (the layout :meth:`RigConfig.to_toml`
     writes); unknown sections and fields are named."""
 
-    def build(cls, fields, where, **objects):
-        if not isinstance(fields, dict):
-            raise ParameterError(f"{where} = {fields!r} is not allowed: expected a [{where}] table")
-        known = [f.name for f in dataclasses.fields(cls) if f.name not in objects]
-        for k in fields:
-            if k not in known:
-                raise ParameterError(f"{where}.{k} is not a field of [{where}]: expected one of "
-                                     f"{', '.join(known)}")
-        try:
-            return cls(**fields, **objects)
-        except TypeError as err:
-            raise ParameterError(f"[{where}] {fields!r} is not allowed: {err}") from None
-
     for sec in d:
         if sec not in RIG_SECTIONS:
             raise ParameterError(f"[{sec}] is not a section of a rig config: expected one of "
@@ -208,9 +195,9 @@ def config_from_dict(d: dict) -> RigConfig:
     defects = d.get("defects", [])
     if not isinstance(defects, list):
         raise ParameterError(f"defects = {defects!r} is not allowed: expected [[defects]] tables")
-    return build(RigConfig, d.get("rig", {}), "rig",
-                 bearing=build(BearingParams, d.get("bearing", {}), "bearing"),
-                 defects=tuple(build(_defects.Defect, e, "defects") for e in defects))
+    return from_table(RigConfig, d.get("rig", {}), "rig",
+                      bearing=from_table(BearingParams, d.get("bearing", {}), "bearing"),
+                      defects=tuple(from_table(_defects.Defect, e, "defects") for e in defects))
 
 
 def load(path) -> RigResult:

@@ -13,7 +13,7 @@ import tomllib
 from pathlib import Path
 
 from axlebox.bearing.integrate import DT_MAX
-from axlebox._params import ParameterError
+from axlebox._params import ParameterError, from_table
 from axlebox.mbs.integrate import METHODS
 
 BODY_NAMES = (["carbody", "frame1", "frame2"] + [f"ws{i}" for i in range(1, 5)]
@@ -92,9 +92,7 @@ def defaults() -> dict:
 
 def _bearing(fields) -> dict:
     from axlebox.bearing.params import BearingParams
-    if not isinstance(fields, dict):
-        raise ParameterError(f"bearing = {fields!r} is not allowed: expected a [bearing] table")
-    BearingParams(**fields)                 # names the field and the allowed range
+    from_table(BearingParams, fields, "bearing")     # names the field and what is allowed
     return dict(fields)
 
 

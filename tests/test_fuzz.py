@@ -104,18 +104,57 @@ def mutate(base: dict, data, sections: dict) -> tuple[dict, tuple[str, ...]]:
 @SETTINGS
 @given(st.data())
 def test_vehicle_config(data):
+    import dataclasses
+
+    from axlebox.bearing.params import BearingParams
     from axlebox.mbs.config import SCHEMA, validate
     base = {"defects": {"wheelset": 2, "side": "R", "W": 2e-3}, "joint": {"model": "dtrb"},
             "integrator": {"method": "imex", "dt": 5e-6}}
     validate({**base, "defects": [base["defects"]]})             # the base runs
-    sections = {**{k: v for k, v in SCHEMA.items()}, "defects": {"W": 0, "L": 0, "H": 0, "row": 0,
-                                                                  "side": 0, "wheelset": 0,
-                                                                  "kind": 0, "roller": 0,
-                                                                  "angle_deg": 0}}
+    sections = {**{k: v for k, v in SCHEMA.items()},
+                "bearing": {f.name: 0 for f in dataclasses.fields(BearingParams)},
+                "defects": {"W": 0, "L": 0, "H": 0, "row": 0, "side": 0, "wheelset": 0,
+                            "kind": 0, "roller": 0, "angle_deg": 0}}
     d, names = mutate(base, data, sections)
     if "defects" in d and isinstance(d["defects"], dict):        # the defect table's entries
         d["defects"] = [d["defects"]]
     refused_or_ran("vehicle config", validate, d, names=names)
+
+
+def _every_section():
+    from axlebox.mbs.config import SCHEMA
+    return sorted(SCHEMA) + ["bearing", "defects"]
+
+
+@pytest.mark.parametrize("sec", _every_section())
+def test_vehicle_config_unknown_key_in_every_section(sec):
+    """An unknown key in any section (``[bearing] model = 3`` once ended in a TypeError) is one
+    line naming ``section.key`` and the fields allowed."""
+    from axlebox.mbs.config import validate
+    base = {"joint": {"model": "dtrb"}, "integrator": {"method": "imex", "dt": 5e-6},
+            "defects": [{"wheelset": 2, "side": "R", "W": 2e-3}]}
+    d = {k: ([dict(v[0])] if isinstance(v, list) else dict(v)) for k, v in base.items()}
+    if sec == "defects":
+        d["defects"][0]["model"] = 3
+        where = "defects[0].model"
+    else:
+        d.setdefault(sec, {})["model_zz"] = 3
+        where = f"{sec}.model_zz"
+    with pytest.raises(ParameterError) as err:
+        validate(d)
+    msg = str(err.value)
+    assert where in msg and "expected one of" in msg and "\n" not in msg, msg
+
+
+@pytest.mark.parametrize("sec", ["rig", "bearing", "defects"])
+def test_rig_config_unknown_key_in_every_section(sec):
+    from axlebox.bearing.rig import config_from_dict
+    d = {"rig": {"duration": 0.01}, "bearing": {}, "defects": [{"W": 1e-3}]}
+    (d["defects"][0] if sec == "defects" else d[sec])["model_zz"] = 3
+    with pytest.raises(ParameterError) as err:
+        config_from_dict(d)
+    msg = str(err.value)
+    assert f"{sec}.model_zz" in msg and "expected one of" in msg and "\n" not in msg, msg
 
 
 # -------------------------------------------------------------------------------- rig config
