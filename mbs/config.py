@@ -239,14 +239,19 @@ def validate(user: dict) -> dict:
     return cfg
 
 
+def loads(text: str, where: str = "config text") -> tuple[dict, str]:
+    """Validate a config given as TOML text (``where`` names it in a refusal); returns the
+    config and the text."""
+    try:
+        user = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise ParameterError(f"{where} is not valid TOML: {err}") from None
+    return validate(user), text
+
+
 def load(path) -> tuple[dict, str]:
     """Read and validate a config file; returns the config and its text."""
     path = Path(path)
     if not path.is_file():
         raise ParameterError(f"config = {str(path)!r} is not allowed: no such file")
-    text = path.read_text()
-    try:
-        user = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise ParameterError(f"config {str(path)!r} is not valid TOML: {err}") from None
-    return validate(user), text
+    return loads(path.read_text(), f"config {str(path)!r}")

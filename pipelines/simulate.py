@@ -15,6 +15,7 @@ import math
 import sys
 import time
 import tomllib
+from dataclasses import dataclass
 from pathlib import Path
 
 import h5py
@@ -165,13 +166,26 @@ def write(path, run: integrate.Run, model, cfg_text: str, seed: int,
                                    "bodies": ",".join(b.name for b in model.bodies)})
 
 
+@dataclass(frozen=True)
+class Config:
+    """A car's config in memory, as :func:`run` takes it instead of a file: its TOML ``text``
+    (what the result file stores) and ``name`` (what a refusal calls it)."""
+    text: str
+    name: str = "config text"
+
+
 def load_config(config_path, duration: float | None = None, overrides: dict | None = None):
     """``(cfg, text)``: the validated config and the TOML text of what will run (the file's own
     text, or, with ``duration`` or ``overrides`` (section -> {field: value}), the merged
     config written out again, so that a result file's config is exactly its run's).
-    ``config_path`` is a TOML file or the name of a shipped config (:mod:`axlebox.configs`)."""
-    config_path = configs.resolve(config_path)
-    cfg, text = vconfig.load(config_path)
+    ``config_path`` is a TOML file, the name of a shipped config (:mod:`axlebox.configs`) or a
+    :class:`Config`."""
+    if isinstance(config_path, Config):
+        cfg, text = vconfig.loads(config_path.text, config_path.name)
+        config_path = Path(config_path.name)
+    else:
+        config_path = configs.resolve(config_path)
+        cfg, text = vconfig.load(config_path)
     if duration is None and not overrides:
         return cfg, text
     user = tomllib.loads(text)
@@ -236,7 +250,8 @@ def write_checkpoint(path: Path, text: str, snap: dict) -> None:
 def run(config_path, out, duration: float | None = None, log=print,
         overrides: dict | None = None, checkpoint_every: float | None = None,
         restart: bool = False) -> integrate.Run:
-    """The whole command.  ``checkpoint_every`` (simulated s, 0: none; None: 1 s, or a twentieth
+    """The whole command; ``config_path``: a file, a shipped config's name or a :class:`Config`
+    (in memory: the sweep's cases).  ``checkpoint_every`` (simulated s, 0: none; None: 1 s, or a twentieth
     of the run when longer, since each snapshot rewrites the outputs so far and a snapshot every
     second would make a long run's writing grow with its square): snapshots to
     ``<out>.partial.h5``; a rerun of the same config resumes from it and gives the same file

@@ -40,7 +40,7 @@ from pathlib import Path
 import tomli_w
 
 from axlebox import configs
-from axlebox._files import is_locked, locked, replaced
+from axlebox._files import is_locked, locked
 from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
 
@@ -223,12 +223,9 @@ def run_case(kind: str, toml_text: str, out: str, threads: int = 0) -> dict:
             from axlebox.bearing.rig import config_from_dict, simulate
             simulate(config_from_dict(tomllib.loads(toml_text)), out=out)     # through a temporary name
         else:
-            from .simulate import run
-            cfg_path = out.with_suffix(".toml")       # the vehicle runner reads a file: the case's
-            with replaced(cfg_path) as tmp:
-                tmp.write_text(toml_text)
+            from .simulate import Config, run
             with contextlib.redirect_stderr(io.StringIO()):
-                res = run(cfg_path, out, log=lambda *a: None)
+                res = run(Config(toml_text, out.stem), out, log=lambda *a: None)
             if not res.ok:
                 raise RuntimeError(f"{res.message}; what was computed is in {out}")
     return {"path": str(out), "wall_s": time.perf_counter() - t0, "computed": True}

@@ -36,6 +36,7 @@ def runs(tmp_path_factory):
     (out / "unequal" / "v80_w2.h5").rename(out / "v80_unequal.h5")
     names = {"v80_w2_LR", "v80_w2_R", "v80_w0", "v80_unequal"}
     assert {p.stem for p in out.glob("*.h5")} == names
+    assert not list(out.rglob("*.toml"))          # the cases ran from memory (simulate.Config)
     return out
 
 

@@ -13,6 +13,7 @@ import pytest
 from axlebox.bearing import resultfile
 from axlebox.pipelines import cli
 from axlebox.pipelines.sweep import is_finished, load_config, matrix, run_case, run_cases, sweep
+from axlebox._params import ParameterError
 
 from conftest import full_size
 
@@ -214,6 +215,23 @@ def test_two_local_workers_run_four_cases_at_least_1_6_times_faster(tmp_path):
         if ratios[-1] >= 1.6:
             break
     assert max(ratios) >= 1.6, ratios
+
+
+def test_a_car_config_in_memory_is_validated_as_a_file_is():
+    """The sweep runs a car case from its text (``simulate.Config``), no file written: the text
+    is what runs and what the result stores; a bad one is refused naming the case."""
+    from axlebox.pipelines.simulate import Config
+    from axlebox.pipelines.simulate import load_config as car_config
+    text = "[run]\nduration = 0.5\nspeed_kmh = 60.0\n"
+    cfg, got = car_config(Config(text, "v60_w0"))
+    assert got == text and cfg["run"]["speed_kmh"] == 60.0 and cfg["run"]["duration"] == 0.5
+    _, over = car_config(Config(text, "v60_w0"), duration=1.0)
+    assert over.startswith("# v60_w0, as run") and "duration = 1.0" in over
+    for bad, words in (("[run]\nduration = -1\n", ["run.duration", "-1"]),
+                       ("[run\n", ["v60_w0", "not valid TOML"])):
+        with pytest.raises(ParameterError) as err:
+            car_config(Config(bad, "v60_w0"))
+        assert all(w in str(err.value) for w in words) and "\n" not in str(err.value), err.value
 
 
 def test_kinds_and_sides_make_their_cases():
