@@ -1,9 +1,10 @@
 """How the cost grows, so that a user can plan a study: wall time and peak memory of one DTRB on
 the rig (RK4 and the leapfrog), one wheelset with its two DTRBs in the car
 (``joint.wheelsets = [2]``), the car without bearings, and the car with its eight, for 1, 2, 4
-and 8 simulated seconds.
+and 8 simulated seconds, and the car as ``axlebox simulate`` runs it (outputs streamed to disk,
+the acquisition chain, the result file) for 1 and 4.
 
-    python3 benchmarks/growth.py [--durations 1 2 4 8] [--bodies DIR]
+    python3 benchmarks/growth.py [--durations 1 2 4 8] [--streamed 1 4] [--only-car] [--bodies DIR]
 
 Every case runs in a fresh process (peak memory is a process's own): the shipped configs
 (configs/validation_48kmh.toml with its integrator for the coupled cases, configs/vehicle.toml
@@ -23,7 +24,8 @@ import sys
 import time
 
 CASES = ("rig: one DTRB", "car: wheelset 2 on two DTRBs", "car: no bearings (row bushings)",
-         "car: eight DTRBs", "rig: one DTRB, leapfrog")
+         "car: eight DTRBs", "rig: one DTRB, leapfrog",
+         "car: eight DTRBs, axlebox simulate (streamed)")
 
 
 def one(case: str, duration: float, bodies: str) -> dict:
@@ -49,8 +51,17 @@ def one(case: str, duration: float, bodies: str) -> dict:
             name = "vehicle"
             over["bodies"]["flexible"] = ["frame1", "ws1", "ws2", "ab1L", "ab1R", "ab2L", "ab2R"]
         cfg, _ = psim.load_config(configs.path(name), overrides=over)
-        model, y0 = psim.build_model(cfg, log=lambda *_: None)
         s = psim.settings(cfg)
+        if case == CASES[5]:              # the command: outputs streamed, acquisition, file
+            import tempfile
+            with tempfile.TemporaryDirectory() as tmp:
+                run = psim.run(configs.path(name), f"{tmp}/run.h5", duration=duration,
+                               overrides=over, log=lambda *_: None)
+            return {"case": case, "duration": duration, "run_s": run.wall_s,
+                    "steps": f"{s.method} {s.dt:g}", "states": None,
+                    "process_s": time.perf_counter() - t0,
+                    "peak_MB": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}
+        model, y0 = psim.build_model(cfg, log=lambda *_: None)
         run = integrate.simulate(model, duration, s, y0=y0)
         if not run.ok:
             raise SystemExit(f"{case}: {run.message}")
@@ -64,13 +75,17 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--durations", type=float, nargs="+", default=[1.0, 2.0, 4.0, 8.0],
                     help="simulated seconds of the eight-DTRB car")
+    ap.add_argument("--streamed", type=float, nargs="*", default=[1.0, 4.0],
+                    help="simulated seconds of the car run as `axlebox simulate` runs it (streamed)")
+    ap.add_argument("--only-car", action="store_true", help="leave out the rig and the partial cars")
     ap.add_argument("--bodies", default="", help="reduced-body folder (default: built into the cache)")
     ap.add_argument("--one", nargs=2, metavar=("CASE", "DURATION"), help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.one:
         print(json.dumps(one(CASES[int(a.one[0])], float(a.one[1]), a.bodies)))
         return
-    todo = [(0, 1.0), (4, 1.0), (1, 1.0), (2, 1.0)] + [(3, d) for d in a.durations]
+    todo = ([] if a.only_car else [(0, 1.0), (4, 1.0), (1, 1.0), (2, 1.0)]) + \
+        [(3, d) for d in a.durations] + [(5, d) for d in a.streamed]
     print("| case | integrator, dt s | states | simulated s | run wall s | wall s per simulated s | "
           "process wall s | peak memory MB |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")

@@ -96,7 +96,8 @@ OUTPUTS = ("out_t", "out_sens", "out_wh", "out_el", "out_y")       # what a chec
 
 def simulate(model: Model, duration: float, settings: Settings | None = None, *, y0=None,
              t0: float = 0.0, chunk: float = 0.25, progress=None, continued: bool = False,
-             checkpoint=None, checkpoint_every: float = 0.0, resume: dict | None = None) -> Run:
+             checkpoint=None, checkpoint_every: float = 0.0, resume: dict | None = None,
+             sink=None) -> Run:
     """Integrate ``model`` for ``duration`` s from ``y0`` (default: the model's initial state).
 
     ``continued``: ``y0`` is the ``y_end`` of an earlier leapfrog run with the same step, whose
@@ -106,7 +107,14 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
     where a chunk ends moves the last bits of the step times), with ``{"k": outputs done, "y":
     the state, "wall_s", and the output arrays OUTPUTS up to k}``; ``resume``: such a
     snapshot, from which the run goes on as the uninterrupted one would (the same steps at the
-    same times: bit for bit)."""
+    same times: bit for bit).
+
+    ``sink(k0, arrays)``: the outputs streamed instead of kept (memory flat in the run's
+    length): called after every chunk with its first output ``k0`` and the arrays OUTPUTS of its
+    outputs (``out_y``: the state snapshots among them, those of ``k % state_every == 0``), in
+    order, the same values as the kept run's; the returned run's output arrays are then empty,
+    and the snapshots ``checkpoint`` gets and ``resume`` takes hold only ``k``, ``y`` and
+    ``wall_s``."""
     s = settings or Settings()
     if not (math.isfinite(duration) and duration > 0):
         raise ParameterError(f"duration = {duration!r} is not allowed: expected a time > 0 s")
@@ -124,12 +132,14 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
             br_P[:, H_K] = NEWMARK_K * h
             S = S[:17] + (br_P,) + S[18:]
     nw, ne = len(model.wheel_names), model.S[7].shape[0]
-    out_t = np.zeros(n_out)
-    out_sens = np.zeros((n_out, W[15].shape[0], 3))
-    out_wh = np.zeros((n_out, W[14].shape[0], W[14].shape[1]))
-    out_el = np.zeros((n_out, W[13].shape[0], 6))
     se = s.state_every
-    out_y = np.zeros(((n_out - 1) // se + 1, y.size))
+    per = max(1, int(round(chunk * s.output_rate_hz)))
+    rows = n_out if sink is None else min(per, n_out)        # the whole run, or one chunk
+    out_t = np.zeros(rows)
+    out_sens = np.zeros((rows, W[15].shape[0], 3))
+    out_wh = np.zeros((rows, W[14].shape[0], W[14].shape[1]))
+    out_el = np.zeros((rows, W[13].shape[0], 6))
+    out_y = np.zeros(((rows - 1) // se + 1 + (sink is not None), y.size))
     stats = np.zeros(5, np.int64)
     nbr = len(model.bearing_names)
     nend = model.n_body_states
@@ -140,49 +150,64 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
     if s.method == "galpha":
         pattern, groups, n_groups = model.coupling_pattern()
         scale, atol = model.state_scales()
-    per = max(1, int(round(chunk * s.output_rate_hz)))
     outs = {"out_t": out_t, "out_sens": out_sens, "out_wh": out_wh, "out_el": out_el, "out_y": out_y}
     k, status, bad, wall_before = 0, ki.OK, -1, 0.0
     if resume is not None:
         k = int(resume["k"])
         y[:] = resume["y"]
-        for name, arr in outs.items():
-            n = resume[name].shape[0]
-            arr[:n] = resume[name]
+        if sink is None:
+            for name, arr in outs.items():
+                n = resume[name].shape[0]
+                arr[:n] = resume[name]
         wall_before = float(resume.get("wall_s", 0.0))
+
+    def first_state(k):                 # the index of the first snapshot at or after output k
+        return (k + se - 1) // se
+
+    def flush(k0, k1):                  # the chunk's outputs k0 .. k1 - 1 to the sink
+        if sink is not None and k1 > k0:
+            sink(k0, {"out_t": out_t[:k1 - k0], "out_sens": out_sens[:k1 - k0],
+                      "out_wh": out_wh[:k1 - k0], "out_el": out_el[:k1 - k0],
+                      "out_y": out_y[:first_state(k1) - first_state(k0)]})
     wall0 = time.perf_counter()
     k_saved = k
     while k < n_out:
         k1 = min(n_out, k + per)
         tk = t0 + k * s.n_sub * h
+        base = 0 if sink is None else k
         try:
             if s.method in ("rk4", "leapfrog", "imex", "imex2"):
                 status, k_done, bad = ki.run_explicit(s.method != "rk4", y, tk, h, s.n_sub, k1, k,
                                                       n_out - 1, S, W, model.nq, nend, s.vmax,
                                                       out_t, out_sens, out_wh, out_el, out_y, se,
-                                                      k == 0 and not continued)
+                                                      k == 0 and not continued, base)
             else:
                 status, k_done, bad = ki.run_galpha(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S,
                                                     W, model.nq, nend, s.vmax, out_t, out_sens,
                                                     out_wh, out_el, out_y, se, s.rho_inf, groups,
                                                     n_groups, pattern, scale, atol, s.rtol,
-                                                    s.max_iter, stats)
+                                                    s.max_iter, stats, base)
         except (ZeroDivisionError, FloatingPointError):
             # a state blown up between two outputs can meet a division by zero in a kernel
             # before the output's finiteness check: the same divergence, caught a little later
             status, k_done, bad = ki.NOT_FINITE, k, -1
         if status != ki.OK:
+            # the output that showed the divergence is kept too (as the kept run's n_keep)
+            flush(k, min(n_out, k_done + (1 if status in (ki.NOT_FINITE, ki.RUNAWAY) else 0)))
             k = k_done
             break
+        flush(k, k1)
         k = k1
         if progress is not None:
-            progress(out_t[k - 1] - t0, duration)
+            progress((k - 1) * s.n_sub * h, duration)
         due = (k - k_saved) >= checkpoint_every * s.output_rate_hz - 0.5
         if checkpoint is not None and k < n_out and due:
-            ks = (k - 1) // se + 1
-            checkpoint({"k": k, "y": y, "wall_s": wall_before + time.perf_counter() - wall0,
-                        "out_t": out_t[:k], "out_sens": out_sens[:k], "out_wh": out_wh[:k],
-                        "out_el": out_el[:k], "out_y": out_y[:ks]})
+            snap = {"k": k, "y": y, "wall_s": wall_before + time.perf_counter() - wall0}
+            if sink is None:
+                ks = (k - 1) // se + 1
+                snap.update({"out_t": out_t[:k], "out_sens": out_sens[:k], "out_wh": out_wh[:k],
+                             "out_el": out_el[:k], "out_y": out_y[:ks]})
+            checkpoint(snap)
             k_saved = k
     wall = wall_before + time.perf_counter() - wall0
     n_keep = k + (1 if status in (ki.NOT_FINITE, ki.RUNAWAY) else 0)
@@ -199,6 +224,8 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
         else:
             msg = f"the run diverged at t = {tbad:.6f} s: {st} in {where}"
     ks = (n_keep - 1) // se + 1 if n_keep else 0
+    if sink is not None:                # streamed: nothing kept here
+        n_keep = ks = 0
     return Run(time=out_t[:n_keep], sensors={nm: out_sens[:n_keep, i] for i, nm in
                                             enumerate(model.sensor_names)},
                wheels=out_wh[:n_keep, :nw], elements=out_el[:n_keep, :ne],

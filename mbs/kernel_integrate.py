@@ -62,14 +62,16 @@ def _check(y, nq, nend, vmax):
 
 
 @njit(cache=True)
-def _output(k, t, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y, state_every):
-    """Record output ``k`` from the evaluation just made at (t, y); then check the state."""
-    out_t[k] = t
-    out_sens[k] = W[15]
-    out_wh[k] = W[14]
-    out_el[k] = W[13]
+def _output(k, base, t, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y, state_every):
+    """Record output ``k`` from the evaluation just made at (t, y) in row ``k - base`` (the
+    buffers hold outputs ``base ..``: all of the run, or one streamed chunk); then check the
+    state."""
+    out_t[k - base] = t
+    out_sens[k - base] = W[15]
+    out_wh[k - base] = W[14]
+    out_el[k - base] = W[13]
     if k % state_every == 0:
-        out_y[k // state_every] = y
+        out_y[k // state_every - (base + state_every - 1) // state_every] = y
     return _check(y, nq, nend, vmax)
 
 
@@ -124,14 +126,15 @@ def _kick_drift(y, a, hk, h, S, W):
 
 @njit(cache=True)
 def run_explicit(leapfrog, y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t,
-                 out_sens, out_wh, out_el, out_y, state_every, start):
+                 out_sens, out_wh, out_el, out_y, state_every, start, base):
     """Advance ``y`` in place through outputs ``k0 .. n_out - 1`` by RK4 or (``leapfrog``) the
     leapfrog; output ``k`` is at ``t0 + (k - k0) n_sub h``, recorded from the step's first
     evaluation there; no step follows the output ``k_last``.
 
     Leapfrog: with ``start`` the velocities in ``y`` are ``u_0`` and the first kick is by
     ``h / 2``; after that they are ``u_{n-1/2}``, half a step behind the positions, and a run
-    continued from ``y`` (``start`` False) goes on exactly as if it had not stopped."""
+    continued from ``y`` (``start`` False) goes on exactly as if it had not stopped.  ``base``:
+    the output the buffers' first row holds (:func:`_output`)."""
     N = y.shape[0]
     k1 = np.empty(N)
     m = 0 if leapfrog else N                  # RK4's stages
@@ -141,7 +144,7 @@ def run_explicit(leapfrog, y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, v
             t = t0 + ((k - k0) * n_sub + j) * h
             rhs(t, y, k1, S, W)
             if j == 0:
-                st, i = _output(k, t, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y,
+                st, i = _output(k, base, t, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y,
                                 state_every)
                 if st != OK:
                     return st, k, i
@@ -236,7 +239,7 @@ def _ga_newton(t, y, ydn, yd, h, am, af, ga, Minv, S, W, atol, rtol, max_iter, y
 @njit(cache=True)
 def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t, out_sens, out_wh,
                out_el, out_y, state_every, rho_inf, groups, n_groups, pattern, scale, atol, rtol,
-               max_iter, stats):
+               max_iter, stats, base):
     """Generalized-alpha (first order) with modified Newton; ``stats`` gets
     [steps, Newton iterations, Jacobians, RHS evaluations, halved steps].  The Jacobian is kept
     while Newton converges fast and rebuilt when it slows down or fails.  A step that fails with a
@@ -266,7 +269,7 @@ def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t, 
             if j == 0:
                 rhs(t, y, f, S, W)
                 stats[3] += 1
-                st, i = _output(k, t, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y,
+                st, i = _output(k, base, t, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y,
                                 state_every)
                 if st != OK:
                     return st, k, i

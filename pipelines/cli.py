@@ -412,9 +412,9 @@ def parser() -> argparse.ArgumentParser:
                     help="simulated time (default: the config's run.duration)")
     sm.add_argument("--out", required=True, help="result file (.h5)")
     sm.add_argument("--checkpoint-every", type=float, default=None, metavar="S",
-                    help="simulated seconds between checkpoints to OUT.partial.h5 (default: 1, or a "
-                         "twentieth of the run when that is longer, since each checkpoint rewrites the "
-                         "outputs so far; 0: none); the same command run again resumes from the last")
+                    help="simulated seconds between checkpoints of the state to OUT.partial.h5 "
+                         "(default: 1; 0: none; the outputs stream to OUT.stream.h5 meanwhile); the "
+                         "same command run again resumes from the last")
     sm.add_argument("--restart", action="store_true",
                     help="start over, dropping a checkpoint of another config")
     sm.set_defaults(func=_cmd_simulate)

@@ -55,7 +55,8 @@ def results(folder) -> list[Path]:
     if not folder.is_dir():
         raise ParameterError(f"SWEEP_DIR {str(folder)!r} is not a folder: expected the --out folder "
                              "of axlebox sweep")
-    files = sorted(p for p in folder.glob("*.h5") if not p.name.endswith(".partial.h5"))
+    files = sorted(p for p in folder.glob("*.h5")
+                   if not p.name.endswith((".partial.h5", ".stream.h5")))
     if not files:
         raise ParameterError(f"SWEEP_DIR {str(folder)!r} holds no result file (*.h5): expected the "
                              "--out folder of a vehicle sweep")

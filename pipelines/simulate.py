@@ -5,9 +5,10 @@ config makes flexible; wheel-rail tables; track irregularity; the vehicle; stati
 the track as it lies under the wheels at t = 0 (no settling transient); the run; the result
 file (``format = "axlebox-result"``, DESIGN.md), written through a temporary name.  A run that
 diverges still writes what it computed, with ``status`` and ``message`` attributes, and the
-command exits with status 1.  Every ``checkpoint_every`` simulated seconds the run's state and
-outputs so far go to ``<out>.partial.h5`` (through a temporary name); the same command run
-again resumes from it, to the same bits as a run never stopped.
+command exits with status 1.  The outputs stream to ``<out>.stream.h5`` while the run goes
+(:mod:`.stream`: memory flat in the run's length); every ``checkpoint_every`` simulated seconds
+the run's state goes to ``<out>.partial.h5`` (through a temporary name); the same command run
+again resumes from the two, to the same bits as a run never stopped.
 """
 from __future__ import annotations
 
@@ -37,7 +38,7 @@ from axlebox.mbs.wheelrail.geometry import TrackLayout
 from axlebox.mbs.wheelrail.profile import read_profile
 from axlebox.mbs.wheelrail.standard import chn60, s1002, uic60
 
-from . import sensor
+from . import stream
 
 def reduced_bodies(cfg: dict, log=print) -> dict:
     """The reduced bodies the config needs: from ``bodies.dir`` or built (coarse mesh, each kind
@@ -232,41 +233,40 @@ def read_checkpoint(path: Path, text: str) -> dict:
                     f"checkpoint {str(path)!r} was made by another config ({'; '.join(changed[:3])}"
                     f"{' ...' if len(changed) > 3 else ''}): run the same config to resume, or "
                     "--restart to start over")
-            snap = {"k": int(f.attrs["k"]), "wall_s": float(f.attrs["wall_s"]), "y": f["y"][()]}
-            for name in integrate.OUTPUTS:
-                snap[name] = f[name][()]
-            return snap
+            return {"k": int(f.attrs["k"]), "wall_s": float(f.attrs["wall_s"]), "y": f["y"][()]}
     except (OSError, KeyError) as err:
         raise ParameterError(f"checkpoint {str(path)!r} is not readable ({err}): --restart to "
                              "start over") from None
 
 
 def write_checkpoint(path: Path, text: str, snap: dict) -> None:
-    """The snapshot to ``path``, through a temporary name (a kill leaves the last one whole)."""
+    """The snapshot to ``path``, through a temporary name (a kill leaves the last one whole): the
+    config, the outputs done and the state; the outputs themselves are in the stream
+    (:mod:`.stream`)."""
     resultfile.write_checkpoint(path, {"config": text, "k": snap["k"], "wall_s": snap["wall_s"]},
-                                {name: snap[name] for name in ("y", *integrate.OUTPUTS)})
+                                {"y": snap["y"]})
 
 
 def run(config_path, out, duration: float | None = None, log=print,
         overrides: dict | None = None, checkpoint_every: float | None = None,
         restart: bool = False) -> integrate.Run:
     """The whole command; ``config_path``: a file, a shipped config's name or a :class:`Config`
-    (in memory: the sweep's cases).  ``checkpoint_every`` (simulated s, 0: none; None: 1 s, or a twentieth
-    of the run when longer, since each snapshot rewrites the outputs so far and a snapshot every
-    second would make a long run's writing grow with its square): snapshots to
-    ``<out>.partial.h5``; a rerun of the same config resumes from it and gives the same file
-    as an uninterrupted run; another config is refused (exit 2, naming what changed) unless
-    ``restart``."""
+    (in memory: the sweep's cases).  The outputs stream to ``<out>.stream.h5`` while the run
+    goes (memory flat in its length; :mod:`.stream`), the result is made from it at the end.
+    ``checkpoint_every`` (simulated s, 0: none; None: 1 s): snapshots of the state to
+    ``<out>.partial.h5``; a rerun of the same config resumes
+    from it and the stream and gives the same file as an uninterrupted run; another config is
+    refused (exit 2, naming what changed) unless ``restart``."""
     cfg, text = load_config(config_path, duration, overrides)
     out = Path(out)
     if checkpoint_every is None:
-        checkpoint_every = max(1.0, cfg["run"]["duration"] / 20)
+        checkpoint_every = 1.0          # a checkpoint is the state alone: cheap at any length
     if not out.parent.is_dir():
         raise FileNotFoundError(f"--out: folder {str(out.parent)!r} does not exist")
     if not (math.isfinite(checkpoint_every) and checkpoint_every >= 0):
         raise ParameterError(f"--checkpoint-every = {checkpoint_every!r} is not allowed: expected "
                              "a simulated time >= 0 s (0: no checkpoints)")
-    partial = partial_path(out)
+    partial, streamed = partial_path(out), stream.stream_path(out)
     tmp_path(partial).unlink(missing_ok=True)                            # a kill mid-write
     resume = None
     if partial.is_file():
@@ -274,6 +274,9 @@ def run(config_path, out, duration: float | None = None, log=print,
             partial.unlink()
         else:
             resume = read_checkpoint(partial, text)
+            if not streamed.is_file():
+                raise ParameterError(f"checkpoint {str(partial)!r} has no stream {str(streamed)!r} "
+                                     "(made by an earlier version?): --restart to start over")
     s = settings(cfg)
     t0 = time.perf_counter()
     model, y0 = build_model(cfg, log)
@@ -283,16 +286,21 @@ def run(config_path, out, duration: float | None = None, log=print,
 
     def progress(t, T):
         print(f"\rsimulating: {t:6.3f} / {T:g} s", end="", file=sys.stderr, flush=True)
-    res = integrate.simulate(model, cfg["run"]["duration"], s, y0=y0, progress=progress,
-                             checkpoint=lambda snap: write_checkpoint(partial, text, snap),
-                             checkpoint_every=checkpoint_every if checkpoint_every > 0 else math.inf,
-                             resume=resume)
+    sink = stream.Stream(streamed, model, s.state_every, None if resume is None else resume["k"],
+                         every=stream.kept_every(s, cfg["sensors"]))
+    try:
+        res = integrate.simulate(model, cfg["run"]["duration"], s, y0=y0, progress=progress,
+                                 checkpoint=lambda snap: write_checkpoint(partial, text, snap),
+                                 checkpoint_every=checkpoint_every if checkpoint_every > 0 else math.inf,
+                                 resume=resume, sink=sink.append)
+    finally:
+        sink.close()
     print(file=sys.stderr)
-    if cfg["sensors"]["model"] != "ideal":          # what the acquisition records of it
-        res = sensor.decimate_run(res, s.output_rate_hz, cfg["sensors"])
+    res = stream.finish(streamed, res, model, s, cfg["sensors"])   # as the acquisition records it
     ride = comfort.floor_comfort(res.time, res.sensors, model.system.track_ramp)   # fade-in left out
     write(out, res, model, text, cfg["run"]["seed"], ride)
     partial.unlink(missing_ok=True)
+    streamed.unlink(missing_ok=True)
     T = res.time[-1] if res.time.size else 0.0
     log(f"wrote {out}: {T:g} s simulated in {res.wall_s:.1f} s wall ({T / max(res.wall_s, 1e-9):.3f} "
         f"simulated s per wall s)")

@@ -11,7 +11,8 @@ both (each entry once per side: faults on both sides of its wheelset).  Each cas
 ``DIR/v48_w2.h5`` (``.`` -> ``p``; ``DIR/v48_w2_inner_LR.h5`` when kinds and sides are swept)
 with its own config inside, through a temporary name; a rerun
 skips files that open as a result of the same config and removes ``*.tmp`` left by a killed run
-(the checkpoints ``*.partial.h5`` are kept: a killed case resumes from its last one).
+(the checkpoints ``*.partial.h5`` and streamed outputs ``*.stream.h5`` are kept: a killed case
+resumes from its last checkpoint).
 
 What survives what: the sweep holds ``DIR/.sweep.lock`` (a second sweep on DIR is refused, naming
 the first); each case's runner holds ``DIR/.<case>.lock`` while it computes, so a case dask reruns

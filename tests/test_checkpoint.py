@@ -1,7 +1,9 @@
-"""``axlebox simulate`` survives a kill (issue 21, item 1): every ``--checkpoint-every``
-simulated seconds the run's state and outputs go to ``<out>.partial.h5`` through a temporary
-name; the same command run again resumes from it and writes the same arrays as a run never
-stopped; another config is refused, naming what changed, unless ``--restart``.
+"""``axlebox simulate`` survives a kill (issue 21, item 1): the outputs stream to
+``<out>.stream.h5`` while the run goes (issue 32, item 4: memory flat in the run's length),
+every ``--checkpoint-every`` simulated seconds the run's state goes to ``<out>.partial.h5``
+through a temporary name; the same command run again resumes from them and writes the same
+arrays as a run never stopped, which are the arrays of the run kept in memory; another config
+is refused, naming what changed, unless ``--restart``.
 
 The validation case (eight DTRBs), 0.35 s with a checkpoint at 0.25 s (the end of the first
 0.25 s chunk), killed with SIGKILL once the checkpoint is there.
@@ -17,8 +19,10 @@ import h5py
 import numpy as np
 import pytest
 
-from axlebox.pipelines import cli
+from axlebox.mbs import comfort, integrate
+from axlebox.pipelines import cli, sensor
 from axlebox.pipelines import simulate as psim
+from axlebox.pipelines.stream import stream_path
 
 ROOT = Path(__file__).resolve().parents[1]
 ARGS = ["validation_48kmh", "--duration", "0.35", "--checkpoint-every", "0.25"]
@@ -36,6 +40,20 @@ def test_a_killed_run_resumes_to_the_same_arrays(tmp_path, capsys):
     ref = tmp_path / "ref.h5"
     psim.run("validation_48kmh", ref, duration=0.35, checkpoint_every=0.25, log=lambda *_: None)
     assert not psim.partial_path(ref).exists()             # removed once the result is written
+    assert not stream_path(ref).exists()
+
+    # streamed, the result is the run kept in memory's (and the acquisition chain's), bit for bit
+    cfg, text = psim.load_config("validation_48kmh", duration=0.35)
+    model, y0 = psim.build_model(cfg, log=lambda *_: None)
+    s = psim.settings(cfg)
+    kept = sensor.decimate_run(integrate.simulate(model, 0.35, s, y0=y0), s.output_rate_hz,
+                               cfg["sensors"])
+    psim.write(tmp_path / "kept.h5", kept, model, text, cfg["run"]["seed"],
+               comfort.floor_comfort(kept.time, kept.sensors, model.system.track_ramp))
+    a, b = arrays(ref), arrays(tmp_path / "kept.h5")
+    assert a.keys() == b.keys()
+    for k in a:
+        assert np.array_equal(a[k], b[k]), k
 
     out = tmp_path / "run.h5"
     partial = psim.partial_path(out)
@@ -51,7 +69,9 @@ def test_a_killed_run_resumes_to_the_same_arrays(tmp_path, capsys):
         p.wait()
     assert partial.exists() and not out.exists(), "the run ended before its checkpoint"
     with h5py.File(partial, "r") as f:            # the first chunk: 0.25 s at 50 kHz
-        assert int(f.attrs["k"]) == f["out_t"].shape[0] == 12_500
+        assert int(f.attrs["k"]) == 12_500 and "out_t" not in f      # the state, not the outputs
+    with h5py.File(stream_path(out), "r") as f:   # the outputs: those done, perhaps a chunk more
+        assert f["out_t"].shape[0] >= 12_500
 
     # another config: refused in one line naming the field, the checkpoint kept
     capsys.readouterr()                               # (the reference run's progress)
@@ -65,7 +85,7 @@ def test_a_killed_run_resumes_to_the_same_arrays(tmp_path, capsys):
     # the same command: resumes, and the result is the uninterrupted run's, array for array
     assert cli.main(["simulate", *ARGS, "--out", str(out)]) == 0
     assert "resuming at 0.25 s" in capsys.readouterr().out
-    assert not partial.exists()
+    assert not partial.exists() and not stream_path(out).exists()
     a, b = arrays(ref), arrays(out)
     assert a.keys() == b.keys()
     for k in a:

@@ -292,3 +292,39 @@ def test_leapfrog_run_continued_from_its_end_state_goes_on_as_if_unbroken():
     np.testing.assert_array_equal(second.states, whole.states[100:])
     fresh = integrate.simulate(model, 0.1, s, y0=first.y_end, t0=0.1)
     assert not np.array_equal(fresh.y_end, whole.y_end)
+
+
+@pytest.mark.parametrize("method", ["leapfrog", "rk4", "galpha"])
+def test_streamed_outputs_are_the_kept_runs(method):
+    """``sink``: the outputs handed over chunk by chunk, in order, joined, are the kept run's to
+    the last bit (chunks of 0.0123 s = 123 outputs, a snapshot every 7th: neither divides the
+    other), and nothing is kept; a diverging run hands over what it computed, the output that
+    showed the divergence included, as the kept run keeps it."""
+    model = _block_on_spring(4e4, 1.0, 0.01, c=20.0)
+    s = integrate.Settings(method=method, dt=1e-4, output_rate_hz=1e4, state_rate_hz=1e4 / 7)
+    kept = integrate.simulate(model, 0.1, s, chunk=0.0123)
+    got, starts = {}, []
+
+    def sink(k0, arrays):
+        starts.append(k0)
+        for name, a in arrays.items():
+            got.setdefault(name, []).append(a.copy())
+    streamed = integrate.simulate(model, 0.1, s, chunk=0.0123, sink=sink)
+    assert starts == list(range(0, 1001, 123)) and streamed.time.size == 0
+    joined = {name: np.concatenate(parts) for name, parts in got.items()}
+    np.testing.assert_array_equal(joined["out_t"], kept.time)
+    np.testing.assert_array_equal(joined["out_y"], kept.states)
+    np.testing.assert_array_equal(joined["out_el"][:, :1], kept.elements)
+    np.testing.assert_array_equal(streamed.y_end, kept.y_end)
+
+    s = System(gravity=(0, 0, -9.81))          # as test_divergence_names_time_and_body
+    s.add_body(rigid("block", 1.0, (0.01, 0.01, 0.01)), r=(0, 0, 0.0))
+    s.add(Bushing("too stiff", s.marker(None), s.marker("block"), k=(1e12,) * 3 + (0,) * 3))
+    model = s.assemble()
+    st = integrate.Settings(method="rk4", dt=1e-4, output_rate_hz=1e4)
+    kept = integrate.simulate(model, 0.1, st, chunk=0.0005)
+    got = []
+    streamed = integrate.simulate(model, 0.1, st, chunk=0.0005,
+                                  sink=lambda k0, a: got.append(a["out_t"].copy()))
+    assert not kept.ok and streamed.message == kept.message
+    np.testing.assert_array_equal(np.concatenate(got), kept.time)
