@@ -73,7 +73,7 @@ def one(case: str, duration: float, bodies: str) -> dict:
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--durations", type=float, nargs="+", default=[1.0, 2.0, 4.0, 8.0],
+    ap.add_argument("--durations", type=float, nargs="*", default=[1.0, 2.0, 4.0, 8.0],
                     help="simulated seconds of the eight-DTRB car")
     ap.add_argument("--streamed", type=float, nargs="*", default=[1.0, 4.0],
                     help="simulated seconds of the car run as `axlebox simulate` runs it (streamed)")
