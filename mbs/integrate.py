@@ -94,6 +94,15 @@ _STATUS = {ki.NOT_FINITE: "not finite", ki.RUNAWAY: "runaway", ki.NO_CONVERGENCE
 OUTPUTS = ("out_t", "out_sens", "out_wh", "out_el", "out_y")       # what a checkpoint holds, with y
 
 
+def split_outputs(model: Model, out_wh: np.ndarray, out_el: np.ndarray) -> dict:
+    """A run's wheel-rail and element output rows as :class:`Run` holds them: ``wheels``,
+    ``elements`` and ``bearings`` (the element rows after the model's own elements, three a
+    bearing: mbs/kernel_bearings.py BR_ROWS)."""
+    nw, ne, nbr = len(model.wheel_names), model.S[7].shape[0], len(model.bearing_names)
+    return {"wheels": out_wh[:, :nw], "elements": out_el[:, :ne],
+            "bearings": out_el[:, ne:ne + 3 * nbr].reshape(out_el.shape[0], nbr, 3, 6)}
+
+
 def simulate(model: Model, duration: float, settings: Settings | None = None, *, y0=None,
              t0: float = 0.0, chunk: float = 0.25, progress=None, continued: bool = False,
              checkpoint=None, checkpoint_every: float = 0.0, resume: dict | None = None,
@@ -131,7 +140,6 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
             br_P = S[17].copy()           # acceleration on the contacts
             br_P[:, H_K] = NEWMARK_K * h
             S = S[:17] + (br_P,) + S[18:]
-    nw, ne = len(model.wheel_names), model.S[7].shape[0]
     se = s.state_every
     per = max(1, int(round(chunk * s.output_rate_hz)))
     rows = n_out if sink is None else min(per, n_out)        # the whole run, or one chunk
@@ -228,8 +236,7 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
         n_keep = ks = 0
     return Run(time=out_t[:n_keep], sensors={nm: out_sens[:n_keep, i] for i, nm in
                                             enumerate(model.sensor_names)},
-               wheels=out_wh[:n_keep, :nw], elements=out_el[:n_keep, :ne],
-               bearings=out_el[:n_keep, ne:ne + 3 * nbr].reshape(n_keep, nbr, 3, 6),
+               **split_outputs(model, out_wh[:n_keep], out_el[:n_keep]),
                state_time=out_t[:n_keep][::se][:ks], states=out_y[:ks], y_end=y, status=st,
                message=msg, wall_s=wall,
                stats={"steps": int(stats[0]), "newton": int(stats[1]), "jacobians": int(stats[2]),

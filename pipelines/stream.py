@@ -83,8 +83,8 @@ class Stream:
 
     def append(self, k0: int, arrays: dict) -> None:
         """Outputs ``k0 ..`` (the integrator's ``sink``); flushed, so a kill loses at most the
-        chunk being written (cut off on resume: it lies after the last checkpoint)."""
-        self._cut(k0)
+        chunk being written (cut off on resume: it lies after the last checkpoint).  The chunks
+        come in order from where the stream ends (cut to the checkpoint when resumed)."""
         for name, col, n, ds in self._datasets():
             a = arrays[name] if col is None else arrays[name][:, col]
             if name != "out_y":          # out_y holds the chunk's snapshots already
@@ -113,7 +113,6 @@ def finish(path, run: integrate.Run, model, settings: integrate.Settings,
     fs_in = settings.output_rate_hz
     ideal = sensors_cfg["model"] == "ideal"
     k = kept_every(settings, sensors_cfg)
-    nw, ne, nbr = len(model.wheel_names), model.S[7].shape[0], len(model.bearing_names)
     with h5py.File(path, "r") as f:
         t = f["out_t"][()]
         sensors = {}
@@ -122,9 +121,7 @@ def finish(path, run: integrate.Run, model, settings: integrate.Settings,
             sensors[name] = a if ideal else sensor.measure(a, fs_in, sensors_cfg)
         wh, el = f["out_wh"][()], f["out_el"][()]          # kept every k-th already
         states = f["out_y"][()]
-    n = wh.shape[0]
-    return integrate.Run(time=t[::k], sensors=sensors, wheels=wh[:, :nw], elements=el[:, :ne],
-                         bearings=el[:, ne:ne + 3 * nbr].reshape(n, nbr, 3, 6),
+    return integrate.Run(time=t[::k], sensors=sensors, **integrate.split_outputs(model, wh, el),
                          state_time=t[::settings.state_every][:states.shape[0]],
                          states=states, y_end=run.y_end, status=run.status, message=run.message,
                          wall_s=run.wall_s, stats=run.stats)
