@@ -20,7 +20,7 @@ block-arrowhead: each roller's 6 x 6 block is eliminated onto the cage's (a Schu
 the cage's 6 x 6 system solved, and the rollers recovered; every block is symmetric positive
 definite (``M`` > 0, ``C`` >= 0), solved by Cholesky.
 
-``"imex2"`` puts more in ``C``, with the same solve: ``P[H_K] K`` (``H_K = h / 4``, K the
+``"imex2"`` puts more in ``C``, with the same solve: ``h_k K`` (``h_k = h / 4`` times the kick's h, K the
 contacts' stiffness: ``k J^T J`` of a point contact, and of a line contact its exact tangent in
 its approach and tilt, ``kernel.line_stiffness``, with the cross terms a roller touching along
 part of its line has), which turns the kick into Newmark's average acceleration on the contact stiffness
@@ -42,7 +42,7 @@ from numba import njit
 
 from .layout import J_CD, J_CP, J_RA, J_RD, KINEMATIC, M_C, M_R, N_CAGE, N_ROLLER, R_M, RHO, Z
 
-NEWMARK_K = 0.25        # "imex2": H_K = NEWMARK_K h, Newmark's average acceleration (docstring)
+NEWMARK_K = 0.25        # "imex2": h_k = NEWMARK_K h, Newmark's average acceleration (docstring)
 
 
 @njit(inline="always")

@@ -10,16 +10,18 @@ quasi-static solution), so that at rest the bearing alone carries ``F_ext``.
 * :func:`run_leapfrog`: the vehicle's kick-drift leapfrog (mbs/kernel_integrate.py), one
   evaluation a step, velocities half a step behind the positions; with ``mode`` 1 ("imex") the
   rollers' and cages' contact damping in the kick implicitly, with 2 ("imex2") their contact
-  stiffness and friction too (bearing/implicit.py).  The outer ring stays explicit.
+  stiffness and friction too (bearing/implicit.py).  The outer ring stays explicit and
+  exchanges with the bearing as the car's bodies do (:func:`.advance.advance`), here every
+  step.
 """
 from __future__ import annotations
 
 import numpy as np
 from numba import njit
 
-from .implicit import NEWMARK_K, damped_kick
+from .advance import advance
 from .kernel import dtrb_rhs_damped
-from .layout import H_K, KINEMATIC, N_CAGE, N_ROLLER
+from .layout import N_CAGE
 
 # s: the explicit steps' limits on the rollers' tilt mode between the raceways (22.6 kHz,
 # damping ratio 0.12): RK4's w h <= 2.8; the leapfrog's 2 (sqrt(1 + z^2) - z) = 1.77 less a
@@ -43,7 +45,7 @@ def _rig_rhs(t, Y, P, D, rig, ring, dY, F, Qc, G):
     for q in range(3):
         ring[1, q] = Y[n + q]
         ring[1, 6 + q] = Y[n + 3 + q]
-    dtrb_rhs_damped(t, Y[:n], ring, P, D, dY[:n], F, Qc, G)
+    dtrb_rhs_damped(t, Y[:n], ring, P, D, dY[:n], F, Qc, G, 0.0)
     for q in range(3):
         f = (F[1, q] + rig[R_FX + q] - rig[R_KX + q] * (Y[n + q] - rig[R_UX + q])
              - rig[R_CX + q] * Y[n + 3 + q])
@@ -113,53 +115,56 @@ def _record(i, every, Y, a, F, Qc, nb, acc, Fout, Qout, cage):
 
 
 @njit(cache=True)
-def kick_drift(y, a, P, hk, h, kick):
-    """The leapfrog on one DTRB's states ``y`` (bearing/layout.py: rollers, then cages, each six
-    positions and their six rates) from their accelerations ``a``: the rates kicked by ``hk``
-    (unless ``kick`` is False: the implicit kick did it), then the positions drifted by ``h`` at
-    the new rates; a kinematic cage drives the azimuths at the rate the right-hand side gave."""
-    kin = P[KINEMATIC] != 0.0
-    cages = y.shape[0] - 2 * N_CAGE
-    for o in range(0, y.shape[0], N_ROLLER):
-        for q in range(6):
-            if kick:
-                y[o + 6 + q] += hk * a[o + 6 + q]
-            if kin and ((o < cages and q == 1) or (o >= cages and q == 5)):
-                y[o + q] += h * a[o + q]
-            else:
-                y[o + q] += h * y[o + 6 + q]
-
-
-@njit(cache=True)
 def run_leapfrog(Y, t0, dt, n_steps, every, P, D, rig, acc, Fout, Qout, cage, mode, start,
                  theta=1.0):
-    """:func:`run_rk4`'s contract by the leapfrog (module docstring): ``mode`` 0 explicit,
-    1 contact damping implicit, 2 contact stiffness and friction too (``P[H_K]`` is set here);
-    ``start``: ``Y`` holds the initial velocities (the first kick is half a step), else the
-    half-step velocities an earlier call left.  Returns False if the state stops being finite."""
+    """:func:`run_rk4`'s contract by the leapfrog (module docstring): the outer ring and the
+    bearing exchange every step (:func:`.advance.advance` with one sub-step, ``mode`` 0
+    explicit, 1 contact damping implicit, 2 contact stiffness and friction too); ``start``:
+    ``Y`` holds the initial velocities (the first kick is half a step), else the half-step
+    velocities an earlier call left.  Returns False if the state stops being finite."""
     n = Y.shape[0]
     nb = n - 6
     n_out = (n_steps + every - 1) // every
     if acc.shape[0] < n_steps or Fout.shape[0] < n_out or Qout.shape[0] < n_out or cage.shape[0] < n_out:
         raise ValueError("run_leapfrog: output arrays are shorter than the run")
     nz = Qout.shape[2]
-    Pk = P.copy()
-    Pk[H_K] = NEWMARK_K * dt / theta if mode == 2 else 0.0
-    a = np.empty(n)
-    ring = np.zeros((2, 12))
+    H, n_sub = dt, 1
+    om = rig[R_OMEGA]
+    ring_a = np.zeros((2, 12))
+    ring_b = np.zeros((2, 12))
     F = np.zeros((2, 6))
     Qc = np.zeros((2, nz, 6))
+    cages = np.zeros(4)
     G = np.zeros((2 if mode > 0 else 0, nz + 1, 6, 12))
+    dx, ring, Fs, Qs = np.empty(nb), np.zeros((2, 12)), np.zeros((2, 6)), np.zeros((2, nz, 6))
+    a = np.empty(3)
+    x = Y[:nb]
     for i in range(n_steps):
-        _rig_rhs(t0 + i * dt, Y, Pk, D, rig, ring, a, F, Qc, G)
-        _record(i, every, Y, a, F, Qc, nb, acc, Fout, Qout, cage)
-        hk = 0.5 * dt if (start and i == 0) else dt
-        if mode > 0:
-            damped_kick(Y[:nb], a[:nb], G, Pk, hk, theta)
-        kick_drift(Y[:nb], a[:nb], Pk, hk, dt, mode == 0)
+        t = t0 + i * H
+        first = start and i == 0
+        ring_b[0, 4] = om * t
+        ring_b[0, 10] = om
         for q in range(3):
-            Y[nb + 3 + q] += hk * a[nb + 3 + q]
-            Y[nb + q] += dt * Y[nb + 3 + q]
+            ring_b[1, q] = Y[nb + q]
+            ring_b[1, 6 + q] = Y[nb + 3 + q]
+        advance(x, ring_a, ring_b, P, D, t, dt, n_sub, first, mode, F, Qc, cages, G, dx, ring, Fs, Qs,
+                theta)
+        ring_a[:, :] = ring_b
+        for q in range(3):
+            a[q] = (F[1, q] + rig[R_FX + q] - rig[R_KX + q] * (Y[nb + q] - rig[R_UX + q])
+                    - rig[R_CX + q] * Y[nb + 3 + q]) / rig[R_MASS]
+            acc[i, q] = a[q]
+        if i % every == 0:
+            m = i // every
+            Fout[m] = F
+            Qout[m] = Qc
+            for j in range(2):
+                cage[m, j, 0] = cages[j]
+                cage[m, j, 1] = cages[2 + j]
+        hk = 0.5 * H if first else H
+        for q in range(3):
+            Y[nb + 3 + q] += hk * a[q]
+            Y[nb + q] += H * Y[nb + 3 + q]
         ok = True
         for q in range(n):
             if not np.isfinite(Y[q]):

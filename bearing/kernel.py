@@ -48,7 +48,7 @@ from math import pi, sin, cos, sqrt
 import numpy as np
 from numba import njit
 
-from .layout import (BETA, C_O, C_RULE, CAC, CAF, CAI, CAM, CAO, GX, GY, GZ, H_K, H_R, J_CD, J_CP, J_RA,
+from .layout import (BETA, C_O, C_RULE, CAC, CAF, CAI, CAM, CAO, GX, GY, GZ, H_R, J_CD, J_CP, J_RA,
                      J_RD, K_A, K_CR, K_I, K_O, KINEMATIC, L_B, L_E, LAW, M_C, M_R, MU_A, MU_C,
                      MU_R, N_CAGE, N_ROLLER, R_B, R_M, RATIO, ROW, S_P, S_PA, SAC, SAF, SAI, SAM,
                      SAO, V_S, ZETA, Z)
@@ -164,7 +164,7 @@ def line_stiffness(d0, kap, a, b, n):
 
 
 @njit(cache=True)
-def _normal(q_el, K, n, ddot, m, P, dmax, k_imp=0.0):
+def _normal(q_el, K, n, ddot, m, P, dmax, k_imp=0.0, h_k=0.0):
     """Normal force from the elastic part ``q_el`` and the approach rate ``ddot``.
 
     Law 0 (default): ``c = 2 zeta sqrt(m k)`` with the contact's tangent stiffness
@@ -174,9 +174,9 @@ def _normal(q_el, K, n, ddot, m, P, dmax, k_imp=0.0):
     ``c = c_rule K`` (below Eq. 4).  Law 2: ``c = beta k``, the paper's rule made dimensionally
     consistent (the tangent stiffness k in N/m instead of the Hertz coefficient K in N/m^n).
     Returns ``(Q, c)``: the force, and the damping coefficient acting in it (0 out of contact
-    or where the force is clipped) plus ``P[H_K]`` times the contact's tangent stiffness
+    or where the force is clipped) plus ``h_k`` times the contact's tangent stiffness
     (``k_imp`` where given, a line contact's exact one, :func:`line_stiffness`; else ``k``),
-    for the implicit step's blocks (:func:`_damping_rows`; ``H_K`` is 0 but under ``"imex2"``,
+    for the implicit step's blocks (:func:`_damping_rows`; ``h_k`` is 0 but under ``"imex2"``,
     bearing/implicit.py).
     """
     if q_el <= 0.0:
@@ -190,20 +190,20 @@ def _normal(q_el, K, n, ddot, m, P, dmax, k_imp=0.0):
     q = q_el + c * ddot
     if not q > 0.0:
         return 0.0, 0.0
-    # (the same expressions as before "imex2", so that its H_K = 0 leaves every bit as it was)
-    if P[H_K] == 0.0:
+    # (the same expressions as before "imex2", so that its h_k = 0 leaves every bit as it was)
+    if h_k == 0.0:
         return q, c
-    return q, c + P[H_K] * (k_imp if k_imp > 0.0 else n * q_el / dmax)
+    return q, c + h_k * (k_imp if k_imp > 0.0 else n * q_el / dmax)
 
 
 @njit(inline="always")
-def _line_contact(i0, i1, K, L, d0, kap, ddot, m, mu, vrel, nrm, P, k_imp):
+def _line_contact(i0, i1, K, L, d0, kap, ddot, m, mu, vrel, nrm, P, k_imp, h_k):
     """A line contact (Eqs. 4a, 9) from its integrals ``i0, i1`` over the line of length L:
     normal force Q, elastic couple ``m1 = (K/L) int s delta^n`` (none once Q is clipped to 0),
     the friction ``mu Q`` against the slip ``vrel``, and the coefficient for the implicit blocks
-    (damping, plus ``P[H_K] k_imp``, :func:`_normal`)."""
+    (damping, plus ``h_k k_imp``, :func:`_normal`)."""
     dmax = d0 + 0.5 * L * abs(kap)
-    Q, c = _normal(K / L * i0, K, N_LINE, ddot, m, P, dmax, k_imp)
+    Q, c = _normal(K / L * i0, K, N_LINE, ddot, m, P, dmax, k_imp, h_k)
     m1 = K / L * i1 if Q > 0.0 else 0.0
     return Q, m1, _friction(vrel, nrm, mu * Q, P[V_S]), c
 
@@ -347,17 +347,19 @@ def dtrb_rhs(t, y, ring, P, D, ydot, F, Qc):
     ring's centre (paper Eq. 16 plus moments).  ``Qc (2, Z, 6)``: normal contact forces
     (cup, cone, rib, pocket wall 1, pocket wall 2, side beams).
     """
-    dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, np.empty((0, 1, 6, 12)))
+    dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, np.empty((0, 1, 6, 12)), 0.0)
 
 
 @njit(cache=True)
-def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
+def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G, h_k):
     """:func:`dtrb_rhs`, and, when ``G`` has rows (``(2, Z + 1, 6, 12)``), the contacts'
     damping in the rollers' and cages' rates (:func:`_damping_rows`): ``G[j, k]`` roller k's
     own block and its coupling to the cage of row j, ``G[j, Z, :, :6]`` the cage's own, for a
-    step that treats the contact damping implicitly (:mod:`.implicit`)."""
+    step that treats the contact damping implicitly (:mod:`.implicit`); ``h_k`` (s^2, 0 but
+    under ``"imex2"``, where it is ``NEWMARK_K h`` times the kick's ``h``) puts the contacts'
+    tangent stiffness in those blocks too."""
     acc = G.shape[0] > 0
-    stiff = acc and P[H_K] > 0.0                     # "imex2": the stiffness in the blocks too
+    stiff = acc and h_k > 0.0                     # "imex2": the stiffness in the blocks too
     if acc:
         G[:, :, :, :] = 0.0
     nz = int(P[Z])
@@ -459,12 +461,12 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
                 vrel = _sub(_add(Vc, _cross(wr, _mul(rb, no))), _add(vo, _cross(wo, _sub(po, uo))))
                 KL = P[K_O] / Le
                 Qo, m1, f, cdmp = _line_contact(i0, i1, P[K_O], Le, d0, kap, _dot(vrel, no),
-                                                Mr, P[MU_R], vrel, no, P, KL * kdd)
+                                                Mr, P[MU_R], vrel, no, P, KL * kdd, h_k)
                 if acc and cdmp > 0.0:
                     Jr = _rates(1.0, no, _mul(rb, no), er, et, ey, ax, bx, R + rho)
                     _damping_rows(G, j, k, nz, cdmp, Jr, Jr, False)
                     if stiff:
-                        _tilt_rows(G, j, k, nz, P[H_K] * KL * kdk, P[H_K] * KL * kkk, Jr,
+                        _tilt_rows(G, j, k, nz, h_k * KL * kdk, h_k * KL * kkk, Jr,
                                    (0.0, 0.0, 0.0, s, 0.0, 0.0), Z6, Z6, False)
                         _friction_rows(G, j, k, nz, P[MU_R] * Qo, vrel, no, vs, et, _mul(rb, no),
                                        er, et, ey, ax, bx, R + rho, False, ey)
@@ -487,12 +489,12 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
                 vrel = _sub(_add(Vc, _cross(wr, _mul(-rb, ni))), _add(vi, _cross(wi, _sub(pi_, ui))))
                 KL = P[K_I] / Le
                 Qi, m1, f, cdmp = _line_contact(i0, i1, P[K_I], Le, d0, kap, -_dot(vrel, ni),
-                                                Mr, P[MU_R], vrel, ni, P, KL * kdd)
+                                                Mr, P[MU_R], vrel, ni, P, KL * kdd, h_k)
                 if acc and cdmp > 0.0:
                     Jr = _rates(-1.0, ni, _mul(-rb, ni), er, et, ey, ax, bx, R + rho)
                     _damping_rows(G, j, k, nz, cdmp, Jr, Jr, False)
                     if stiff:
-                        _tilt_rows(G, j, k, nz, P[H_K] * KL * kdk, P[H_K] * KL * kkk, Jr,
+                        _tilt_rows(G, j, k, nz, h_k * KL * kdk, h_k * KL * kkk, Jr,
                                    (0.0, 0.0, 0.0, -s, 0.0, 0.0), Z6, Z6, False)
                         _friction_rows(G, j, k, nz, P[MU_R] * Qi, vrel, ni, vs, et, _mul(-rb, ni),
                                        er, et, ey, ax, bx, R + rho, False, ey)
@@ -509,11 +511,12 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
             Qa = 0.0
             if d0 > 0.0:
                 vrel = _sub(_add(Vc, _cross(wr, ra)), _add(vi, _cross(wi, _sub(pa, ui))))
-                Qa, cdmp = _normal(P[K_A] * d0 * sqrt(d0), P[K_A], N_POINT, -_dot(vrel, na), Mr, P, d0)
+                Qa, cdmp = _normal(P[K_A] * d0 * sqrt(d0), P[K_A], N_POINT, -_dot(vrel, na), Mr, P, d0,
+                                0.0, h_k)
                 if acc and cdmp > 0.0:
                     Jr = _rates(-1.0, na, ra, er, et, ey, ax, bx, R + rho)
                     _damping_rows(G, j, k, nz, cdmp, Jr, Jr, False)
-                    if P[H_K] > 0.0:
+                    if h_k > 0.0:
                         _friction_rows(G, j, k, nz, P[MU_A] * Qa, vrel, na, vs, et, ra, er, et,
                                        ey, ax, bx, R + rho, False, ey)
                 f = _friction(vrel, na, P[MU_A] * Qa, vs)
@@ -546,7 +549,7 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
                     pw = _lin(1.0, c, rb, nw)
                     vrel = _sub(_add(Vc, _cross(wr, _mul(rb, nw))), _add(vc, _cross(wc, _sub(pw, xc))))
                     Qw, m1, f, cdmp = _line_contact(i0, i1, P[K_CR], Lb, d0, kap, _dot(vrel, nw),
-                                                    m_cage, P[MU_C], vrel, nw, P, KL * kdd)
+                                                    m_cage, P[MU_C], vrel, nw, P, KL * kdd, h_k)
                     if acc and cdmp > 0.0:
                         Jw = _rates(1.0, nw, _mul(rb, nw), er, et, ey, ax, bx, R + rho)
                         Jwc = _cage_rates(1.0, nw, _sub(pw, xc))
@@ -556,7 +559,7 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
                                            _mul(rb, nw), er, et, ey, ax, bx, R + rho, True,
                                            _sub(pw, xc))
                             gs = -sw * s * cac    # the skew in the pocket: kap's gradient
-                            _tilt_rows(G, j, k, nz, P[H_K] * KL * kdk, P[H_K] * KL * kkk, Jw,
+                            _tilt_rows(G, j, k, nz, h_k * KL * kdk, h_k * KL * kkk, Jw,
                                        (0.0, 0.0, 0.0, 0.0, gs, 0.0), Jwc,
                                        (0.0, 0.0, 0.0, -gs * bx[0], -gs * bx[2], 0.0), True)
                     fr = _lin(-Qw, nw, 1.0, f)
@@ -576,7 +579,8 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G):
                 sw = 1.0 if w == 0 else -1.0
                 d0 = sw * chi - P[S_PA]
                 if d0 > 0.0:
-                    Q, cdmp = _normal(P[K_CR] * d0 ** N_LINE, P[K_CR], N_LINE, sw * chid, m_cage, P, d0)
+                    Q, cdmp = _normal(P[K_CR] * d0 ** N_LINE, P[K_CR], N_LINE, sw * chid, m_cage, P, d0,
+                                     0.0, h_k)
                     if acc and cdmp > 0.0:
                         _damping_rows(G, j, k, nz, cdmp,
                                       _rates(sw, ey, (0.0, 0.0, 0.0), er, et, ey, ax, bx, R + rho),

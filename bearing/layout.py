@@ -32,7 +32,7 @@ from .stiffness import contacts
 # --- parameter vector slots ---------------------------------------------------------------
 (Z, R_M, R_B, L_E, L_B, CAO, SAO, CAI, SAI, CAF, SAF, CAM, SAM, CAC, SAC, ROW, C_O, H_R,
  K_O, K_I, K_A, K_CR, S_P, S_PA, M_R, J_RA, J_RD, M_C, J_CP, J_CD, MU_R, MU_A, MU_C, V_S,
- LAW, ZETA, C_RULE, BETA, KINEMATIC, RATIO, GX, GY, GZ, H_K, N_P) = range(45)
+ LAW, ZETA, C_RULE, BETA, KINEMATIC, RATIO, GX, GY, GZ, N_P) = range(44)
 
 # --- state slots ------------------------------------------------------------------------------
 RHO, PHI, ETA, TH_T, TH_S, PSI = range(6)           # roller positions; +6 for the rates
@@ -67,7 +67,6 @@ def pack(p, gravity=(0.0, 0.0, -9.81)) -> np.ndarray:
     v[KINEMATIC] = p.cage == "kinematic"
     v[RATIO] = 0.5 * (1.0 - p.gamma)         # paper Eq. (2): omega_c = (1 - D_b/D_m) omega_w / 2
     v[[GX, GY, GZ]] = gravity
-    v[H_K] = 0.0            # set by the integrator: the stiffness in the implicit kick's blocks
     return v
 
 

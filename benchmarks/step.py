@@ -1,13 +1,15 @@
 """The coupled car's step against the scheme: stability and what the diagnosis reads.
 
-    python3 benchmarks/step.py [--duration 1.5] [--runs imex:5e-6 imex2:1e-5 imex2:2e-5 ...]
+    python3 benchmarks/step.py [--duration 1.5] [--runs imex:5e-6 imex:5e-6:5e-5 imex2:1e-5 ...]
 
 The validation case (configs/validation_48kmh.toml, front bogie flexible, coarse bodies; the
-integrator's own 10 kHz output, no sensor model) by each ``method:dt``, bypassing the configs'
-step limits: whether it runs, wall seconds per simulated second, and after the 0.5 s fade-in the
-defect-side (ws2_R) and healthy-side RMS, the defect side's BPFO envelope line, its largest
-|a| and the healthy side's lag behind it (impulse by impulse, broadband: what the diagnosis'
-lag reads first), each against the first run's.
+integrator's own 10 kHz output, no sensor model) by each ``method:dt[:exchange_dt]`` (the
+bearings' step, and the bodies' step and exchange, mbs/exchange.py; default dt), bypassing the
+configs' step limits: whether it runs, wall seconds per simulated second, and after the 0.5 s
+fade-in the defect-side (ws2_R) and healthy-side RMS, the defect side's BPFO envelope line, its
+largest |a|, the healthy side's lag behind it (impulse by impulse, broadband: what the
+diagnosis' lag reads first) and both sides' FC and VF (paper Eq. 17-18, 0-5 kHz), each against
+the first run's.
 """
 from __future__ import annotations
 
@@ -15,6 +17,7 @@ import argparse
 
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.diagnostics.lag import impulse_lag
+from axlebox.bearing.diagnostics.spectral import fc_vf
 from axlebox.bearing.params import BearingParams
 from axlebox.mbs import integrate
 from axlebox.pipelines.readers import TRACK_FADE_IN_S
@@ -25,38 +28,44 @@ from coupled import FRONT, bpfo_line, variant
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--duration", type=float, default=1.5, help="simulated s a run (>= 1.3)")
-    ap.add_argument("--runs", nargs="+", default=["imex:5e-6", "imex2:1e-5", "imex2:2e-5"])
+    ap.add_argument("--runs", nargs="+", default=["imex:5e-6", "imex:5e-6:2e-5", "imex:5e-6:5e-5",
+                                                  "imex:5e-6:1e-4"])
     ap.add_argument("--bodies", default="", help="reduced-body folder (default: built into the cache)")
     a = ap.parse_args()
     if not a.duration >= TRACK_FADE_IN_S + 0.8:     # the BPFO line needs 0.8 s after the fade-in
         ap.error(f"--duration {a.duration:g} is not allowed: expected at least "
                  f"{TRACK_FADE_IN_S + 0.8:g} s")
     try:
-        runs = [(r.split(":")[0], float(r.split(":")[1])) for r in a.runs]
+        runs = [(r.split(":")[0], float(r.split(":")[1]), float(r.split(":")[2]) if r.count(":") == 2
+                 else 0.0) for r in a.runs]
     except (IndexError, ValueError):
-        ap.error(f"--runs {' '.join(a.runs)!r} is not allowed: expected method:dt, e.g. imex2:1e-5")
+        ap.error(f"--runs {' '.join(a.runs)!r} is not allowed: expected method:dt[:exchange_dt], e.g. "
+                 "imex:5e-6:5e-5")
     model, y0 = variant(a.bodies, {"bodies": {"flexible": FRONT}})
     fs = 1e4
     skip = int(TRACK_FADE_IN_S * fs)
     bpfo = orders(BearingParams()).BPFO * shaft_hz(48.0, 0.42)
-    print("| method | dt s | status | wall s per simulated s | ws2_R RMS | ws2_L RMS | "
-          "ws2_R BPFO line | ws2_R peak | lag ms | against the first |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    print("| method | dt s | exchange s | status | wall s per simulated s | ws2_R RMS | ws2_L RMS | "
+          "ws2_R BPFO line | ws2_R peak | lag ms | FC R / L Hz | VF R / L Hz^2 | against the first |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     ref = None
-    for method, dt in runs:
-        s = integrate.Settings(method=method, dt=dt, output_rate_hz=fs, state_rate_hz=100)
+    for method, dt, H in runs:
+        s = integrate.Settings(method=method, dt=dt, output_rate_hz=fs, state_rate_hz=100, exchange_dt=H)
         integrate.simulate(model, 0.001, s, y0=y0)                  # compile outside the timing
         r = integrate.simulate(model, a.duration, s, y0=y0)
         if r.status != "done":
-            print(f"| {method} | {dt:g} | {r.status}: {r.message} | | | | | | | |", flush=True)
+            print(f"| {method} | {dt:g} | {H or dt:g} | {r.status}: {r.message} | | | | | | | | | |",
+                  flush=True)
             continue
         R, L = (r.sensors[n][skip:, 2] for n in ("ws2_R", "ws2_L"))
         lag = impulse_lag(R, L, fs, 1.0 / bpfo).delay_b_samples / fs * 1e3
-        x = (R.std(), L.std(), bpfo_line(R, fs, bpfo), abs(R).max(), lag)
+        (fcR, vfR, _), (fcL, vfL, _) = fc_vf(R, fs), fc_vf(L, fs)
+        x = (R.std(), L.std(), bpfo_line(R, fs, bpfo), abs(R).max(), lag, fcR, fcL, vfR, vfL)
         ref = ref or x
         diff = ", ".join(f"{(v / w - 1) * 100:+.1f} %" for v, w in zip(x, ref))
-        print(f"| {method} | {dt:g} | done | {r.wall_s / a.duration:.1f} | {x[0]:.3f} | {x[1]:.3f} | "
-              f"{x[2]:.3f} | {x[3]:.1f} | {x[4]:.3f} | {diff} |", flush=True)
+        print(f"| {method} | {dt:g} | {H or dt:g} | done | {r.wall_s / a.duration:.1f} | {x[0]:.3f} | "
+              f"{x[1]:.3f} | {x[2]:.3f} | {x[3]:.1f} | {x[4]:.3f} | {fcR:.0f} / {fcL:.0f} | "
+              f"{vfR:.3g} / {vfL:.3g} | {diff} |", flush=True)
 
 
 if __name__ == "__main__":

@@ -30,6 +30,9 @@ SCHEMA: dict[str, dict[str, tuple]] = {
                    "dt": (F, 5e-5, 1e-7, 1e-3),
                    "output_rate_hz": (F, 1e4, 1.0, 1e6), "state_rate_hz": (F, 500.0, 0.1, 1e6),
                    "rho_inf": (F, 0.8, 0.0, 1.0)},
+    # the bodies' step and their exchange with the bearings (mbs/exchange.py): a whole multiple
+    # of integrator.dt, which is then the bearings' sub-step; 0: every step (single rate)
+    "coupling": {"exchange_dt": (F, 0.0, 0.0, 1e-3)},
     "track": {"fra_class": (I, 5, 1, 6), "lambda_min": (F, 1.0, 0.1, 100.0),
               "lambda_max": (F, 80.0, 1.0, 1000.0), "length": (F, 400.0, 10.0, 1e5),
               "irregularity": (B, True)},
@@ -219,9 +222,20 @@ def validate(user: dict) -> dict:
         raise ParameterError("defects need joint.model = 'dtrb': with the bushing joint there is "
                              "no bearing to hold them")
     ig = cfg["integrator"]
-    per_output = 1.0 / ig["output_rate_hz"] / ig["dt"]
+    H = cfg["coupling"]["exchange_dt"]
+    if H > 0.0:
+        n = H / ig["dt"]
+        if ig["method"] not in ("leapfrog", "imex", "imex2") and H != ig["dt"]:
+            raise ParameterError(f"coupling.exchange_dt = {H:g} is not allowed with integrator.method = "
+                                 f"{ig['method']!r}: only the leapfrog methods step the bearings apart "
+                                 f"(expected 0 or integrator.dt = {ig['dt']:g})")
+        if round(n) < 1 or abs(n - round(n)) > 1e-6 * n:
+            raise ParameterError(f"coupling.exchange_dt = {H:g} is not allowed: expected a whole multiple "
+                                 f"of integrator.dt = {ig['dt']:g} s (the bearings' sub-step)")
+    step, name = (H, "coupling.exchange_dt") if H > 0.0 else (ig["dt"], "integrator.dt")
+    per_output = 1.0 / ig["output_rate_hz"] / step
     if round(per_output) < 1 or abs(per_output - round(per_output)) > 1e-6 * per_output:
-        raise ParameterError(f"integrator.dt = {ig['dt']:g} is not allowed: expected the output period "
+        raise ParameterError(f"{name} = {step:g} is not allowed: expected the output period "
                              f"1/integrator.output_rate_hz = {1.0 / ig['output_rate_hz']:g} s over a "
                              "whole number")
     sn = cfg["sensors"]

@@ -47,7 +47,7 @@ def joint_loads(model, y) -> dict:
     """``(k, side) -> F``: the load (N, track frame) the axle-box puts on each bearing's outer
     ring, from the row bushings of a bushing-joint model at state ``y``."""
     model.rhs(0.0, y)
-    out = model.W[13]
+    out = model.W.elout
     names = [getattr(e, "name", "") for e in model.system.elements]
     loads = {}
     for k in range(1, 5):
@@ -83,10 +83,10 @@ def place_axleboxes(model, y, start_states: dict) -> np.ndarray:
     nb = model.n_body_states
     y = np.concatenate([np.asarray(y, float)[:nb]] + [start_states[_key(n)][2] for n in model.bearing_names])
     model.rhs(0.0, y)
-    mkp = model.W[6]
-    br_i = model.S[16]
-    bi = model.S[0]
-    mk_i = model.S[4]
+    mkp = model.W.mkp
+    br_i = model.S.br_i
+    bi = model.S.bi
+    mk_i = model.S.mk_i
     for k, name in enumerate(model.bearing_names):
         mi, mo = int(br_i[k, 0]), int(br_i[k, 1])
         d = start_states[_key(name)][3] - (mkp[mo] - mkp[mi])

@@ -14,10 +14,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from axlebox._params import ParameterError, check_ranges, param
-from axlebox.bearing.implicit import NEWMARK_K
-from axlebox.bearing.layout import H_K
 
 from . import kernel_integrate as ki
+from .exchange import exchange
 from .system import Model
 
 METHODS = ("rk4", "leapfrog", "imex", "imex2", "galpha")
@@ -33,33 +32,58 @@ class Settings:
                                                     "average acceleration, and friction too: "
                                                     "experimental, benchmarks/README.md) or "
                                                     "'galpha'"})
-    dt: float = param(2e-5, 1e-8, 1e-2, unit="s", doc="fixed step")
+    dt: float = param(2e-5, 1e-8, 1e-2, unit="s", doc="fixed step; with bearings and a leapfrog "
+                      "method, the bearings' sub-step")
     output_rate_hz: float = param(10_000.0, 1.0, 1e7, unit="Hz", doc="sensor output rate")
     state_rate_hz: float = param(1_000.0, 0.1, 1e7, unit="Hz", doc="rate of whole-state snapshots")
     rho_inf: float = param(0.8, 0.0, 1.0, unit="", doc="generalized-alpha spectral radius at infinity")
     max_iter: int = param(8, 2, 50, unit="", doc="Newton iterations before the Jacobian is refreshed")
     rtol: float = param(1e-9, 0.0, 1e-2, unit="", doc="Newton relative tolerance on the state")
     vmax: float = param(1e3, 1.0, 1e9, unit="m/s", doc="a velocity state beyond this is a runaway")
+    exchange_dt: float = param(0.0, 0.0, 1e-2, unit="s", doc="the bodies' step and their exchange "
+                               "with the bearings (mbs/exchange.py), a whole multiple of dt; 0: dt")
 
     def __post_init__(self):
         if self.method not in METHODS:
             raise ParameterError(f"Settings.method = {self.method!r} is not allowed: expected one "
                                  f"of {METHODS}")
         check_ranges(self)
-        ratio = 1.0 / (self.output_rate_hz * self.dt)
+        if self.exchange_dt > 0.0:
+            if self.method in ("rk4", "galpha") and self.exchange_dt != self.dt:
+                raise ParameterError(f"coupling.exchange_dt = {self.exchange_dt:g} is not allowed with "
+                                     f"integrator.method = {self.method!r}: only the leapfrog methods "
+                                     f"step the bearings apart (0 or dt = {self.dt:g})")
+            n = self.exchange_dt / self.dt
+            if n < 1.0 - 1e-9 or abs(n - round(n)) > 1e-6 * n:
+                raise ParameterError(f"coupling.exchange_dt = {self.exchange_dt:g} is not allowed: "
+                                     f"expected a whole multiple of integrator.dt = {self.dt:g} s")
+        step, name = (self.exchange_dt, "coupling.exchange_dt") if self.exchange_dt > 0 else (self.dt, "dt")
+        ratio = 1.0 / (self.output_rate_hz * step)
         if ratio < 1.0 - 1e-9:
             raise ParameterError(f"Settings.output_rate_hz = {self.output_rate_hz:g} is not allowed: "
-                                 f"above the step rate 1/dt = {1 / self.dt:g} Hz")
+                                 f"above the step rate 1/{name} = {1 / step:g} Hz")
         if abs(ratio - round(ratio)) > 1e-6 * ratio:
-            raise ParameterError(f"Settings.dt = {self.dt:g} is not allowed: it must divide the output "
-                                 f"period 1/{self.output_rate_hz:g} s a whole number of times")
+            raise ParameterError(f"{'Settings.dt' if name == 'dt' else name} = {step:g} is not allowed: "
+                                 f"it must divide the output period 1/{self.output_rate_hz:g} s a "
+                                 "whole number of times")
         if self.state_rate_hz > self.output_rate_hz:
             raise ParameterError(f"Settings.state_rate_hz = {self.state_rate_hz:g} is not allowed: "
                                  f"at most output_rate_hz = {self.output_rate_hz:g}")
 
     @property
+    def step(self) -> float:
+        """The bodies' step: ``exchange_dt``, or ``dt`` where that is 0."""
+        return self.exchange_dt if self.exchange_dt > 0.0 else self.dt
+
+    @property
+    def n_exchange(self) -> int:
+        """The bearings' sub-steps an exchange (1: single rate)."""
+        return int(round(self.step / self.dt))
+
+    @property
     def n_sub(self) -> int:
-        return int(round(1.0 / (self.output_rate_hz * self.dt)))
+        """Steps of the bodies an output."""
+        return int(round(1.0 / (self.output_rate_hz * self.step)))
 
     @property
     def state_every(self) -> int:
@@ -78,6 +102,7 @@ class Run:
     states: np.ndarray               # (ts, n_states)
     y_end: np.ndarray
     bearings: np.ndarray = None      # (t, n_bearings, 3, 6): mbs/kernel_bearings.py BR_ROWS
+    exchange: np.ndarray = None      # the bearings' ring motion at the last exchange (mbs/exchange.py)
     status: str = "done"
     message: str = ""
     wall_s: float = 0.0
@@ -98,7 +123,7 @@ def split_outputs(model: Model, out_wh: np.ndarray, out_el: np.ndarray) -> dict:
     """A run's wheel-rail and element output rows as :class:`Run` holds them: ``wheels``,
     ``elements`` and ``bearings`` (the element rows after the model's own elements, three a
     bearing: mbs/kernel_bearings.py BR_ROWS)."""
-    nw, ne, nbr = len(model.wheel_names), model.S[7].shape[0], len(model.bearing_names)
+    nw, ne, nbr = len(model.wheel_names), model.S.el_i.shape[0], len(model.bearing_names)
     return {"wheels": out_wh[:, :nw], "elements": out_el[:, :ne],
             "bearings": out_el[:, ne:ne + 3 * nbr].reshape(out_el.shape[0], nbr, 3, 6)}
 
@@ -106,11 +131,12 @@ def split_outputs(model: Model, out_wh: np.ndarray, out_el: np.ndarray) -> dict:
 def simulate(model: Model, duration: float, settings: Settings | None = None, *, y0=None,
              t0: float = 0.0, chunk: float = 0.25, progress=None, continued: bool = False,
              checkpoint=None, checkpoint_every: float = 0.0, resume: dict | None = None,
-             sink=None) -> Run:
+             sink=None, exchange_ring=None) -> Run:
     """Integrate ``model`` for ``duration`` s from ``y0`` (default: the model's initial state).
 
     ``continued``: ``y0`` is the ``y_end`` of an earlier leapfrog run with the same step, whose
-    velocities are half a step behind (the run then goes on as if it had not stopped).
+    velocities are half a step behind (the run then goes on as if it had not stopped), and
+    ``exchange_ring`` its :attr:`Run.exchange` where it had bearings.
     ``checkpoint(snapshot)``: called at the first end of a chunk after ``checkpoint_every``
     simulated seconds since the last (the chunks are the same with and without checkpoints:
     where a chunk ends moves the last bits of the step times), with ``{"k": outputs done, "y":
@@ -127,26 +153,22 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
     s = settings or Settings()
     if not (math.isfinite(duration) and duration > 0):
         raise ParameterError(f"duration = {duration!r} is not allowed: expected a time > 0 s")
-    h = s.dt
+    h = s.step
     n_out = int(round(duration * s.output_rate_hz)) + 1
     y = np.array(model.y0 if y0 is None else y0, float)
     W = model.W
     S = model.S
-    if s.method in ("imex", "imex2") and model.bearing_names:
-        # the bearings' contact damping blocks, filled by the right-hand side, used by the kick
-        Z = int(model.S[17][0, 0])
-        W = W[:16] + (np.zeros((len(model.bearing_names), 2, Z + 1, 6, 12)),)
-        if s.method == "imex2":           # and their stiffness, h^2 / 4 K: Newmark's average
-            br_P = S[17].copy()           # acceleration on the contacts
-            br_P[:, H_K] = NEWMARK_K * h
-            S = S[:17] + (br_P,) + S[18:]
+    if resume is not None:
+        exchange_ring = resume.get("exchange")
+    X = exchange(model, s.method if s.method in ("leapfrog", "imex", "imex2") else "leapfrog", s.dt,
+                 s.n_exchange, exchange_ring if (continued or resume is not None) else None)
     se = s.state_every
     per = max(1, int(round(chunk * s.output_rate_hz)))
     rows = n_out if sink is None else min(per, n_out)        # the whole run, or one chunk
     out_t = np.zeros(rows)
-    out_sens = np.zeros((rows, W[15].shape[0], 3))
-    out_wh = np.zeros((rows, W[14].shape[0], W[14].shape[1]))
-    out_el = np.zeros((rows, W[13].shape[0], 6))
+    out_sens = np.zeros((rows, W.sensout.shape[0], 3))
+    out_wh = np.zeros((rows, W.whout.shape[0], W.whout.shape[1]))
+    out_el = np.zeros((rows, W.elout.shape[0], 6))
     out_y = np.zeros(((rows - 1) // se + 1 + (sink is not None), y.size))
     stats = np.zeros(5, np.int64)
     nbr = len(model.bearing_names)
@@ -186,7 +208,7 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
         try:
             if s.method in ("rk4", "leapfrog", "imex", "imex2"):
                 status, k_done, bad = ki.run_explicit(s.method != "rk4", y, tk, h, s.n_sub, k1, k,
-                                                      n_out - 1, S, W, model.nq, nend, s.vmax,
+                                                      n_out - 1, S, W, X, model.nq, nend, s.vmax,
                                                       out_t, out_sens, out_wh, out_el, out_y, se,
                                                       k == 0 and not continued, base)
             else:
@@ -210,7 +232,8 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
             progress((k - 1) * s.n_sub * h, duration)
         due = (k - k_saved) >= checkpoint_every * s.output_rate_hz - 0.5
         if checkpoint is not None and k < n_out and due:
-            snap = {"k": k, "y": y, "wall_s": wall_before + time.perf_counter() - wall0}
+            snap = {"k": k, "y": y, "exchange": X.ring,
+                    "wall_s": wall_before + time.perf_counter() - wall0}
             if sink is None:
                 ks = (k - 1) // se + 1
                 snap.update({"out_t": out_t[:k], "out_sens": out_sens[:k], "out_wh": out_wh[:k],
@@ -237,7 +260,8 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
     return Run(time=out_t[:n_keep], sensors={nm: out_sens[:n_keep, i] for i, nm in
                                             enumerate(model.sensor_names)},
                **split_outputs(model, out_wh[:n_keep], out_el[:n_keep]),
-               state_time=out_t[:n_keep][::se][:ks], states=out_y[:ks], y_end=y, status=st,
+               state_time=out_t[:n_keep][::se][:ks], states=out_y[:ks], y_end=y, exchange=X.ring,
+               status=st,
                message=msg, wall_s=wall,
                stats={"steps": int(stats[0]), "newton": int(stats[1]), "jacobians": int(stats[2]),
                       "rhs": int(stats[3]), "halved": int(stats[4]), "dt": h, "method": s.method})

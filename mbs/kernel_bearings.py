@@ -14,14 +14,20 @@ about y are the wheelset's spin coordinates, and the ring loads are turned back.
 equations leave out the frame's own acceleration (the journal's, tens of m/s^2 on track: on a
 0.135 kg roller under 5-10 kN contact loads, 0.1 %).  The ring loads (paper Eq. 16, with
 moments) go back to the two markers as inertial forces and moments.
+
+Two ways in: :func:`bearing_forces` evaluates every bearing's rates at the state (the
+right-hand side of RK4, of statics and of a plain evaluation); :func:`bearing_exchange` is the
+exchange of a leapfrog run, where each bearing advances its own states over the interval since
+the last exchange (:func:`axlebox.bearing.advance.advance`) and the bodies get its mean ring
+loads.
 """
 from __future__ import annotations
 
 import numpy as np
 from numba import njit, prange
 
-from axlebox.bearing.implicit import damped_kick
-from axlebox.bearing.kernel import dtrb_rhs_damped
+from axlebox.bearing.advance import advance, cage_outputs
+from axlebox.bearing.kernel import dtrb_rhs
 
 from .kernel_body import BI_POS, BI_VEL
 
@@ -42,11 +48,10 @@ def _small_angles(R, out, o):
 
 
 @njit(cache=True)
-def bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, elout, brG):
+def bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, elout):
     """State derivatives of every bearing's rollers and cages, and their ring loads on the
     markers; bearing k's outputs fill ``BR_ROWS`` rows of ``elout`` from row
-    ``ne + BR_ROWS k`` (``ne``: the elements' rows).  With rows in ``brG`` (one a bearing),
-    each bearing's contact damping blocks go there too (bearing/implicit.py)."""
+    ``ne + BR_ROWS k`` (``ne``: the elements' rows)."""
     nbr = br_i.shape[0]
     if nbr == 0:
         return
@@ -54,34 +59,63 @@ def bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM,
     F = np.zeros((nbr, 2, 6))
     Qc = np.zeros((nbr, 2, int(br_P[0, 0]), 6))
     th = np.zeros((nbr, 6))
+    cages = np.zeros((nbr, 4))
     for k in range(nbr):
         _ring_motion(k, y, bi, br_i, mkp, mkv, mkR, mkw, ring[k], th[k])
-    _all_dtrbs(t, y, dy, br_i, br_P, br_D, ring, F, Qc, brG)
+    _all_dtrbs(t, y, dy, br_i, br_P, br_D, ring, F, Qc, cages)
     for k in range(nbr):
-        _loads_back(k, y, br_i, mkF, mkM, elout, F[k], Qc[k], th[k])
+        _loads_back(k, br_i, mkF, mkM, elout, F[k], Qc[k], th[k], cages[k])
 
 
 @njit(cache=True, parallel=True)
-def _all_dtrbs(t, y, dy, br_i, br_P, br_D, ring, F, Qc, brG):
-    """:func:`axlebox.bearing.kernel.dtrb_rhs_damped` of every bearing, in parallel (numba
-    threads): each writes only its own states and scratch rows, so the result does not depend
-    on the number of threads."""
-    damped = brG.shape[0] > 0
+def _all_dtrbs(t, y, dy, br_i, br_P, br_D, ring, F, Qc, cages):
+    """:func:`axlebox.bearing.kernel.dtrb_rhs` of every bearing, in parallel (numba threads):
+    each writes only its own states and scratch rows, so the result does not depend on the
+    number of threads."""
     for k in prange(br_i.shape[0]):
         off, n = br_i[k, BR_OFF], br_i[k, BR_N]
         d0, nd = br_i[k, BR_D0], br_i[k, BR_ND]
-        G = brG[k] if damped else np.empty((0, 1, 6, 12))
-        dtrb_rhs_damped(t, y[off:off + n], ring[k], br_P[k], br_D[d0:d0 + nd], dy[off:off + n],
-                        F[k], Qc[k], G)
+        dtrb_rhs(t, y[off:off + n], ring[k], br_P[k], br_D[d0:d0 + nd], dy[off:off + n], F[k], Qc[k])
+        cage_outputs(y[off:off + n], dy[off:off + n], cages[k])
+
+
+@njit(cache=True)
+def bearing_exchange(t, y, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, elout, X):
+    """The exchange at ``t`` of a leapfrog run (module docstring): every bearing's states
+    advanced over the exchange's window (``X``: :class:`axlebox.mbs.exchange.Exchange`;
+    :func:`axlebox.bearing.advance.advance`), the ring motion on the line through the last
+    exchange's (``X.ring``) and this one's, which then becomes the last; the mean ring loads go
+    onto the markers and into the outputs as in :func:`bearing_forces`.  The bearings' rows of ``dy`` are not written: their states are
+    already advanced."""
+    nbr = br_i.shape[0]
+    if nbr == 0:
+        return
+    ring = np.zeros((nbr, 2, 12))
+    F = np.zeros((nbr, 2, 6))
+    Qc = np.zeros((nbr, 2, int(br_P[0, 0]), 6))
+    th = np.zeros((nbr, 6))
+    cages = np.zeros((nbr, 4))
+    for k in range(nbr):
+        _ring_motion(k, y, bi, br_i, mkp, mkv, mkR, mkw, ring[k], th[k])
+    _all_advances(t, y, br_i, br_P, br_D, X.ring, ring, X.h, X.n, X.flags[0] != 0, X.mode, F, Qc,
+                  cages, X.G)
+    X.ring[:, :, :] = ring
+    X.flags[0] = 0
+    for k in range(nbr):
+        _loads_back(k, br_i, mkF, mkM, elout, F[k], Qc[k], th[k], cages[k])
 
 
 @njit(cache=True, parallel=True)
-def damped_kicks(y, a, br_i, br_P, brG, hk):
-    """:func:`axlebox.bearing.implicit.damped_kick` of every bearing, in parallel (each writes
-    only its own rates)."""
+def _all_advances(t, y, br_i, br_P, br_D, ring_a, ring_b, h, n, first, mode, F, Qc, cages, G):
+    """:func:`axlebox.bearing.advance.advance` of every bearing, in parallel with no
+    synchronisation inside an exchange: each works on its own states and rows alone."""
     for k in prange(br_i.shape[0]):
-        off, n = br_i[k, BR_OFF], br_i[k, BR_N]
-        damped_kick(y[off:off + n], a[off:off + n], brG[k], br_P[k], hk)
+        off, ns = br_i[k, BR_OFF], br_i[k, BR_N]
+        d0, nd = br_i[k, BR_D0], br_i[k, BR_ND]
+        Gk = G[k] if G.shape[0] > 0 else np.empty((0, 1, 6, 12))
+        advance(y[off:off + ns], ring_a[k], ring_b[k], br_P[k], br_D[d0:d0 + nd], t, h, n, first, mode,
+                F[k], Qc[k], cages[k], Gk, np.empty(ns), np.zeros((2, 12)), np.zeros((2, 6)),
+                np.zeros(Qc[k].shape))
 
 
 @njit(cache=True)
@@ -112,12 +146,11 @@ def _ring_motion(k, y, bi, br_i, mkp, mkv, mkR, mkw, ring, th):
 
 
 @njit(cache=True)
-def _loads_back(k, y, br_i, mkF, mkM, elout, F, Qc, th):
+def _loads_back(k, br_i, mkF, mkM, elout, F, Qc, th, cages):
     """Bearing k's ring loads ``F`` turned back to the track frame onto its markers, and its
-    output rows."""
+    output rows (``cages``: :func:`axlebox.bearing.advance.cage_outputs`)."""
     nbr = br_i.shape[0]
     mi, mo = br_i[k, BR_MIN], br_i[k, BR_MOUT]
-    off, n = br_i[k, BR_OFF], br_i[k, BR_N]
     for r in range(2):                      # back to the track frame: rotate by the tilt
         for o in (0, 3):
             f0, f1, f2 = F[r, o], F[r, o + 1], F[r, o + 2]
@@ -130,13 +163,10 @@ def _loads_back(k, y, br_i, mkF, mkM, elout, F, Qc, th):
         mkF[mo, a] += F[1, a]
         mkM[mo, a] += F[1, 3 + a]
     r = elout.shape[0] - BR_ROWS * (nbr - k)
-    cb = off + n - 24                      # the two cages' states close the bearing's
     for c in range(6):
         elout[r, c] = F[0, c]
         elout[r + 1, c] = F[1, c]
     elout[r + 2, 0] = Qc[0, 0, 0]
     elout[r + 2, 1] = Qc[1, 0, 0]
-    elout[r + 2, 2] = y[cb + 5]
-    elout[r + 2, 3] = y[cb + 17]
-    elout[r + 2, 4] = y[cb + 11]
-    elout[r + 2, 5] = y[cb + 23]
+    for c in range(4):
+        elout[r + 2, 2 + c] = cages[c]

@@ -29,6 +29,11 @@
   Jacobian is retried in 2, 4, ... 64 sub-steps.  Newton needs a right-hand side continuous in
   the state: hence FASTSIM's cut-back slip step in the vehicle (``wheelrail.fastsim_update``).
 
+With bearings, the leapfrog exchanges with them once a step (:mod:`.exchange`): the step is the
+exchange step, and each bearing advances its own states in its own sub-steps inside the
+right-hand side (:func:`.kernel_system.rhs_exchange`); RK4 and generalized-alpha carry the
+bearings' states in ``y`` with the bodies'.
+
 Both write outputs every ``n_sub`` steps: sensor accelerations, wheel and element outputs, and the
 whole state every ``state_every`` outputs.  They return a status (0 done, 1 not finite,
 2 runaway, 3 Newton failed), the number of outputs written, and the offending state index.
@@ -40,11 +45,8 @@ import math
 import numpy as np
 from numba import njit
 
-from axlebox.bearing.integrate import kick_drift
-
-from .kernel_bearings import BR_N, BR_OFF, damped_kicks
 from .kernel_body import BI_N, BI_POS, BI_SPIN, BI_VEL, frame_kinematics, position_rates
-from .kernel_system import rhs
+from .kernel_system import rhs, rhs_exchange
 
 OK, NOT_FINITE, RUNAWAY, NO_CONVERGENCE = 0, 1, 2, 3
 
@@ -62,16 +64,17 @@ def _check(y, nq, nend, vmax):
 
 
 @njit(cache=True)
-def _output(k, base, t, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y, state_every):
-    """Record output ``k`` from the evaluation just made at (t, y) in row ``k - base`` (the
-    buffers hold outputs ``base ..``: all of the run, or one streamed chunk); then check the
-    state."""
+def _output(k, base, t, ys, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y,
+            state_every):
+    """Record output ``k`` from the evaluation just made at (t, ``ys``: the state it was made
+    at) in row ``k - base`` (the buffers hold outputs ``base ..``: all of the run, or one
+    streamed chunk); then check the state ``y``."""
     out_t[k - base] = t
-    out_sens[k - base] = W[15]
-    out_wh[k - base] = W[14]
-    out_el[k - base] = W[13]
+    out_sens[k - base] = W.sensout
+    out_wh[k - base] = W.whout
+    out_el[k - base] = W.elout
     if k % state_every == 0:
-        out_y[k // state_every - (base + state_every - 1) // state_every] = y
+        out_y[k // state_every - (base + state_every - 1) // state_every] = ys
     return _check(y, nq, nend, vmax)
 
 
@@ -103,11 +106,12 @@ def _rk4_step(t, y, k1, k2, k3, k4, yt, h, S, W):
 
 @njit(cache=True)
 def _kick_drift(y, a, hk, h, S, W):
-    """One leapfrog step from the accelerations ``a`` just evaluated at ``y``: velocities first
-    (kick, by ``hk``: ``h``, or ``h / 2`` on the first step from ``u_0``), then positions at the
-    new velocities (drift, by ``h``); ``a``'s position rows are reused."""
-    bi, br_i, br_P = S[0], S[16], S[17]
-    Ab, rb, vb, omb, omfb, brG = W[0], W[1], W[2], W[3], W[4], W[16]
+    """One leapfrog step of the bodies from the accelerations ``a`` just evaluated at ``y``:
+    velocities first (kick, by ``hk``: ``h``, or ``h / 2`` on the first step from ``u_0``), then
+    positions at the new velocities (drift, by ``h``); ``a``'s position rows are reused.  The
+    bearings' states are not touched: the exchange advanced them (:mod:`.exchange`)."""
+    bi = S.bi
+    Ab, rb, vb, omb, omfb = W.Ab, W.rb, W.vb, W.omb, W.omfb
     for b in range(bi.shape[0]):
         iv = bi[b, BI_VEL]
         for i in range(iv, iv + 6 + bi[b, BI_N]):
@@ -117,15 +121,10 @@ def _kick_drift(y, a, hk, h, S, W):
         ip = bi[b, BI_POS]
         for i in range(ip, ip + 7 + bi[b, BI_SPIN] + bi[b, BI_N]):
             y[i] += h * a[i]
-    if brG.shape[0] > 0:                      # rates with the contacts' damping implicit
-        damped_kicks(y, a, br_i, br_P, brG, hk)
-    for k in range(br_i.shape[0]):
-        off, n = br_i[k, BR_OFF], br_i[k, BR_N]
-        kick_drift(y[off:off + n], a[off:off + n], br_P[k], hk, h, brG.shape[0] == 0)
 
 
 @njit(cache=True)
-def run_explicit(leapfrog, y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t,
+def run_explicit(leapfrog, y, t0, h, n_sub, n_out, k0, k_last, S, W, X, nq, nend, vmax, out_t,
                  out_sens, out_wh, out_el, out_y, state_every, start, base):
     """Advance ``y`` in place through outputs ``k0 .. n_out - 1`` by RK4 or (``leapfrog``) the
     leapfrog; output ``k`` is at ``t0 + (k - k0) n_sub h``, recorded from the step's first
@@ -133,29 +132,43 @@ def run_explicit(leapfrog, y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, v
 
     Leapfrog: with ``start`` the velocities in ``y`` are ``u_0`` and the first kick is by
     ``h / 2``; after that they are ``u_{n-1/2}``, half a step behind the positions, and a run
-    continued from ``y`` (``start`` False) goes on exactly as if it had not stopped.  ``base``:
-    the output the buffers' first row holds (:func:`_output`)."""
+    continued from ``y`` (``start`` False) goes on exactly as if it had not stopped.  Its
+    bearings exchange with the bodies every step (``X``: :class:`.exchange.Exchange`).
+    ``base``: the output the buffers' first row holds (:func:`_output`)."""
     N = y.shape[0]
     k1 = np.empty(N)
     m = 0 if leapfrog else N                  # RK4's stages
     k2, k3, k4, yt = np.empty(m), np.empty(m), np.empty(m), np.empty(m)
+    ys = np.empty(N if leapfrog else 0)       # the state an output's evaluation was made at
+    rs = np.empty_like(X.ring)
     for k in range(k0, n_out):
         for j in range(n_sub):
             t = t0 + ((k - k0) * n_sub + j) * h
-            rhs(t, y, k1, S, W)
+            if leapfrog:
+                if j == 0 and (k % state_every == 0 or k == k_last):
+                    ys[:] = y                 # the exchange moves the bearings' states on
+                    rs[:] = X.ring
+                    first = X.flags[0]
+                rhs_exchange(t, y, k1, S, W, X)
+            else:
+                rhs(t, y, k1, S, W)
             if j == 0:
-                st, i = _output(k, base, t, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y,
-                                state_every)
+                st, i = _output(k, base, t, ys if leapfrog else y, y, W, nq, nend, vmax, out_t,
+                                out_sens, out_wh, out_el, out_y, state_every)
                 if st != OK:
                     return st, k, i
                 if k == k_last:
+                    if leapfrog:              # the run ends at the state this output was made
+                        y[:] = ys             # at: a run continued from it makes this exchange
+                        X.ring[:] = rs        # again
+                        X.flags[0] = first
                     break
             if leapfrog:
                 first = start and k == k0 and j == 0
                 _kick_drift(y, k1, 0.5 * h if first else h, h, S, W)
             else:
                 _rk4_step(t, y, k1, k2, k3, k4, yt, h, S, W)
-            _normalise(y, S[0])
+            _normalise(y, S.bi)
     return OK, n_out, -1
 
 
@@ -269,8 +282,8 @@ def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t, 
             if j == 0:
                 rhs(t, y, f, S, W)
                 stats[3] += 1
-                st, i = _output(k, base, t, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y,
-                                state_every)
+                st, i = _output(k, base, t, y, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el,
+                                out_y, state_every)
                 if st != OK:
                     return st, k, i
                 if k == k_last:
@@ -310,7 +323,7 @@ def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t, 
                     for i in range(N):
                         y[i] = y[i] + hm * ydn[i] + ga * hm * (yd[i] - ydn[i])
                         ydn[i] = yd[i]
-                    _normalise(y, S[0])
+                    _normalise(y, S.bi)
                     stats[0] += 1
                 if ok:
                     break

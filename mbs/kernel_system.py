@@ -1,9 +1,10 @@
 """The system right-hand side ``y' = F(t, y)`` in numba, over the packed arrays of
 :class:`axlebox.mbs.system.Model`.
 
-``S`` (static arrays): ``bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f, wtab,
-wpar, trk, sens``; ``W`` (work arrays, overwritten every call): frame quantities per body,
-marker kinematics and loads, the generalised loads, element, wheel and sensor outputs.
+``S`` (:class:`Arrays`, static): the bodies, markers, elements, wheels, track, sensors and
+bearings packed; ``W`` (:class:`Work`, overwritten every call): frame quantities per body,
+marker kinematics and loads, the generalised loads, element, wheel and sensor outputs (numba
+compiles these named tuples: fields by name, no positions to keep in step).
 Order of one evaluation: frames and position rates; marker kinematics; element and wheel-rail
 forces on markers; gravity and marker loads per body; body accelerations; sensor accelerations.
 The bearings (:mod:`.kernel_bearings`) and the bodies' accelerations (:func:`_accelerations`)
@@ -12,42 +13,76 @@ numbers; the rest runs on one.
 """
 from __future__ import annotations
 
+from collections import namedtuple
+
 import numpy as np
 from numba import njit, prange
 
-from .kernel_bearings import bearing_forces
+from .kernel_bearings import bearing_exchange, bearing_forces
 from .kernel_body import BI_N, BI_VEL, body_accelerations, frame_kinematics, gravity_load, position_rates
 from .kernel_elements import element_forces
 from .kernel_markers import marker_acceleration, marker_kinematics, marker_loads
 from .kernel_wheels import G_GRAV, wheel_forces
 
 
+Arrays = namedtuple("Arrays", ["bi", "bf", "inv", "goff", "mk_i", "mk_f", "shp", "el_i", "el_f", "glob",
+                               "wh_i", "wh_f", "wtab", "wpar", "trk", "sens", "br_i", "br_P", "br_D"])
+Work = namedtuple("Work", ["Ab", "rb", "vb", "omb", "omfb", "mku", "mkp", "mkv", "mkR", "mkw", "mkF",
+                           "mkM", "gen", "elout", "whout", "sensout"])
+
+
 @njit(cache=True)
 def rhs(t, y, dy, S, W):
-    bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f, wtab, wpar, trk, sens, \
-        br_i, br_P, br_D = S
-    Ab, rb, vb, omb, omfb, mku, mkp, mkv, mkR, mkw, mkF, mkM, gen, elout, whout, sensout, brG = W
-    nb = bi.shape[0]
-    for b in range(nb):
-        frame_kinematics(b, y, bi, Ab[b], rb[b], vb[b], omb[b], omfb[b])
-        position_rates(b, y, bi, omfb[b], dy)
-    marker_kinematics(y, bi, mk_i, mk_f, shp, Ab, rb, vb, omfb, mku, mkp, mkv, mkR, mkw)
-    mkF[:, :] = 0.0
-    mkM[:, :] = 0.0
-    element_forces(t, el_i, el_f, mkp, mkv, mkR, mkw, mkF, mkM, elout)
-    bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, elout, brG)
-    if wh_i.shape[0] > 0:
-        wheel_forces(t, bi, wh_i, wh_f, wtab, wpar, trk, glob, Ab, omb, mkp, mkv, mkR, mkw,
-                     mkF, mkM, whout)
-    g = glob[G_GRAV:G_GRAV + 3]
-    for b in range(nb):
+    """``dy = F(t, y)``, the bearings' rates included (:func:`.kernel_bearings.bearing_forces`)."""
+    _kinematics(t, y, dy, S, W)
+    bearing_forces(t, y, dy, S.bi, S.br_i, S.br_P, S.br_D, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM,
+                   W.elout)
+    _dynamics(t, y, dy, S, W)
+
+
+@njit(cache=True)
+def rhs_exchange(t, y, dy, S, W, X):
+    """The bodies' ``dy`` at ``t`` with the bearings exchanged (:func:`.kernel_bearings.bearing_exchange`:
+    their states advanced to ``t``, their mean ring loads on the markers); the bearings' rows
+    of ``dy`` are left as they were."""
+    _kinematics(t, y, dy, S, W)
+    bearing_exchange(t, y, S.bi, S.br_i, S.br_P, S.br_D, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM,
+                     W.elout, X)
+    _dynamics(t, y, dy, S, W)
+
+
+@njit(cache=True)
+def _kinematics(t, y, dy, S, W):
+    """Frames, position rates and marker kinematics; the element forces on the markers."""
+    bi = S.bi
+    for b in range(bi.shape[0]):
+        frame_kinematics(b, y, bi, W.Ab[b], W.rb[b], W.vb[b], W.omb[b], W.omfb[b])
+        position_rates(b, y, bi, W.omfb[b], dy)
+    marker_kinematics(y, bi, S.mk_i, S.mk_f, S.shp, W.Ab, W.rb, W.vb, W.omfb, W.mku, W.mkp, W.mkv,
+                      W.mkR, W.mkw)
+    W.mkF[:, :] = 0.0
+    W.mkM[:, :] = 0.0
+    element_forces(t, S.el_i, S.el_f, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.elout)
+
+
+@njit(cache=True)
+def _dynamics(t, y, dy, S, W):
+    """Wheel-rail forces, gravity and the marker loads per body; the bodies' and the sensors'
+    accelerations."""
+    bi, goff, Ab = S.bi, S.goff, W.Ab
+    if S.wh_i.shape[0] > 0:
+        wheel_forces(t, bi, S.wh_i, S.wh_f, S.wtab, S.wpar, S.trk, S.glob, Ab, W.omb, W.mkp, W.mkv,
+                     W.mkR, W.mkw, W.mkF, W.mkM, W.whout)
+    g = S.glob[G_GRAV:G_GRAV + 3]
+    for b in range(bi.shape[0]):
         n = bi[b, BI_N]
         o = goff[b]
-        gravity_load(b, bi, bf, inv, y, Ab[b], g, gen[o:o + 6 + n])
-    marker_loads(bi, mk_i, shp, Ab, mku, mkF, mkM, gen, goff)
-    _accelerations(y, dy, bi, bf, inv, goff, Ab, omb, omfb, gen)
-    for s in range(sens.shape[0]):
-        marker_acceleration(sens[s], y, dy, bi, mk_i, mk_f, shp, Ab, omfb, mku, sensout[s])
+        gravity_load(b, bi, S.bf, S.inv, y, Ab[b], g, W.gen[o:o + 6 + n])
+    marker_loads(bi, S.mk_i, S.shp, Ab, W.mku, W.mkF, W.mkM, W.gen, goff)
+    _accelerations(y, dy, bi, S.bf, S.inv, goff, Ab, W.omb, W.omfb, W.gen)
+    for s in range(S.sens.shape[0]):
+        marker_acceleration(S.sens[s], y, dy, bi, S.mk_i, S.mk_f, S.shp, Ab, W.omfb, W.mku,
+                            W.sensout[s])
 
 
 @njit(cache=True)

@@ -22,7 +22,7 @@ from .system import Model
 
 def _index(model: Model):
     """Columns (position perturbations) and rows (acceleration equations) kept."""
-    bi = model.S[0]
+    bi = model.S.bi
     cols, rows = [], []
     for k in range(bi.shape[0]):
         ip, iv, n, s = (int(x) for x in bi[k, :4])
@@ -35,7 +35,7 @@ def _index(model: Model):
 
 def _apply(model: Model, y: np.ndarray, cols, dx: np.ndarray) -> np.ndarray:
     y = y.copy()
-    bi = model.S[0]
+    bi = model.S.bi
     rotv = {}
     for (k, what, a), d in zip(cols, dx):
         ip, s = int(bi[k, 0]), int(bi[k, 3])
@@ -67,7 +67,7 @@ def equilibrium(model: Model, y0=None, *, tol: float = 1e-6, accept: float = 1e-
     n = len(cols)
     h = np.full(n, 1e-7)
     wmass = np.zeros(model.n_states)
-    bi = model.S[0]
+    bi = model.S.bi
     for k, b in enumerate(model.bodies):
         iv, nm = int(bi[k, 1]), b.n_modes
         wmass[iv:iv + 3] = b.mass

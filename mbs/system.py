@@ -21,6 +21,7 @@ from . import ffrf_numpy as fn
 from .body import Body
 from .kernel_body import BF_GRAV, BF_JINV, BF_M, BF_MC, BF_P0, BF_WIDTH
 from .kernel_elements import EL_WIDTH
+from .kernel_system import Arrays, Work
 from .wheelrail.element_kernel import N_OUT
 
 
@@ -219,9 +220,9 @@ class System:
         sens_names = list(self.sensors)
         sens = np.array([self.sensors[s] for s in sens_names], np.int64)
         br_i, br_P, br_D, y0 = self._pack_bearings(y0)
-        S = (bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f,
-             np.ascontiguousarray(wtab, float), np.ascontiguousarray(wpar, float), trk, sens,
-             br_i, br_P, br_D)
+        S = Arrays(bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f,
+                   np.ascontiguousarray(wtab, float), np.ascontiguousarray(wpar, float), trk, sens,
+                   br_i, br_P, br_D)
         return Model(self, S, y0, nq, sens_names, [w[0] for w in self.wheels])
 
     def _pack_bearings(self, y0):
@@ -277,19 +278,18 @@ class Model:
         self.nq = nq
         self.sensor_names = sensors
         self.wheel_names = wheels
-        bi = S[0]
-        nb, nm, ne = bi.shape[0], S[4].shape[0], S[7].shape[0]
+        bi = S.bi
+        nb, nm, ne = bi.shape[0], S.mk_i.shape[0], S.el_i.shape[0]
         ngen = int(sum(6 + b.n_modes for b in system.bodies))
         from .kernel_bearings import BR_ROWS
         self.bearing_names = [x[0] for x in system.bearings]
         self.n_body_states = int(y0.size - sum(x[6].size for x in system.bearings))
         ne = ne + BR_ROWS * len(self.bearing_names)
         z = np.zeros
-        self.W = (z((nb, 3, 3)), z((nb, 3)), z((nb, 3)), z((nb, 3)), z((nb, 3)),
-                  z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3, 3)),
-                  z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3)), z(ngen),
-                  z((max(ne, 1), 6)), z((max(len(wheels), 1), N_OUT)),
-                  z((max(len(sensors), 1), 3)), z((0, 2, 1, 6, 12)))
+        self.W = Work(z((nb, 3, 3)), z((nb, 3)), z((nb, 3)), z((nb, 3)), z((nb, 3)),
+                      z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3, 3)),
+                      z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3)), z(ngen),
+                      z((max(ne, 1), 6)), z((max(len(wheels), 1), N_OUT)), z((max(len(sensors), 1), 3)))
 
     @property
     def bodies(self) -> list[Body]:
@@ -307,7 +307,7 @@ class Model:
 
     def body_state(self, k: int, y: np.ndarray) -> dict:
         """Unpacked state of body ``k``: r, p, A, beta, q, v, omega, qd."""
-        bi = self.S[0]
+        bi = self.S.bi
         ip, iv, n, s = (int(x) for x in bi[k, :4])
         p = y[ip + 3:ip + 7]
         return {"r": y[ip:ip + 3], "p": p, "A": fn.quat_to_A(p), "beta": y[ip + 7] if s else 0.0,
@@ -316,7 +316,7 @@ class Model:
 
     def state_owner(self, i: int) -> str:
         """Which body (and which coordinate) state index ``i`` belongs to."""
-        bi = self.S[0]
+        bi = self.S.bi
         for k, b in enumerate(self.bodies):
             ip, iv, n, s = (int(x) for x in bi[k, :4])
             if ip <= i < ip + 7 + s + n:
@@ -329,7 +329,7 @@ class Model:
                 what = ("vx", "vy", "vz", "wx", "wy", "wz")[j] if j < 6 else f"qd{j - 5}"
                 return f"body {b.name!r} ({what})"
         for k, name in enumerate(self.bearing_names):
-            off, n = (int(x) for x in self.S[16][k, 3:5])
+            off, n = (int(x) for x in self.S.br_i[k, 3:5])
             if off <= i < off + n:
                 j = i - off
                 nr = n - 24
@@ -363,10 +363,10 @@ class Model:
     def coupling_pattern(self) -> tuple[np.ndarray, np.ndarray, int]:
         """Sparsity of dF/dy from which bodies the elements and wheels couple, and column groups
         for finite differences (columns of bodies with disjoint neighbourhoods share a group)."""
-        bi = self.S[0]
+        bi = self.S.bi
         nb = bi.shape[0]
         adj = np.eye(nb, dtype=bool)
-        mk_body = self.S[4][:, 0]
+        mk_body = self.S.mk_i[:, 0]
         for e in self.system.elements:
             b1, b2 = mk_body[e.m1], mk_body[getattr(e, "m2", e.m1)]
             if b1 >= 0 and b2 >= 0:
@@ -402,7 +402,7 @@ class Model:
         N = self.n_states
         scale = np.ones(N)
         atol = np.full(N, 1e-9)
-        bi = self.S[0]
+        bi = self.S.bi
         for k in range(bi.shape[0]):
             ip, iv, n, s = (int(x) for x in bi[k, :4])
             scale[ip + 7 + s:ip + 7 + s + n] = 1e-3

@@ -125,7 +125,8 @@ def build_model(cfg: dict, log=print):
 def settings(cfg: dict) -> integrate.Settings:
     i = cfg["integrator"]
     return integrate.Settings(method=i["method"], dt=i["dt"], output_rate_hz=i["output_rate_hz"],
-                              state_rate_hz=i["state_rate_hz"], rho_inf=i["rho_inf"])
+                              state_rate_hz=i["state_rate_hz"], rho_inf=i["rho_inf"],
+                              exchange_dt=cfg["coupling"]["exchange_dt"])
 
 
 def write(path, run: integrate.Run, model, cfg_text: str, seed: int,
@@ -233,7 +234,8 @@ def read_checkpoint(path: Path, text: str) -> dict:
                     f"checkpoint {str(path)!r} was made by another config ({'; '.join(changed[:3])}"
                     f"{' ...' if len(changed) > 3 else ''}): run the same config to resume, or "
                     "--restart to start over")
-            return {"k": int(f.attrs["k"]), "wall_s": float(f.attrs["wall_s"]), "y": f["y"][()]}
+            return {"k": int(f.attrs["k"]), "wall_s": float(f.attrs["wall_s"]), "y": f["y"][()],
+                    "exchange": f["exchange"][()]}
     except (OSError, KeyError) as err:
         raise ParameterError(f"checkpoint {str(path)!r} is not readable ({err}): --restart to "
                              "start over") from None
@@ -241,10 +243,10 @@ def read_checkpoint(path: Path, text: str) -> dict:
 
 def write_checkpoint(path: Path, text: str, snap: dict) -> None:
     """The snapshot to ``path``, through a temporary name (a kill leaves the last one whole): the
-    config, the outputs done and the state; the outputs themselves are in the stream
-    (:mod:`.stream`)."""
+    config, the outputs done, the state and the bearings' ring motion at the last exchange
+    (mbs/exchange.py); the outputs themselves are in the stream (:mod:`.stream`)."""
     resultfile.write_checkpoint(path, {"config": text, "k": snap["k"], "wall_s": snap["wall_s"]},
-                                {"y": snap["y"]})
+                                {"y": snap["y"], "exchange": snap["exchange"]})
 
 
 def run(config_path, out, duration: float | None = None, log=print,

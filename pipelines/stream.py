@@ -62,8 +62,8 @@ class Stream:
         make("out_t", ())
         for i in range(len(self.names)):
             make(f"out_sens/{i}", (3,))
-        make("out_wh", W[14].shape)
-        make("out_el", (W[13].shape[0], 6))
+        make("out_wh", W.whout.shape)
+        make("out_el", (W.elout.shape[0], 6))
         self.f.create_dataset("out_y", shape=(0, model.n_states), maxshape=(None, model.n_states),
                               dtype="f8", chunks=(64, model.n_states))
 

@@ -50,13 +50,13 @@ def test_bearings_start_in_equilibrium_with_the_car(car):
     1 % (roller inertia and contact damping are the rest)."""
     cfg, model, y0 = car
     dy = model.rhs(0.0, y0)
-    out = model.W[13]
+    out = model.W.elout
     nbr = len(model.bearing_names)
     rows = out[-BR_ROWS * nbr:].reshape(nbr, BR_ROWS, 6)
     load = rows[:, 1, 2]                          # the bearing holds its axle-box up
     assert np.all((load > 50e3) & (load < 60e3)), load      # (car / 2 + frame) g / 4 + box g
     np.testing.assert_allclose(rows[:, 0, :3], -rows[:, 1, :3], atol=0.01 * load.min())
-    bi = model.S[0]
+    bi = model.S.bi
     for k, b in enumerate(model.bodies):
         if b.name.startswith(("ws", "ab")):
             assert abs(b.mass * dy[bi[k, 1] + 2]) < 0.01 * load.min(), b.name
@@ -75,7 +75,7 @@ def test_one_wheelset_on_bearings_carries_what_it_carries_in_the_full_car(car):
     def loads(m, y):
         m.rhs(0.0, y)
         nbr = len(m.bearing_names)
-        rows = m.W[13][-BR_ROWS * nbr:].reshape(nbr, BR_ROWS, 6)
+        rows = m.W.elout[-BR_ROWS * nbr:].reshape(nbr, BR_ROWS, 6)
         return {nm: rows[i, 1, :3] for i, nm in enumerate(m.bearing_names)}
     full, part = loads(model, y0), loads(m1, y1)
     for nm in m1.bearing_names:
@@ -161,6 +161,96 @@ def test_leapfrog_matches_rk4_and_the_threads_do_not_change_it(car):
     np.testing.assert_allclose(b[1], a[1], rtol=0.15)
 
 
+def test_one_substep_an_exchange_is_the_cars_single_rate_leapfrog(car):
+    """The car's leapfrog with its bearings behind the seam (mbs/exchange.py, one sub-step an
+    exchange) against the whole-system leapfrog written out here as it ran before the seam: one
+    evaluation of every state's rate (bodies and bearings), the bodies' kick-drift, each
+    bearing's kick-drift.  100 steps of 1e-5 s, an output every step: sensors, wheel-rail and
+    element outputs (the bearings' rows among them) and the end state equal to the bit."""
+    from axlebox.bearing.advance import kick_drift
+    from axlebox.mbs import kernel_integrate as ki
+    from axlebox.mbs.kernel_bearings import BR_N, BR_OFF
+    cfg, model, y0 = car
+    h, n = 1e-5, 100
+    s = integrate.Settings(method="leapfrog", dt=h, output_rate_hz=1 / h, state_rate_hz=1 / h)
+    run = integrate.simulate(model, n * h, s, y0=y0)
+    assert run.ok, run.message
+    y = y0.copy()
+    sens, el = [], []
+    for i in range(n + 1):
+        dy = model.rhs(i * h, y)
+        sens.append(model.W.sensout.copy())
+        el.append(model.W.elout.copy())
+        if i == n:
+            break
+        hk = 0.5 * h if i == 0 else h
+        ki._kick_drift(y, dy, hk, h, model.S, model.W)
+        for k, (off, nb) in enumerate(model.S.br_i[:, [BR_OFF, BR_N]]):
+            kick_drift(y[off:off + nb], dy[off:off + nb], model.S.br_P[k], hk, h, True)
+        ki._normalise(y, model.S.bi)
+    np.testing.assert_array_equal(np.array(sens), np.stack([run.sensors[nm] for nm in model.sensor_names], 1))
+    el = np.array(el)
+    ne = model.S.el_i.shape[0]
+    np.testing.assert_array_equal(el[:, :ne], run.elements)
+    np.testing.assert_array_equal(el[:, ne:ne + BR_ROWS * len(model.bearing_names)].reshape(run.bearings.shape),
+                                  run.bearings)
+    np.testing.assert_array_equal(y, run.y_end)
+
+
+def test_bodies_stepping_at_the_exchange_step_follow_the_single_rate_run(car):
+    """The bodies at 2e-5 s exchanging with bearings that take two sub-steps of 1e-5 s a step
+    (mbs/exchange.py) against everything at 1e-5 s, on the defect case as above: both sides' RMS
+    within 3 % and the defect side's envelope BPFO line within 15 % (the tolerances of the
+    leapfrog against RK4 above: the rollers' chaos); and the eight bearings advanced on one
+    thread and on two give identical arrays (no synchronisation inside an exchange)."""
+    import numba
+    cfg, model, y0 = car
+    n_all = numba.get_num_threads()
+    runs = {}
+    try:
+        for H, threads in ((0.0, n_all), (2e-5, n_all), (2e-5, 1)):
+            numba.set_num_threads(threads)
+            s = integrate.Settings(method="leapfrog", dt=1e-5, exchange_dt=H, output_rate_hz=1e4,
+                                   state_rate_hz=100)
+            runs[H, threads] = integrate.simulate(model, 0.3, s, y0=y0)
+            assert runs[H, threads].ok, runs[H, threads].message
+    finally:
+        numba.set_num_threads(n_all)
+    for nm in ("ws2_R", "ws2_L"):
+        np.testing.assert_array_equal(runs[2e-5, 1].sensors[nm], runs[2e-5, n_all].sensors[nm])
+    f_s = float(model.body_state(model.system.index("ws2"), y0)["omega"][1]) / (2 * np.pi)
+    fo = orders(BearingParams())
+
+    def ind(run):
+        d = analyse(run.sensors["ws2_R"][500:, 2], 1e4, f_s, fo, 0.130, lines=("BPFO",))
+        return np.array([d.rms, d.lines["BPFO"].searched[0][2], run.sensors["ws2_L"][500:, 2].std()])
+    a, b = ind(runs[0.0, n_all]), ind(runs[2e-5, n_all])
+    np.testing.assert_allclose(b[[0, 2]], a[[0, 2]], rtol=0.03)
+    np.testing.assert_allclose(b[1], a[1], rtol=0.15)
+
+
+def test_a_multirate_run_resumed_from_its_checkpoint_is_the_unbroken_run(car):
+    """With five sub-steps an exchange the bearings' last ring motion is part of the run's
+    state: a run resumed from the snapshot taken at 0.02 s (state and ring motion) and a run
+    continued from the first one's end give the unbroken run's outputs to the bit."""
+    cfg, model, y0 = car
+    s = integrate.Settings(method="imex", dt=1e-5, exchange_dt=5e-5, output_rate_hz=1e4, state_rate_hz=1e3)
+    whole = integrate.simulate(model, 0.04, s, y0=y0, chunk=0.02)
+    snaps = []
+    integrate.simulate(model, 0.04, s, y0=y0, chunk=0.02, checkpoint=lambda snap: snaps.append(
+        {k: np.array(v, copy=True) for k, v in snap.items()}), checkpoint_every=0.02)
+    assert snaps and snaps[0]["exchange"].shape == (len(model.bearing_names), 2, 12)
+    resumed = integrate.simulate(model, 0.04, s, y0=y0, chunk=0.02, resume=snaps[0])
+    first = integrate.simulate(model, 0.02, s, y0=y0)
+    second = integrate.simulate(model, 0.02, s, y0=first.y_end, t0=0.02, continued=True,
+                                exchange_ring=first.exchange)
+    for nm in ("ws2_R", "ws2_L"):
+        np.testing.assert_array_equal(resumed.sensors[nm], whole.sensors[nm])
+        np.testing.assert_array_equal(second.sensors[nm], whole.sensors[nm][200:])
+    np.testing.assert_array_equal(resumed.y_end, whole.y_end)
+    np.testing.assert_array_equal(second.y_end, whole.y_end)
+
+
 def test_imex_runs_the_damping_the_paper_cites_where_the_leapfrog_cannot(car):
     """Contact damping 1e-4 s times the stiffness (the shipped calibration, in the range the
     paper cites): the leapfrog at the car's 1e-5 s diverges on the rollers; imex, with that
@@ -171,7 +261,7 @@ def test_imex_runs_the_damping_the_paper_cites_where_the_leapfrog_cannot(car):
 
     from axlebox.bearing import layout
     cfg, model, y0 = car
-    P0 = model.S[17].copy()
+    P0 = model.S.br_P.copy()
     n_all = numba.get_num_threads()
     runs = {}
     try:
@@ -179,12 +269,12 @@ def test_imex_runs_the_damping_the_paper_cites_where_the_leapfrog_cannot(car):
                                           ("imex0.1", "imex", n_all, None),
                                           ("lf", "leapfrog", n_all, 1e-4), ("imex", "imex", n_all, 1e-4),
                                           ("imex1", "imex", 1, 1e-4)):
-            model.S[17][:] = P0 if bp is None else layout.pack(BearingParams(damping="stiffness", beta=bp))
+            model.S.br_P[:] = P0 if bp is None else layout.pack(BearingParams(damping="stiffness", beta=bp))
             numba.set_num_threads(threads)
             s = integrate.Settings(method=method, dt=1e-5, output_rate_hz=1e4, state_rate_hz=100)
             runs[name] = integrate.simulate(model, 0.3 if bp is None else 0.1, s, y0=y0)
     finally:
-        model.S[17][:] = P0
+        model.S.br_P[:] = P0
         numba.set_num_threads(n_all)
     assert not runs["lf"].ok and runs["imex"].ok and runs["imex1"].ok, runs["lf"].message
     for nm in ("ws2_R", "ws2_L"):

@@ -194,7 +194,7 @@ def _axlebox_run(path: Path, node: str, h: float, t_end: float) -> tuple[np.ndar
     run = simulate(model, t_end, Settings(method="galpha", dt=h, rho_inf=0.9, output_rate_hz=1000,
                                           state_rate_hz=1000))
     assert run.ok, run.message
-    ip, n = int(model.S[0][0, 0]), int(model.S[0][0, 2])
+    ip, n = int(model.S.bi[0, 0]), int(model.S.bi[0, 2])
     return run.state_time, run.states[:, ip + 7:ip + 7 + n], run.states[:, ip:ip + 3]
 
 

@@ -32,7 +32,7 @@ def test_car_at_rest_carries_its_weight_and_the_gearbox_offset(car):
     little roll moment from the carbody as the bogie leans (about 4 % here), hence 8 %."""
     cfg, model, y0 = car
     model.rhs(0.0, y0)
-    out = model.W[14]
+    out = model.W.whout
     W = sum(b.mass for b in model.bodies) * G
     assert out[:, ek.OUT_F + 2].sum() == pytest.approx(W, rel=0.005)
     sysm = model.system

@@ -1,0 +1,49 @@
+"""The exchange between the car's bodies and its bearings in a leapfrog run: the bodies step at
+the exchange step ``H``, each bearing in ``n`` sub-steps of ``h = H / n`` between two exchanges
+(:func:`axlebox.bearing.advance.advance`, :func:`.kernel_bearings.bearing_exchange`).
+
+Why: the rollers' contact modes (21-23 kHz) hold the bearings' step near 5e-6 s, while the car
+without bearings is accurate at 5e-5 s; stepping everything at the rollers' step spends a third
+of the run on the car's own right-hand side (benchmarks/README.md, "Speed by design").
+
+The coupling is explicit, as a co-simulation's (the paper's SIMPACK-Simulink exchange every
+1e-4 s): at each exchange a bearing sees its rings move on the straight line through their
+motion at this exchange and the last, over a window of one step centred on the exchange, and
+the bodies get its ring loads averaged over the window, held for the step.  The mean carries
+the window's impulse whole (momentum is exchanged without loss), and for loads linear in the
+ring motion it is the load at the exchange: the coupling is then the single-rate leapfrog's,
+with no lag to feed energy into the stiff bearing modes (a window of the step just past did:
+bearing/advance.py).  What the exchange step changes is how the impulses of the nonlinear
+contacts (the defect) are spread over the step, and the ring motion's curvature within it;
+both are measured against the single-rate run (tests/test_coupled.py, benchmarks/README.md
+"Multirate").
+
+:class:`Exchange` (a named tuple numba compiles): ``ring`` the ring motion at the last exchange
+(n_bearings, 2, 12), ``flags[0]`` 1 before the run's first exchange, ``h`` and ``n`` the
+bearings' sub-step and sub-steps an exchange, ``mode`` (bearing/advance.py ``MODES``), ``G``
+the implicit kick's blocks (n_bearings, 2, Z + 1, 6, 12), empty for the explicit leapfrog.
+"""
+from __future__ import annotations
+
+from collections import namedtuple
+
+import numpy as np
+
+from axlebox.bearing.advance import EXPLICIT, MODES
+
+Exchange = namedtuple("Exchange", ["ring", "flags", "h", "n", "mode", "G"])
+
+
+def exchange(model, method: str, h: float, n: int, ring=None) -> Exchange:
+    """The exchange of ``model``'s bearings for a leapfrog ``method`` ('leapfrog', 'imex',
+    'imex2') with sub-step ``h`` and ``n`` sub-steps an exchange; ``ring``: the last exchange's
+    ring motion of a run this one continues (:attr:`axlebox.mbs.integrate.Run.exchange`),
+    else the run starts."""
+    nbr = len(model.bearing_names)
+    mode = MODES[method]
+    Z = int(model.S.br_P[0, 0]) if nbr else 0
+    G = (np.zeros((nbr, 2, Z + 1, 6, 12)) if mode != EXPLICIT and nbr else np.zeros((0, 2, 1, 6, 12)))
+    start = ring is None
+    ring = np.zeros((nbr, 2, 12)) if start else np.array(ring, float).reshape(nbr, 2, 12)
+    return Exchange(ring=ring, flags=np.array([1 if start else 0], np.int64), h=float(h), n=int(n),
+                    mode=int(mode), G=G)
