@@ -85,8 +85,8 @@ def bearing_exchange(t, y, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, e
     advanced over the exchange's window (``X``: :class:`axlebox.mbs.exchange.Exchange`;
     :func:`axlebox.bearing.advance.advance`), the ring motion on the line through the last
     exchange's (``X.ring``) and this one's, which then becomes the last; the mean ring loads go
-    onto the markers and into the outputs as in :func:`bearing_forces`.  The bearings' rows of ``dy`` are not written: their states are
-    already advanced."""
+    onto the markers and into the outputs as in :func:`bearing_forces`.  The bearings' rows of
+    ``dy`` are not written: their states are already advanced."""
     nbr = br_i.shape[0]
     if nbr == 0:
         return

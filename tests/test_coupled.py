@@ -192,8 +192,8 @@ def test_one_substep_an_exchange_is_the_cars_single_rate_leapfrog(car):
     el = np.array(el)
     ne = model.S.el_i.shape[0]
     np.testing.assert_array_equal(el[:, :ne], run.elements)
-    np.testing.assert_array_equal(el[:, ne:ne + BR_ROWS * len(model.bearing_names)].reshape(run.bearings.shape),
-                                  run.bearings)
+    rows = el[:, ne:ne + BR_ROWS * len(model.bearing_names)]
+    np.testing.assert_array_equal(rows.reshape(run.bearings.shape), run.bearings)
     np.testing.assert_array_equal(y, run.y_end)
 
 
