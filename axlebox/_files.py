@@ -76,7 +76,8 @@ def h5_bound(arrays) -> int:
     stores an incompressible chunk with a few bytes per 64 KiB block more than it had; the rest
     is object headers and chunk indexes."""
     arrays = list(arrays)
-    return int(1.01 * sum(np.asarray(a).nbytes for a in arrays)) + (1 << 20) + (64 << 10) * len(arrays)
+    nbytes = sum(a.nbytes if hasattr(a, "nbytes") else np.asarray(a).nbytes for a in arrays)
+    return int(1.01 * nbytes) + (1 << 20) + (64 << 10) * len(arrays)
 
 
 @functools.cache

@@ -24,12 +24,17 @@ class ResultFileError(ValueError):
     """A file that is not an axlebox result this version can read."""
 
 
+BLOCK_BYTES = 32 << 20         # rows copied at a time from a streamed output
+
+
 def write(path, *, config_toml: str, seed: int, time: np.ndarray, fs_hz: float,
           signals: dict, groups: dict | None = None, attrs: dict | None = None) -> Path:
     """Write ``signals`` (sensor -> {channel: array}) and ``groups`` (name -> {dataset: array or
     (array, attrs)}) to ``path`` via ``path.tmp`` and an atomic rename (space reserved first:
     a full disk is a :class:`axlebox._files.DiskFullError`, nothing written); ``attrs`` are
-    further file attributes (run status and the like)."""
+    further file attributes (run status and the like).  A group's array may be read a block of
+    rows at a time (an object with ``shape``, ``dtype``, ``nbytes`` and ``rows(r0, r1)``, as
+    axlebox.pipelines.stream.Rows): a long run's outputs never all in memory."""
     arrays = [time, *(a for ch in signals.values() for a in ch.values()),
               *(i[0] if isinstance(i, tuple) else i for g in (groups or {}).values() for i in g.values())]
     with h5_written(path, h5_bound(arrays)) as f:
@@ -45,7 +50,14 @@ def write(path, *, config_toml: str, seed: int, time: np.ndarray, fs_hz: float,
             g = f.require_group(gname)
             for name, item in items.items():
                 data, attrs = item if isinstance(item, tuple) else (item, {})
-                ds = g.create_dataset(name, data=data, compression="gzip", compression_opts=4)
+                if hasattr(data, "rows"):
+                    ds = g.create_dataset(name, shape=data.shape, dtype=data.dtype, compression="gzip",
+                                          compression_opts=4)
+                    step = max(1, BLOCK_BYTES // max(1, data.nbytes // max(1, data.shape[0])))
+                    for r0 in range(0, data.shape[0], step):
+                        ds[r0:r0 + step] = data.rows(r0, r0 + step)
+                else:
+                    ds = g.create_dataset(name, data=data, compression="gzip", compression_opts=4)
                 ds.attrs.update(attrs)
     return Path(path)
 

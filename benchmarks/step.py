@@ -9,7 +9,8 @@ configs' step limits: whether it runs, wall seconds per simulated second, and af
 fade-in the defect-side (ws2_R) and healthy-side RMS, the defect side's BPFO envelope line, its
 largest |a|, the healthy side's lag behind it (impulse by impulse, broadband: what the
 diagnosis' lag reads first) and both sides' FC and VF (paper Eq. 17-18, 0-5 kHz), each against
-the first run's.
+the first run's.  ``--perturb EPS``: each run again with +-EPS added to one roller's first
+state (the rollers' chaos: what any change of the scheme moves by itself).
 """
 from __future__ import annotations
 
@@ -31,6 +32,8 @@ def main():
     ap.add_argument("--runs", nargs="+", default=["imex:5e-6", "imex:5e-6:2e-5", "imex:5e-6:5e-5",
                                                   "imex:5e-6:1e-4"])
     ap.add_argument("--bodies", default="", help="reduced-body folder (default: built into the cache)")
+    ap.add_argument("--perturb", type=float, default=0.0,
+                    help="also run each with +-this added to one roller's first state")
     a = ap.parse_args()
     if not a.duration >= TRACK_FADE_IN_S + 0.8:     # the BPFO line needs 0.8 s after the fade-in
         ap.error(f"--duration {a.duration:g} is not allowed: expected at least "
@@ -49,10 +52,16 @@ def main():
           "ws2_R BPFO line | ws2_R peak | lag ms | FC R / L Hz | VF R / L Hz^2 | against the first |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     ref = None
-    for method, dt, H in runs:
+    first = int(model.S.br_i[0, 3])                  # the first bearing's first roller state
+    for (method, dt, H), eps in ((run, e) for run in runs
+                                 for e in ((0.0, a.perturb, -a.perturb) if a.perturb else (0.0,))):
         s = integrate.Settings(method=method, dt=dt, output_rate_hz=fs, state_rate_hz=100, exchange_dt=H)
         integrate.simulate(model, 0.001, s, y0=y0)                  # compile outside the timing
-        r = integrate.simulate(model, a.duration, s, y0=y0)
+        y = y0.copy()
+        y[first] += eps
+        r = integrate.simulate(model, a.duration, s, y0=y)
+        if eps:
+            method = f"{method} ({eps:+g})"
         if r.status != "done":
             print(f"| {method} | {dt:g} | {H or dt:g} | {r.status}: {r.message} | | | | | | | | | |",
                   flush=True)

@@ -16,6 +16,7 @@ import math
 import sys
 import time
 import tomllib
+import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -258,7 +259,9 @@ def run(config_path, out, duration: float | None = None, log=print,
     ``checkpoint_every`` (simulated s, 0: none; None: 1 s): snapshots of the state to
     ``<out>.partial.h5``; a rerun of the same config resumes
     from it and the stream and gives the same file as an uninterrupted run; another config is
-    refused (exit 2, naming what changed) unless ``restart``."""
+    refused (exit 2, naming what changed) unless ``restart``.  Returns the run's status, wall
+    time, recorded time and sensors; its wheel-rail, bearing and state outputs are in the file
+    only (copied to it from the stream a block at a time)."""
     cfg, text = load_config(config_path, duration, overrides)
     out = Path(out)
     if checkpoint_every is None:
@@ -298,9 +301,11 @@ def run(config_path, out, duration: float | None = None, log=print,
     finally:
         sink.close()
     print(file=sys.stderr)
-    res = stream.finish(streamed, res, model, s, cfg["sensors"])   # as the acquisition records it
-    ride = comfort.floor_comfort(res.time, res.sensors, model.system.track_ramp)   # fade-in left out
-    write(out, res, model, text, cfg["run"]["seed"], ride)
+    with stream.finished(streamed, res, model, s, cfg["sensors"]) as rec:   # as the acquisition records it
+        ride = comfort.floor_comfort(rec.time, rec.sensors, model.system.track_ramp)   # fade-in left out
+        write(out, rec, model, text, cfg["run"]["seed"], ride)
+        # what the caller gets: the recorded time and sensors; the rest is in the file
+        res = dataclasses.replace(rec, wheels=None, elements=None, bearings=None, states=None)
     partial.unlink(missing_ok=True)
     streamed.unlink(missing_ok=True)
     T = res.time[-1] if res.time.size else 0.0

@@ -6,14 +6,18 @@ chunk of :func:`axlebox.mbs.integrate.simulate` (its ``sink``).
 The checkpoint stays small and whole: ``<out>.partial.h5`` (written through a temporary name)
 holds the config, the outputs done ``k``, the state and the wall time; the stream beyond ``k``
 (outputs of a chunk after the last checkpoint) is cut off on resume, so a resumed run appends
-the very values an uninterrupted one would.  When the run ends, :func:`finish` reads the stream
-back one sensor at a time through the acquisition chain and returns the run as recorded.
+the very values an uninterrupted one would.  When the run ends, :func:`finished` reads the stream
+back one sensor at a time through the acquisition chain and gives the run as recorded, its
+wheel-rail, element, bearing and state outputs as :class:`Rows` (read a block of rows at a time
+when the result file is written: the whole run is never in memory).
 """
 from __future__ import annotations
 
+import contextlib
 from pathlib import Path
 
 import h5py
+import numpy as np
 
 from axlebox._params import ParameterError
 from axlebox.mbs import integrate
@@ -105,11 +109,50 @@ def kept_every(settings: integrate.Settings, sensors_cfg: dict) -> int:
     return int(round(settings.output_rate_hz / sensors_cfg["fs_hz"]))
 
 
-def finish(path, run: integrate.Run, model, settings: integrate.Settings,
-           sensors_cfg: dict) -> integrate.Run:
+class Rows:
+    """Rows of a dataset in the open stream, read only a block at a time: indexing that keeps
+    every row (``rows[:, i]``, ``rows[:, 2, :2]``) and :meth:`reshape` are recorded and applied to
+    each block, so ``resultfile.write`` can copy a long run's outputs block by block."""
+
+    def __init__(self, ds, ops=()):
+        self.ds, self.ops = ds, tuple(ops)
+        one = self._apply(ds[:1]) if ds.shape[0] else self._apply(np.zeros((1, *ds.shape[1:])))
+        self.shape = (ds.shape[0], *one.shape[1:])
+        self.dtype = one.dtype
+        self.nbytes = int(np.prod(self.shape)) * self.dtype.itemsize
+
+    def _apply(self, block):
+        for op in self.ops:
+            block = op(block)
+        return block
+
+    def __getitem__(self, key):
+        key = key if isinstance(key, tuple) else (key,)
+        if key[0] != slice(None):
+            raise IndexError("Rows: only indexing that keeps every row ([:, ...]) is recorded")
+        return Rows(self.ds, self.ops + ((lambda b, k=key: b[k]),))
+
+    def reshape(self, n, *shape):
+        if n != self.shape[0]:
+            raise ValueError(f"Rows.reshape: {n} rows, expected {self.shape[0]}")
+        return Rows(self.ds, self.ops + ((lambda b, sh=shape: b.reshape(b.shape[0], *sh)),))
+
+    def rows(self, r0: int, r1: int) -> np.ndarray:
+        """Rows ``r0 .. r1 - 1``, every recorded operation applied."""
+        return self._apply(self.ds[r0:r1])
+
+    def __array__(self, dtype=None, copy=None):
+        a = self.rows(0, self.shape[0])          # the whole of it: for small runs and tests
+        return a if dtype is None else a.astype(dtype)
+
+
+@contextlib.contextmanager
+def finished(path, run: integrate.Run, model, settings: integrate.Settings, sensors_cfg: dict):
     """The run as recorded (:func:`.sensor.decimate_run`, or every output with an ideal sensor)
-    from the stream at ``path``, one sensor at a time; ``run``: the integrator's own (status,
-    wall time, final state, statistics)."""
+    from the stream at ``path``, for the ``with`` block: time and sensors in memory (one sensor
+    read at a time through the acquisition chain), wheel-rail, element, bearing and state outputs
+    as :class:`Rows` of the open stream; ``run``: the integrator's own (status, wall time,
+    final state, statistics)."""
     fs_in = settings.output_rate_hz
     ideal = sensors_cfg["model"] == "ideal"
     k = kept_every(settings, sensors_cfg)
@@ -119,9 +162,10 @@ def finish(path, run: integrate.Run, model, settings: integrate.Settings,
         for i, name in enumerate(model.sensor_names):
             a = f[f"out_sens/{i}"][()]
             sensors[name] = a if ideal else sensor.measure(a, fs_in, sensors_cfg)
-        wh, el = f["out_wh"][()], f["out_el"][()]          # kept every k-th already
-        states = f["out_y"][()]
-    return integrate.Run(time=t[::k], sensors=sensors, **integrate.split_outputs(model, wh, el),
-                         state_time=t[::settings.state_every][:states.shape[0]],
-                         states=states, y_end=run.y_end, status=run.status, message=run.message,
-                         wall_s=run.wall_s, stats=run.stats)
+        wh, el = Rows(f["out_wh"]), Rows(f["out_el"])          # kept every k-th already
+        states = Rows(f["out_y"])
+        yield integrate.Run(time=t[::k], sensors=sensors, **integrate.split_outputs(model, wh, el),
+                            state_time=t[::settings.state_every][:states.shape[0]],
+                            states=states, y_end=run.y_end, exchange=run.exchange, status=run.status,
+                            message=run.message, wall_s=run.wall_s, stats=run.stats)
+

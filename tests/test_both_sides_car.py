@@ -1,8 +1,8 @@
 """Beyond the paper (issues 20, 31): faults on both sides of a wheelset in the coupled car, one
 fault and its copy, and the car's sweep as a dataset.
 
-One sweep of the validation case (configs/validation_48kmh.toml: 50.4 x 2 x 2 mm outer-ring
-defects in row 2, at the top) with sides swept (``axlebox sweep --sides``): the defect on both
+The sweep's cases of the validation case (configs/validation_48kmh.toml: 50.4 x 2 x 2 mm
+outer-ring defects in row 2, at the top) with sides swept (``axlebox sweep --sides``): the defect on both
 sides of wheelset 2 and on the gearbox side only, and no defect, at 80 km/h; and the study's
 unequal pair (configs/study_unequal.toml: 1 mm 20 degrees on beside 2 mm) at 80 km/h.  The
 criterion in its relative form, as the demo.  1.2 s each (0.7 s after the fade-in: 51 BPFO
@@ -18,7 +18,7 @@ from axlebox.bearing.diagnostics.coherence import C_INDEPENDENT
 from axlebox.bearing.diagnostics.criterion import Criterion
 from axlebox.pipelines import cli
 from axlebox.pipelines.diagnose import analyse_file
-from axlebox.pipelines.sweep import sweep
+from axlebox.pipelines.sweep import load_config, matrix, run_cases
 
 from conftest import assert_windows_are_the_source, full_size
 
@@ -27,13 +27,14 @@ REL = Criterion(mode="relative")
 
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
+    """The four cases in one batch on two single-threaded workers (two sweeps, of three cases and
+    of one, kept a core idle for a case's length)."""
     out = tmp_path_factory.mktemp("both_sides")
-    quiet = dict(log=lambda *_: None, workers=2)
     T = 2.0 if full_size() else 1.2
-    sweep(configs.path("validation_48kmh"), out, speeds=[80.0], widths=[0.0, 2.0],
-          sides=["LR", "R"], duration=T, **quiet)
-    sweep(configs.path("study_unequal"), out / "unequal", speeds=[80.0], duration=T, **quiet)
-    (out / "unequal" / "v80_w2.h5").rename(out / "v80_unequal.h5")
+    cases = (matrix(*load_config(configs.path("validation_48kmh")), [80.0], [0.0, 2.0], T, None, ["LR", "R"])
+             + matrix(*load_config(configs.path("study_unequal")), [80.0], None, T))
+    assert run_cases(cases, out, workers=2, log=lambda *_: None) == []
+    (out / "v80_w2.h5").rename(out / "v80_unequal.h5")
     names = {"v80_w2_LR", "v80_w2_R", "v80_w0", "v80_unequal"}
     assert {p.stem for p in out.glob("*.h5")} == names
     assert not list(out.rglob("*.toml"))          # the cases ran from memory (simulate.Config)
