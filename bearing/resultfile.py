@@ -53,7 +53,9 @@ def write(path, *, config_toml: str, seed: int, time: np.ndarray, fs_hz: float,
                 if hasattr(data, "rows"):
                     ds = g.create_dataset(name, shape=data.shape, dtype=data.dtype, compression="gzip",
                                           compression_opts=4)
-                    step = max(1, BLOCK_BYTES // max(1, data.nbytes // max(1, data.shape[0])))
+                    # rows a block by what reading them costs (a view of a wider source reads it whole)
+                    row = getattr(data, "source_row_nbytes", data.nbytes // max(1, data.shape[0]))
+                    step = max(1, BLOCK_BYTES // max(1, row))
                     for r0 in range(0, data.shape[0], step):
                         ds[r0:r0 + step] = data.rows(r0, r0 + step)
                 else:

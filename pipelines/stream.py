@@ -120,6 +120,8 @@ class Rows:
         self.shape = (ds.shape[0], *one.shape[1:])
         self.dtype = one.dtype
         self.nbytes = int(np.prod(self.shape)) * self.dtype.itemsize
+        # what a block of rows reads: the stream's whole rows, whatever part of them is kept
+        self.source_row_nbytes = int(np.prod(ds.shape[1:])) * ds.dtype.itemsize
 
     def _apply(self, block):
         for op in self.ops:

@@ -24,6 +24,7 @@ def test_recorded_indexing_and_reshape_are_the_arrays(stream):
     a, ds = stream
     r = Rows(ds)
     assert r.shape == a.shape and r.nbytes == a.nbytes
+    assert r[:, 3].source_row_nbytes == a[0].nbytes        # a block reads the stream's whole rows
     np.testing.assert_array_equal(np.asarray(r[:, 3]), a[:, 3])
     np.testing.assert_array_equal(np.asarray(r[:, 3][:, [0, 4, 5]]), a[:, 3][:, [0, 4, 5]])
     b = r[:, 6:12].reshape(1003, 2, 3, 6)
