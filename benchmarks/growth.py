@@ -28,6 +28,11 @@ CASES = ("rig: one DTRB", "car: wheelset 2 on two DTRBs", "car: no bearings (row
          "car: eight DTRBs, axlebox simulate (streamed)")
 
 
+def _steps(s) -> str:
+    """The integrator and its step(s): the bodies' exchange step too where it is not dt."""
+    return f"{s.method} {s.dt:g}" + (f", exchange {s.step:g}" if s.step != s.dt else "")
+
+
 def one(case: str, duration: float, bodies: str) -> dict:
     t0 = time.perf_counter()
     if case in (CASES[0], CASES[4]):
@@ -58,14 +63,14 @@ def one(case: str, duration: float, bodies: str) -> dict:
                 run = psim.run(configs.path(name), f"{tmp}/run.h5", duration=duration,
                                overrides=over, log=lambda *_: None)
             return {"case": case, "duration": duration, "run_s": run.wall_s,
-                    "steps": f"{s.method} {s.dt:g}", "states": None,
+                    "steps": _steps(s), "states": None,
                     "process_s": time.perf_counter() - t0,
                     "peak_MB": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}
         model, y0 = psim.build_model(cfg, log=lambda *_: None)
         run = integrate.simulate(model, duration, s, y0=y0)
         if not run.ok:
             raise SystemExit(f"{case}: {run.message}")
-        run_s, steps, states = run.wall_s, f"{s.method} {s.dt:g}", model.n_states
+        run_s, steps, states = run.wall_s, _steps(s), model.n_states
     return {"case": case, "duration": duration, "run_s": run_s, "steps": steps, "states": states,
             "process_s": time.perf_counter() - t0,
             "peak_MB": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}
