@@ -128,9 +128,7 @@ def run_leapfrog(Y, t0, dt, n_steps, every, P, D, rig, acc, Fout, Qout, cage, mo
     if acc.shape[0] < n_steps or Fout.shape[0] < n_out or Qout.shape[0] < n_out or cage.shape[0] < n_out:
         raise ValueError("run_leapfrog: output arrays are shorter than the run")
     nz = Qout.shape[2]
-    H, n_sub = dt, 1
     om = rig[R_OMEGA]
-    ring_a = np.zeros((2, 12))
     ring_b = np.zeros((2, 12))
     F = np.zeros((2, 6))
     Qc = np.zeros((2, nz, 6))
@@ -140,16 +138,16 @@ def run_leapfrog(Y, t0, dt, n_steps, every, P, D, rig, acc, Fout, Qout, cage, mo
     a = np.empty(3)
     x = Y[:nb]
     for i in range(n_steps):
-        t = t0 + i * H
+        t = t0 + i * dt
         first = start and i == 0
         ring_b[0, 4] = om * t
         ring_b[0, 10] = om
         for q in range(3):
             ring_b[1, q] = Y[nb + q]
             ring_b[1, 6 + q] = Y[nb + 3 + q]
-        advance(x, ring_a, ring_b, P, D, t, dt, n_sub, first, mode, F, Qc, cages, G, dx, ring, Fs, Qs,
-                theta)
-        ring_a[:, :] = ring_b
+        # one sub-step: its one sample is at this exchange, so the last exchange's ring motion
+        # does not enter (ring_b stands for it)
+        advance(x, ring_b, ring_b, P, D, t, dt, 1, first, mode, F, Qc, cages, G, dx, ring, Fs, Qs, theta)
         for q in range(3):
             a[q] = (F[1, q] + rig[R_FX + q] - rig[R_KX + q] * (Y[nb + q] - rig[R_UX + q])
                     - rig[R_CX + q] * Y[nb + 3 + q]) / rig[R_MASS]
@@ -161,10 +159,10 @@ def run_leapfrog(Y, t0, dt, n_steps, every, P, D, rig, acc, Fout, Qout, cage, mo
             for j in range(2):
                 cage[m, j, 0] = cages[j]
                 cage[m, j, 1] = cages[2 + j]
-        hk = 0.5 * H if first else H
+        hk = 0.5 * dt if first else dt
         for q in range(3):
             Y[nb + 3 + q] += hk * a[q]
-            Y[nb + q] += H * Y[nb + 3 + q]
+            Y[nb + q] += dt * Y[nb + 3 + q]
         ok = True
         for q in range(n):
             if not np.isfinite(Y[q]):

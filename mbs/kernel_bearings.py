@@ -52,18 +52,28 @@ def bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM,
     """State derivatives of every bearing's rollers and cages, and their ring loads on the
     markers; bearing k's outputs fill ``BR_ROWS`` rows of ``elout`` from row
     ``ne + BR_ROWS k`` (``ne``: the elements' rows)."""
-    nbr = br_i.shape[0]
-    if nbr == 0:
+    if br_i.shape[0] == 0:
         return
+    ring, th, F, Qc, cages = _ring_motions(y, bi, br_i, br_P, mkp, mkv, mkR, mkw)
+    _all_dtrbs(t, y, dy, br_i, br_P, br_D, ring, F, Qc, cages)
+    _all_loads_back(br_i, mkF, mkM, elout, F, Qc, th, cages)
+
+
+@njit(cache=True)
+def _ring_motions(y, bi, br_i, br_P, mkp, mkv, mkR, mkw):
+    """Every bearing's ring motion and marker angles (:func:`_ring_motion`), and the arrays
+    its loads, contacts and cage outputs go to: ``(ring, th, F, Qc, cages)``."""
+    nbr = br_i.shape[0]
     ring = np.zeros((nbr, 2, 12))
-    F = np.zeros((nbr, 2, 6))
-    Qc = np.zeros((nbr, 2, int(br_P[0, 0]), 6))
     th = np.zeros((nbr, 6))
-    cages = np.zeros((nbr, 4))
     for k in range(nbr):
         _ring_motion(k, y, bi, br_i, mkp, mkv, mkR, mkw, ring[k], th[k])
-    _all_dtrbs(t, y, dy, br_i, br_P, br_D, ring, F, Qc, cages)
-    for k in range(nbr):
+    return ring, th, np.zeros((nbr, 2, 6)), np.zeros((nbr, 2, int(br_P[0, 0]), 6)), np.zeros((nbr, 4))
+
+
+@njit(cache=True)
+def _all_loads_back(br_i, mkF, mkM, elout, F, Qc, th, cages):
+    for k in range(br_i.shape[0]):
         _loads_back(k, br_i, mkF, mkM, elout, F[k], Qc[k], th[k], cages[k])
 
 
@@ -87,22 +97,14 @@ def bearing_exchange(t, y, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, e
     exchange's (``X.ring``) and this one's, which then becomes the last; the mean ring loads go
     onto the markers and into the outputs as in :func:`bearing_forces`.  The bearings' rows of
     ``dy`` are not written: their states are already advanced."""
-    nbr = br_i.shape[0]
-    if nbr == 0:
+    if br_i.shape[0] == 0:
         return
-    ring = np.zeros((nbr, 2, 12))
-    F = np.zeros((nbr, 2, 6))
-    Qc = np.zeros((nbr, 2, int(br_P[0, 0]), 6))
-    th = np.zeros((nbr, 6))
-    cages = np.zeros((nbr, 4))
-    for k in range(nbr):
-        _ring_motion(k, y, bi, br_i, mkp, mkv, mkR, mkw, ring[k], th[k])
+    ring, th, F, Qc, cages = _ring_motions(y, bi, br_i, br_P, mkp, mkv, mkR, mkw)
     _all_advances(t, y, br_i, br_P, br_D, X.ring, ring, X.h, X.n, X.flags[0] != 0, X.mode, F, Qc,
                   cages, X.G)
     X.ring[:, :, :] = ring
     X.flags[0] = 0
-    for k in range(nbr):
-        _loads_back(k, br_i, mkF, mkM, elout, F[k], Qc[k], th[k], cages[k])
+    _all_loads_back(br_i, mkF, mkM, elout, F, Qc, th, cages)
 
 
 @njit(cache=True, parallel=True)
