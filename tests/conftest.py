@@ -12,6 +12,15 @@ if _SESSION_CACHE:
     os.environ["AXLEBOX_CACHE"] = _SESSION_CACHE
 os.environ.pop("DISPLAY", None)     # every rendering test runs with no display
 
+# On a pytest-xdist worker (pyproject's addopts run one per core) numba, OpenBLAS and MKL get one
+# thread each, as do the processes a test starts: the bearings' parallel loops meet 1e5 times a
+# simulated second, and threads of two workers sharing the cores wait at every meeting for one
+# that is not running.  tests/test_threads.py gives its own child process two threads.  Set here,
+# before any test module imports numba (the worker sets PYTEST_XDIST_WORKER before it loads this).
+if os.environ.get("PYTEST_XDIST_WORKER"):
+    for _var in ("NUMBA_NUM_THREADS", "OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(_var, "1")
+
 
 def pytest_sessionfinish(session, exitstatus):
     if _SESSION_CACHE:

