@@ -257,7 +257,8 @@ def run_cases(todo: list[Case], out, scheduler=None, workers=None, log=print) ->
         main = threading.current_thread() is threading.main_thread()
         old = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
         try:
-            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+            # dashboard on a free port: two sweeps at once (or two test workers) do not collide
+            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
                                    silence_logs=logging.CRITICAL)     # a failed case is one line below
         finally:
             if main:

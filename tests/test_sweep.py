@@ -147,7 +147,7 @@ def test_runs_on_the_scheduler_named(tmp_path):
     back as finished results of their configs."""
     from dask.distributed import LocalCluster
     cfg = _config(tmp_path, duration=0.05)
-    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as lc:
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=":0") as lc:
         res = sweep(cfg, tmp_path / "out", speeds=[48.0, 60.0], widths=[1.0],
                     scheduler=lc.scheduler_address, log=lambda *a: None)
         assert "run_case" in lc.scheduler.task_prefixes
@@ -170,7 +170,7 @@ def test_a_failed_case_does_not_stop_the_others(tmp_path, monkeypatch, capsys):
         return real(cfg, **kw)
     monkeypatch.setattr(rig, "simulate", failing)
     cfg, out = _config(tmp_path, duration=0.05), tmp_path / "out"
-    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as lc:
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=":0") as lc:
         args = ["sweep", str(cfg), "--speeds", "48", "60", "--widths", "1", "--out", str(out),
                 "--scheduler", lc.scheduler_address]
         assert cli.main(args) == 1
