@@ -6,6 +6,11 @@ and ``axlebox.mbs`` import this first).
   function it loads; a kernel that calls into another file keeps the callee it was compiled with.
   After an edit (or a ``git pull``, or an upgrade) that touches only the callee, the stale machine
   code runs, and can crash the interpreter.  ``NUMBA_CACHE_DIR``, when set, is left alone.
+* Saves to the cache are serialised across processes (:func:`_serialise_cache_saves`): numba
+  updates a function's index by load, modify, write, unlocked, so two processes compiling one
+  function for two signatures at once (a sweep's workers, the suite's) can both name their
+  machine code file 1, and a third process then runs one signature's code for the other's (a
+  segmentation fault).
 * The threading layer: OpenMP first.  Its idle threads spin a while before they sleep, so the
   bearings' parallel region, entered every right-hand side (~100 us apart), finds them awake
   (TBB's sleep: 132 against 115 us a call on 2 cores, benchmarks/README.md).  The user's own
@@ -30,7 +35,35 @@ def kernel_hash(top: Path | None = None) -> str:
     return source_hash(folders, only_with=b"@njit")
 
 
+def _serialise_cache_saves() -> None:
+    """Each save of a compiled function to numba's cache holds an exclusive lock on a file beside
+    the function's index (POSIX ``flock``), so that the index's load-modify-write is whole; loads
+    need none (numba writes each file under a temporary name and renames it).  Where numba has
+    moved its cache class, or there is no ``fcntl``, numba's own save stands."""
+    try:
+        import fcntl
+
+        from numba.core.caching import IndexDataCacheFile
+    except ImportError:
+        return
+    save = IndexDataCacheFile.save
+    if getattr(save, "locked", False):
+        return
+
+    def locked_save(self, key, data):
+        index = getattr(self, "_index_path", None)
+        if index is None:
+            return save(self, key, data)
+        with open(index + ".lock", "a") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)         # released when the file closes
+            return save(self, key, data)
+
+    locked_save.locked = True
+    IndexDataCacheFile.save = locked_save
+
+
 def configure() -> None:
+    _serialise_cache_saves()
     if not (os.environ.get("NUMBA_THREADING_LAYER") or os.environ.get("NUMBA_THREADING_LAYER_PRIORITY")):
         config.THREADING_LAYER_PRIORITY = ["omp", "tbb", "workqueue"]
     if os.environ.get("NUMBA_CACHE_DIR"):
