@@ -21,7 +21,7 @@ from numba import njit
 
 from .advance import advance
 from .kernel import dtrb_rhs_damped
-from .layout import N_CAGE
+from .layout import N_CAGE, QUASI
 
 # s: the explicit steps' limits on the rollers' tilt mode between the raceways (22.6 kHz,
 # damping ratio 0.12): RK4's w h <= 2.8; the leapfrog's 2 (sqrt(1 + z^2) - z) = 1.77 less a
@@ -133,7 +133,7 @@ def run_leapfrog(Y, t0, dt, n_steps, every, P, D, rig, acc, Fout, Qout, cage, mo
     F = np.zeros((2, 6))
     Qc = np.zeros((2, nz, 6))
     cages = np.zeros(4)
-    G = np.zeros((2 if mode > 0 else 0, nz + 1, 6, 12))
+    G = np.zeros((2 if mode > 0 or P[QUASI] != 0.0 else 0, nz + 1, 6, 12))
     dx, ring, Fs, Qs = np.empty(nb), np.zeros((2, 12)), np.zeros((2, 6)), np.zeros((2, nz, 6))
     a = np.empty(3)
     x = Y[:nb]

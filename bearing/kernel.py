@@ -376,6 +376,10 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G, h_k):
     m_cage = Mr * Mc / (Mr + Mc)
     g = (P[GX], P[GY], P[GZ])
     kinematic = P[KINEMATIC] != 0.0
+    # the quasi-dynamic bearing's cage (KINEMATIC 2, bearing/quasidynamic.py): rollers centred in
+    # their pockets, the cage's rotation a state with the rollers' orbital inertia
+    pockets = P[KINEMATIC] == 2.0
+    J_orb = Jcp + nz * Mr * R * R
 
     # ring motion relative to the inner-ring centre
     ui = (0.0, 0.0, 0.0)
@@ -413,11 +417,12 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G, h_k):
         phi_c = y[cb + 5]
         vc = (y[cb + 6], y[cb + 7], y[cb + 8])
         wcx, wcz, phid_c = y[cb + 9], y[cb + 10], y[cb + 11]
-        if kinematic:
+        if kinematic and not pockets:
             phid_c = P[RATIO] * omega_w
         wc = (wcx, phid_c, wcz)
         Fc = (0.0, 0.0, 0.0)
         Mcg = (0.0, 0.0, 0.0)
+        orbit = 0.0                                   # the rollers' pull on the cage (pockets)
         spc, cpc = sin(phi_c), cos(phi_c)             # pocket k at phi_c + 2 pi k / Z, by rotation
         sd, cd = sin(TWO_PI / nz), cos(TWO_PI / nz)
 
@@ -605,6 +610,9 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G, h_k):
                 phidd = 0.0
                 ydot[b0 + 1] = phid_c
                 ydot[b0 + 7] = 0.0
+                if pockets:                           # roller k's share of the cage's acceleration
+                    ydot[b0 + 7] = _dot(Fr, et) * Rr / J_orb
+                    orbit += ydot[b0 + 7]
             else:
                 phidd = (_dot(Fr, et) / Mr - 2.0 * rhod * phid) / Rr
                 ydot[b0 + 1] = phid
@@ -632,7 +640,10 @@ def dtrb_rhs_damped(t, y, ring, P, D, ydot, F, Qc, G, h_k):
         ydot[cb + 9] = (Mcg[0] + Jcp * phid_c * wcz) / Jcd
         ydot[cb + 10] = (Mcg[2] - Jcp * phid_c * wcx) / Jcd
         ydot[cb + 5] = phid_c
-        ydot[cb + 11] = 0.0 if kinematic else Mcg[1] / Jcp
+        if pockets:
+            ydot[cb + 11] = Mcg[1] / J_orb + orbit
+        else:
+            ydot[cb + 11] = 0.0 if kinematic else Mcg[1] / Jcp
 
     for q in range(3):
         F[0, q] = Fi[q]

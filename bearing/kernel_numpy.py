@@ -158,6 +158,8 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     m_cage = Mr * Mc / (Mr + Mc)
     g = np.array([P[GX], P[GY], P[GZ]])
     kinematic = P[KINEMATIC] != 0.0
+    pockets = P[KINEMATIC] == 2.0                 # the quasi-dynamic bearing's cage (kernel.py)
+    J_orb = Jcp + nz * Mr * R * R
     nr = 2 * nz * N_ROLLER
     rol = y[:nr].reshape(2, nz, N_ROLLER)
     cag = y[nr:nr + 2 * N_CAGE].reshape(2, N_CAGE)
@@ -182,7 +184,7 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     phi_c = cag[:, 5][:, None]
     vc = cag[:, 6:9].T[:, :, None]
     wcx, wcz, phid_c = cag[:, 9], cag[:, 10], cag[:, 11]
-    if kinematic:
+    if kinematic and not pockets:
         phid_c = np.full(2, P[RATIO] * omega_w)
     wc = _vec(wcx, phid_c, wcz)[:, :, None]
 
@@ -301,7 +303,7 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     if kinematic:
         phidd = np.zeros_like(rho)
         yr[..., 1] = phid
-        yr[..., 7] = 0.0
+        yr[..., 7] = _dot(Fr, et) * Rr / J_orb if pockets else 0.0
     else:
         phidd = (_dot(Fr, et) / Mr - 2.0 * rhod * phid) / Rr
         yr[..., 1] = phid
@@ -319,7 +321,10 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     yc[:, 3], yc[:, 4], yc[:, 5] = wcx, wcz, phid_c
     yc[:, 9] = (Mcg[0] + Jcp * phid_c * wcz) / Jcd
     yc[:, 10] = (Mcg[2] - Jcp * phid_c * wcx) / Jcd
-    yc[:, 11] = 0.0 if kinematic else Mcg[1] / Jcp
+    if pockets:
+        yc[:, 11] = Mcg[1] / J_orb + yr[..., 7].sum(axis=1)
+    else:
+        yc[:, 11] = 0.0 if kinematic else Mcg[1] / Jcp
 
     F = np.stack([np.concatenate([Fi, Mi]), np.concatenate([Fo, Mo])])
     Qc = np.stack([Qo, Qi, Qa, Qw[0], Qw[1], Qs], axis=-1)

@@ -32,7 +32,7 @@ from .stiffness import contacts
 # --- parameter vector slots ---------------------------------------------------------------
 (Z, R_M, R_B, L_E, L_B, CAO, SAO, CAI, SAI, CAF, SAF, CAM, SAM, CAC, SAC, ROW, C_O, H_R,
  K_O, K_I, K_A, K_CR, S_P, S_PA, M_R, J_RA, J_RD, M_C, J_CP, J_CD, MU_R, MU_A, MU_C, V_S,
- LAW, ZETA, C_RULE, BETA, KINEMATIC, RATIO, GX, GY, GZ, N_P) = range(44)
+ LAW, ZETA, C_RULE, BETA, KINEMATIC, RATIO, GX, GY, GZ, QUASI, N_P) = range(45)
 
 # --- state slots ------------------------------------------------------------------------------
 RHO, PHI, ETA, TH_T, TH_S, PSI = range(6)           # roller positions; +6 for the rates
@@ -64,7 +64,11 @@ def pack(p, gravity=(0.0, 0.0, -9.81)) -> np.ndarray:
     v[[M_R, J_RA, J_RD, M_C, J_CP, J_CD]] = p.M_r, J_ra, J_rd, p.M_c, J_cp, J_cd
     v[[MU_R, MU_A, MU_C, V_S]] = p.mu_race, p.mu_rib, p.mu_cage, p.v_s
     v[[LAW, ZETA, C_RULE, BETA]] = DAMPING_LAWS.index(p.damping), p.zeta, p.c_rule, p.beta
-    v[KINEMATIC] = p.cage == "kinematic"
+    quasi = p.model == "quasi-dynamic"
+    # KINEMATIC: 0 a free cage, 1 Eq. 2's, 2 the quasi-dynamic bearing's (rollers centred in their
+    # pockets, the cage's rotation a state carrying their orbital inertia: bearing/quasidynamic.py)
+    v[KINEMATIC] = 1.0 if p.cage == "kinematic" else (2.0 if quasi else 0.0)
+    v[QUASI] = quasi
     v[RATIO] = 0.5 * (1.0 - p.gamma)         # paper Eq. (2): omega_c = (1 - D_b/D_m) omega_w / 2
     v[[GX, GY, GZ]] = gravity
     return v

@@ -14,6 +14,7 @@ from axlebox._params import ParameterError, check_ranges, param, require
 
 DAMPING_LAWS = ("ratio", "paper", "stiffness")
 CAGE_MODES = ("dynamic", "kinematic")
+MODELS = ("dynamic", "quasi-dynamic")
 
 
 @dataclass(frozen=True)
@@ -57,12 +58,16 @@ class BearingParams:
                         "stiffness (damping='stiffness'); the paper cites 2.5e-5 to 0.25 s of the "
                         "stiffness for bearing contacts (below its Eq. 4, its ref. 6)")
     cage: str = "dynamic"
+    # "dynamic": the paper's model, every roller and cage with its six DOF; "quasi-dynamic": the
+    # rollers' contact equilibrium solved each step, spins and cage rotation as states
+    # (bearing/quasidynamic.py: for studies, not for the defect's mechanism)
+    model: str = "dynamic"
 
     def __post_init__(self):
         if isinstance(self.Z, bool) or not isinstance(self.Z, int):
             raise ParameterError(f"BearingParams.Z = {self.Z!r} is not allowed: "
                                  "expected an integer >= 3")
-        for name, allowed in (("damping", DAMPING_LAWS), ("cage", CAGE_MODES)):
+        for name, allowed in (("damping", DAMPING_LAWS), ("cage", CAGE_MODES), ("model", MODELS)):
             if getattr(self, name) not in allowed:
                 raise ParameterError(f"BearingParams.{name} = {getattr(self, name)!r} is not allowed: "
                                      f"expected one of {', '.join(allowed)}")

@@ -33,6 +33,7 @@ from . import defects as _defects
 from . import resultfile
 from .equilibrium import static_state
 from .frequencies import orders, shaft_hz
+from .quasidynamic import DT_MAX as QD_DT_MAX
 from .integrate import DT_MAX, R_CX, R_FX, R_KX, R_MASS, R_N, R_OMEGA, R_UX, run_leapfrog, run_rk4
 from .layout import N_Q, pack
 from .params import BearingParams
@@ -88,9 +89,15 @@ class RigConfig:
         require(every >= 1 and abs(every * self.dt * self.fs_out - 1) < 1e-9, self, "dt",
                 f"the output period 1/fs_out = {1 / self.fs_out:g} s must be a whole number of steps")
         require(self.duration * self.fs_out >= 1, self, "duration", "shorter than one output sample")
-        require(self.dt <= DT_MAX[self.method], self, "dt",
-                f"expected at most {DT_MAX[self.method]:g} s with method {self.method!r} (the "
-                "rollers' contacts)")
+        if self.bearing.model == "quasi-dynamic":
+            require(self.method != "rk4", self, "method", "'rk4' steps the dynamic bearing only: "
+                    "expected 'leapfrog', 'imex' or 'imex2' with bearing.model = 'quasi-dynamic'")
+            require(self.dt <= QD_DT_MAX, self, "dt", f"expected at most {QD_DT_MAX:g} s with the "
+                    "quasi-dynamic bearing (its accuracy)")
+        else:
+            require(self.dt <= DT_MAX[self.method], self, "dt",
+                    f"expected at most {DT_MAX[self.method]:g} s with method {self.method!r} (the "
+                    "rollers' contacts)")
         for d in self.defects:
             if not isinstance(d, _defects.Defect):
                 raise ParameterError(f"RigConfig.defects: {d!r} is not allowed: expected Defect objects")

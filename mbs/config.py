@@ -13,6 +13,7 @@ import tomllib
 from pathlib import Path
 
 from axlebox.bearing.integrate import DT_MAX
+from axlebox.bearing.quasidynamic import DT_MAX as QD_DT_MAX
 from axlebox._params import ParameterError, from_table
 from axlebox.mbs.integrate import METHODS
 
@@ -205,14 +206,17 @@ def validate(user: dict) -> dict:
                              f"{need:.0f} m (distance plus its length); expected at least that")
     if cfg["joint"]["model"] == "dtrb":
         ig = cfg["integrator"]
-        if ig["method"] not in DT_MAX:
+        quasi = cfg["bearing"].get("model") == "quasi-dynamic"
+        methods = ("leapfrog", "imex", "imex2") if quasi else tuple(DT_MAX)
+        if ig["method"] not in methods:
             raise ParameterError(f"integrator.method = {ig['method']!r} is not allowed with "
-                                 f"joint.model = 'dtrb': expected one of {tuple(DT_MAX)}")
-        dt_max = DT_MAX[ig["method"]]
+                                 f"joint.model = 'dtrb'{' and the quasi-dynamic bearing' if quasi else ''}: "
+                                 f"expected one of {methods}")
+        dt_max = QD_DT_MAX if quasi else DT_MAX[ig["method"]]
         if ig["dt"] > dt_max:
+            why = "the quasi-dynamic bearing's accuracy" if quasi else "the roller contacts"
             raise ParameterError(f"integrator.dt = {ig['dt']:g} is not allowed with joint.model = "
-                                 f"'dtrb' and method {ig['method']!r}: expected at most {dt_max:g} s "
-                                 "(the roller contacts)")
+                                 f"'dtrb' and method {ig['method']!r}: expected at most {dt_max:g} s ({why})")
         for d in cfg["defects"]:
             if d["wheelset"] not in cfg["joint"]["wheelsets"]:
                 raise ParameterError(f"defects: wheelset = {d['wheelset']} is not allowed: its "

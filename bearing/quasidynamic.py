@@ -1,0 +1,263 @@
+"""The quasi-dynamic DTRB (``[bearing] model = "quasi-dynamic"``): the rollers without radial,
+axial and tilt inertia, for studies and datasets; the dynamic model stays the reference.
+
+Kept from the paper's model: the same line contacts of the raceways and pockets (Eqs. 1, 3-4,
+9-11), the rib contact (Eqs. 3c, 4b, 8), the Eq. (14) defects (outer, inner, roller), gravity,
+the orbit's centrifugal and gyroscopic loads (Eq. 12's), and the traction law (regularised
+Coulomb) that sets the slip.  Dropped: the rollers' radial, axial and tilt inertia (their modes
+between the raceways, 21-23 kHz, hold the dynamic model's step near 1e-5 s), the cage's
+translation and tilt (held centred on the inner ring), the rollers' skew (held at zero: inside
+the pocket's clearance only the friction's small moments act on it, so a quasi-static skew has
+no equilibrium short of the pocket walls) and their play in the pockets.  This is the
+quasi-dynamic analysis of Harris and Kotzalas (Advanced Concepts of Bearing Technology, 5th ed.,
+CRC 2006, ch. 3: each rolling element's equilibrium with its inertial loads at the bearing's
+speeds) with the cage and spins kept as states, as Gupta's dynamic models keep them; the paper
+(its introduction) says a quasi-dynamic model cannot show a defect's mechanism, and
+benchmarks/README.md measures how much this one misses against the dynamic model.
+
+A step of ``h`` (:func:`equilibrium`, then :func:`spin_step`):
+
+1. **Contact equilibrium.**  Every roller's radial place ``rho``, axial place ``eta`` and tilt
+   ``theta_t`` solve ``a_rho = a_eta = a_theta_t = 0``: the dynamic model's accelerations
+   (kernel.py, Eq. 12) with those rates zero, so that the centrifugal and gyroscopic loads stay
+   and the inertia of those DOFs goes.  Newton's method, its Jacobian by finite differences: a
+   roller touches only the rings and its own pocket, so perturbing one slot of every roller at
+   once gives that column of every roller's 3 x 3 block (three evaluations a Jacobian).  The
+   step of an iteration is capped (a roller out of contact has no stiffness to divide by) and a
+   block with no stiffness in a direction gets a floor there (:data:`J_FLOOR`).
+2. **Spins and cage.**  The rollers sit centred in their pockets (roller k at the cage's
+   ``phi_c + 2 pi k / Z``) and the cage's rotation carries their orbital inertia,
+   ``(J_cp + Z M_r R^2) phi_c'' = sum_k F_t,k (R + rho_k)`` plus the pockets' and side beams'
+   moment (bearing/layout.py ``KINEMATIC`` 2).  The traction drives the spins ``omega_s`` and
+   the cage rate stiffly (the friction's secant damping ``mu Q / v_s`` on a roller's axial
+   inertia is a rate of about 4e4 /s), so they take a linearly implicit Euler step, their
+   Jacobian from two finite differences (all spins at once, both cages at once).  A row's
+   system is an arrowhead (a spin couples only to its own cage) and is solved in O(Z).
+3. ``psi += h omega_s``, ``phi_c += h phi_c'``.
+
+Cost: seven evaluations of the right-hand side a step; no roller mode limits the step, only
+accuracy (:data:`DT_MAX`).
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from .kernel import dtrb_rhs
+from .layout import ETA, J_RD, KINEMATIC, L_B, M_R, N_CAGE, N_ROLLER, PHI, PSI, RHO, TH_S, TH_T, Z
+
+DT_MAX = 1e-4           # s: the step is held by accuracy (the defect's passage), not stability
+J_EVERY = 4             # steps: the contact Jacobian made afresh every J_EVERY-th step (a chord
+                        # Newton in between); a run resumed on such a step repeats its bits
+MAX_IT = 8              # Newton iterations at most a step
+MAX_HALVE = 12          # halvings of a roller's Newton step at most
+SLOTS = (RHO, ETA, TH_T)                 # the positions solved, and their accelerations' slots
+EPS = (1e-8, 1e-8, 1e-7)                 # finite-difference steps: m, m, rad
+TOL = (1e-10, 1e-10, 1e-8)               # converged when every update is below these,
+F_TOL = 10.0            # N: or every roller's residual force is below this (a roller off a
+                        # raceway, pushed by its centrifugal force and weight alone, 3-8 N, need
+                        # not find it: the kink at first touch stalls Newton, and it carries
+                        # nothing; a loaded roller carries 1e3-1e4 N)
+CAP = (5e-6, 5e-6, 5e-4)                 # an iteration moves a roller at most this far
+J_FLOOR = 1e6           # 1/s^2: the least stiffness a direction is given (over mass), far below
+                        # a loaded contact's (about 1e9 N/m over 0.135 kg)
+EPS_W = 1e-3            # rad/s: a spin's finite difference (1e-5 m/s of slip on the roller)
+EPS_C = 1e-4            # rad/s: the cage rate's (1e-5 m/s at the pitch radius)
+TWO_PI = 2.0 * np.pi
+
+
+def n_buffer(nz: int, n_state: int) -> int:
+    """Floats of scratch :func:`equilibrium` and :func:`spin_step` need (bearing/advance.py's
+    ``G`` holds them)."""
+    return 3 * n_state + 34 * nz + 1
+
+
+@njit(cache=True)
+def _hold(x, nz):
+    """The held DOFs: rollers centred in their pockets (azimuth, orbit rate), no skew, the rates
+    of the solved positions zero; the cages centred on the inner ring."""
+    nr = 2 * nz * N_ROLLER
+    for j in range(2):
+        cb = nr + j * N_CAGE
+        for q in range(5):
+            x[cb + q] = 0.0
+            x[cb + 6 + q] = 0.0
+        for k in range(nz):
+            b0 = (j * nz + k) * N_ROLLER
+            x[b0 + PHI] = x[cb + 5] + TWO_PI * k / nz
+            x[b0 + TH_S] = 0.0
+            x[b0 + 6 + RHO] = 0.0
+            x[b0 + 6 + PHI] = x[cb + 11]
+            x[b0 + 6 + ETA] = 0.0
+            x[b0 + 6 + TH_T] = 0.0
+            x[b0 + 6 + TH_S] = 0.0
+
+
+@njit(cache=True)
+def _solve3(J, r, dq):
+    """``dq = -J^-1 r`` for a 3 x 3 block (Cramer; the floor keeps it regular)."""
+    a, b, c = J[0], J[1], J[2]
+    d, e, f = J[3], J[4], J[5]
+    g, h, i = J[6], J[7], J[8]
+    A = e * i - f * h
+    B = -(d * i - f * g)
+    C = d * h - e * g
+    det = a * A + b * B + c * C
+    if not abs(det) > 1e-300:                        # degenerate: the diagonal alone (floored)
+        dq[0], dq[1], dq[2] = -r[0] / a, -r[1] / e, -r[2] / i
+        return
+    inv = -1.0 / det
+    dq[0] = inv * (A * r[0] + (c * h - b * i) * r[1] + (b * f - c * e) * r[2])
+    dq[1] = inv * (B * r[0] + (a * i - c * g) * r[1] + (c * d - a * f) * r[2])
+    dq[2] = inv * (C * r[0] + (b * g - a * h) * r[1] + (a * e - b * d) * r[2])
+
+
+@njit(cache=True)
+def _merit(dx, b0, w_t):
+    """A roller's squared residual, its tilt row turned into a force at the roller's end."""
+    a, b, c = dx[b0 + 6 + RHO], dx[b0 + 6 + ETA], dx[b0 + 6 + TH_T] * w_t
+    return a * a + b * b + c * c
+
+
+@njit(cache=True)
+def _jacobian(t, x, ring, P, D, dx, F, Qc, xp, ap, J, nz):
+    """Every roller's 3 x 3 block of d(a_rho, a_eta, a_theta_t) / d(rho, eta, theta_t) by
+    forward differences (one slot of all rollers at once), floored (module docstring)."""
+    for m in range(3):
+        xp[:] = x
+        for k in range(2 * nz):
+            xp[k * N_ROLLER + SLOTS[m]] += EPS[m]
+        dtrb_rhs(t, xp, ring, P, D, ap, F, Qc)
+        for k in range(2 * nz):
+            b0 = k * N_ROLLER
+            for q in range(3):
+                J[9 * k + 3 * q + m] = (ap[b0 + 6 + SLOTS[q]] - dx[b0 + 6 + SLOTS[q]]) / EPS[m]
+    for k in range(2 * nz):
+        for q in range(3):
+            if J[9 * k + 4 * q] > -J_FLOOR:
+                J[9 * k + 4 * q] = -J_FLOOR
+
+
+@njit(cache=True)
+def equilibrium(t, x, ring, P, D, dx, F, Qc, buf, refresh=True):
+    """Step 1 (module docstring): every roller's ``rho, eta, theta_t`` in contact equilibrium
+    with the rings ``ring`` (2, 12) at ``t``; ``dx`` left with the state's derivative there (the
+    spins' and cages' accelerations), ``F`` (2, 6) the ring loads, ``Qc`` (2, Z, 6) the contact
+    forces.  ``buf``: :func:`n_buffer` floats.  Newton's method with a backtracking line search
+    per roller (a roller whose residual grows takes half its step back, up to
+    :data:`MAX_HALVE` times): a roller off a raceway has only the floor's stiffness, and its full
+    step would carry it deep into the raceway.  The Jacobian is kept in ``buf`` from step to
+    step (a chord method) and made afresh where ``refresh`` (the caller's schedule), at a
+    bearing's first step, and when two iterations on a kept one have not converged.  Returns
+    the right-hand side evaluations taken."""
+    nz = int(P[Z])
+    n = x.shape[0]
+    nr = 2 * nz
+    xp = buf[0:n]
+    ap = buf[n:2 * n]
+    J = buf[3 * n:3 * n + 18 * nz]
+    o = 3 * n + 24 * nz
+    dq = buf[o:o + 6 * nz]
+    lam = buf[o + 6 * nz:o + 8 * nz]
+    m0 = buf[o + 8 * nz:o + 10 * nz]
+    have = o + 10 * nz                     # 1 once buf holds a Jacobian
+    fresh = refresh or buf[have] == 0.0
+    r = np.empty(3)
+    d = np.empty(3)
+    w_t = 2.0 * P[J_RD] / (P[M_R] * P[L_B])
+    _hold(x, nz)
+    dtrb_rhs(t, x, ring, P, D, dx, F, Qc)
+    evals = 1
+    for it in range(MAX_IT):
+        if fresh or it == 2:
+            _jacobian(t, x, ring, P, D, dx, F, Qc, xp, ap, J, nz)
+            buf[have] = 1.0
+            evals += 3
+            fresh = True
+        done = True
+        for k in range(nr):
+            b0 = k * N_ROLLER
+            for q in range(3):
+                r[q] = dx[b0 + 6 + SLOTS[q]]
+            _solve3(J[9 * k:9 * k + 9], r, d)
+            lam[k] = 1.0
+            m0[k] = _merit(dx, b0, w_t)
+            balanced = m0[k] * P[M_R] * P[M_R] < F_TOL * F_TOL      # stays where it is
+            for q in range(3):
+                dq[3 * k + q] = 0.0 if balanced else min(max(d[q], -CAP[q]), CAP[q])
+                x[b0 + SLOTS[q]] += dq[3 * k + q]
+                if abs(dq[3 * k + q]) > TOL[q] and not balanced:
+                    done = False
+        dtrb_rhs(t, x, ring, P, D, dx, F, Qc)
+        evals += 1
+        if done:
+            return evals
+        for h in range(MAX_HALVE):
+            again = False
+            for k in range(nr):
+                b0 = k * N_ROLLER
+                if lam[k] > 0.0 and _merit(dx, b0, w_t) > m0[k]:
+                    lam[k] *= 0.5
+                    for q in range(3):
+                        x[b0 + SLOTS[q]] -= lam[k] * dq[3 * k + q]
+                    again = True
+                else:
+                    lam[k] = 0.0                        # accepted: stays
+            if not again:
+                break
+            dtrb_rhs(t, x, ring, P, D, dx, F, Qc)
+            evals += 1
+    return evals
+
+
+@njit(cache=True)
+def spin_step(t, x, ring, P, D, h, dx, buf):
+    """Steps 2 and 3 (module docstring): the spins and cage rates by a linearly implicit Euler
+    step of ``h`` from the accelerations ``dx`` :func:`equilibrium` left, then the spin angles
+    and cage azimuths."""
+    nz = int(P[Z])
+    n = x.shape[0]
+    nr = 2 * nz * N_ROLLER
+    free = P[KINEMATIC] == 2.0                       # the cage's rotation a state (else Eq. 2's)
+    xp = buf[0:n]
+    ap = buf[n:2 * n]
+    aq = buf[2 * n:3 * n]
+    arrow = buf[3 * n + 18 * nz:3 * n + 24 * nz]    # per roller: d_k, b_k, c_k
+    F = np.empty((2, 6))
+    Q = np.empty((2, nz, 6))
+    xp[:] = x                                        # every spin a little faster
+    for k in range(2 * nz):
+        xp[k * N_ROLLER + 6 + PSI] += EPS_W
+    dtrb_rhs(t, xp, ring, P, D, ap, F, Q)
+    xp[:] = x                                        # both cages a little faster
+    for j in range(2):
+        xp[nr + j * N_CAGE + 11] += EPS_C
+    dtrb_rhs(t, xp, ring, P, D, aq, F, Q)
+    for j in range(2):
+        cb = nr + j * N_CAGE
+        e = (aq[cb + 11] - dx[cb + 11]) / EPS_C if free else 0.0
+        lhs = 1.0 - h * e
+        rhs = h * dx[cb + 11] if free else 0.0
+        for k in range(nz):
+            b0 = (j * nz + k) * N_ROLLER
+            w = b0 + 6 + PSI
+            d = (ap[w] - dx[w]) / EPS_W
+            b = (aq[w] - dx[w]) / EPS_C
+            c = (ap[b0 + 6 + PHI] - dx[b0 + 6 + PHI]) / EPS_W if free else 0.0
+            p = 1.0 - h * d
+            arrow[3 * (j * nz + k)] = p
+            arrow[3 * (j * nz + k) + 1] = b
+            lhs -= h * h * c * b / p
+            rhs += h * h * c * dx[w] / p
+        dc = rhs / lhs if free else 0.0
+        x[cb + 11] += dc
+        for k in range(nz):
+            b0 = (j * nz + k) * N_ROLLER
+            w = b0 + 6 + PSI
+            p, b = arrow[3 * (j * nz + k)], arrow[3 * (j * nz + k) + 1]
+            x[w] += (h * dx[w] + h * b * dc) / p
+            x[b0 + PSI] += h * x[w]
+        if free:
+            x[cb + 5] += h * x[cb + 11]
+        else:
+            x[cb + 5] += h * dx[cb + 5]              # Eq. 2's rate, as the kernel gave it
