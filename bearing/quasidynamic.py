@@ -43,7 +43,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .kernel import dtrb_rhs
+from .kernel import dtrb_rhs, dtrb_rhs_damped
 from .layout import ETA, J_RD, KINEMATIC, L_B, M_R, N_CAGE, N_ROLLER, PHI, PSI, RHO, TH_S, TH_T, Z
 
 DT_MAX = 1e-4           # s: the step is held by accuracy (the defect's passage), not stability
@@ -139,6 +139,21 @@ def _jacobian(t, x, ring, P, D, dx, F, Qc, xp, ap, J, nz):
 
 
 @njit(cache=True)
+def _blocks(Gb, x, P, J, nz):
+    """Every roller's 3 x 3 block of d(a_rho, a_eta, a_theta_t) / d(rho, eta, theta_t) from the
+    kernel's stiffness rows ``Gb`` (``-K / m`` with m the DOF's mass or inertia), floored."""
+    m = (P[M_R], P[M_R], P[J_RD])
+    rows = (0, 2, 3)                       # rho, eta, theta_t among a roller's six rates
+    for k in range(2 * nz):
+        j, kk = k // nz, k % nz
+        for q in range(3):
+            for c in range(3):
+                J[9 * k + 3 * q + c] = -Gb[j, kk, rows[q], rows[c]] / m[q]
+            if J[9 * k + 4 * q] > -J_FLOOR:
+                J[9 * k + 4 * q] = -J_FLOOR
+
+
+@njit(cache=True)
 def equilibrium(t, x, ring, P, D, dx, F, Qc, buf, refresh=True):
     """Step 1 (module docstring): every roller's ``rho, eta, theta_t`` in contact equilibrium
     with the rings ``ring`` (2, 12) at ``t``; ``dx`` left with the state's derivative there (the
@@ -153,27 +168,25 @@ def equilibrium(t, x, ring, P, D, dx, F, Qc, buf, refresh=True):
     nz = int(P[Z])
     n = x.shape[0]
     nr = 2 * nz
-    xp = buf[0:n]
-    ap = buf[n:2 * n]
     J = buf[3 * n:3 * n + 18 * nz]
     o = 3 * n + 24 * nz
     dq = buf[o:o + 6 * nz]
     lam = buf[o + 6 * nz:o + 8 * nz]
     m0 = buf[o + 8 * nz:o + 10 * nz]
     have = o + 10 * nz                     # 1 once buf holds a Jacobian
-    fresh = refresh or buf[have] == 0.0
+    buf[have] = 1.0 if refresh else buf[have]      # (the chord schedule: unused with exact blocks)
     r = np.empty(3)
     d = np.empty(3)
     w_t = 2.0 * P[J_RD] / (P[M_R] * P[L_B])
     _hold(x, nz)
-    dtrb_rhs(t, x, ring, P, D, dx, F, Qc)
+    Gb = np.zeros((2, nz + 1, 6, 12))
+    # each evaluation gives the residual and every roller's exact contact stiffness (the "imex2"
+    # rows with h_k = 1 s^2: the stiffness, 1e8-1e10 N/m, swamps the damping and friction rows,
+    # 1e3-1e5 N s/m, in the same blocks)
+    dtrb_rhs_damped(t, x, ring, P, D, dx, F, Qc, Gb, 1.0)
     evals = 1
     for it in range(MAX_IT):
-        if fresh or it == 2:
-            _jacobian(t, x, ring, P, D, dx, F, Qc, xp, ap, J, nz)
-            buf[have] = 1.0
-            evals += 3
-            fresh = True
+        _blocks(Gb, x, P, J, nz)
         done = True
         for k in range(nr):
             b0 = k * N_ROLLER
@@ -188,7 +201,7 @@ def equilibrium(t, x, ring, P, D, dx, F, Qc, buf, refresh=True):
                 x[b0 + SLOTS[q]] += dq[3 * k + q]
                 if abs(dq[3 * k + q]) > TOL[q] and not balanced:
                     done = False
-        dtrb_rhs(t, x, ring, P, D, dx, F, Qc)
+        dtrb_rhs_damped(t, x, ring, P, D, dx, F, Qc, Gb, 1.0)
         evals += 1
         if done:
             return evals
@@ -205,7 +218,7 @@ def equilibrium(t, x, ring, P, D, dx, F, Qc, buf, refresh=True):
                     lam[k] = 0.0                        # accepted: stays
             if not again:
                 break
-            dtrb_rhs(t, x, ring, P, D, dx, F, Qc)
+            dtrb_rhs_damped(t, x, ring, P, D, dx, F, Qc, Gb, 1.0)
             evals += 1
     return evals
 
