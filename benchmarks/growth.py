@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import resource
 import subprocess
 import sys
@@ -46,6 +47,7 @@ def one(case: str, duration: float, bodies: str) -> dict:
         states = None
     else:
         from axlebox import configs
+        from axlebox.mbs import config as vconfig
         from axlebox.mbs import integrate
         from axlebox.pipelines import simulate as psim
         over = {"bodies": {"dir": bodies}}
@@ -55,7 +57,10 @@ def one(case: str, duration: float, bodies: str) -> dict:
         elif case == CASES[2]:
             name = "vehicle"
             over["bodies"]["flexible"] = ["frame1", "ws1", "ws2", "ab1L", "ab1R", "ab2L", "ab2R"]
-        cfg, _ = psim.load_config(configs.path(name), overrides=over)
+        # the track as long as the run needs (the shipped configs' 400 m hold about 28 s)
+        speed = vconfig.load(configs.path(name))[0].get("run", {}).get("speed_kmh", 80.0)
+        over["track"] = {"length": max(400.0, 50.0 * math.ceil((speed / 3.6 * duration + 40.0) / 50.0))}
+        cfg, _ = psim.load_config(configs.path(name), duration=duration, overrides=over)
         s = psim.settings(cfg)
         if case == CASES[5]:              # the command: outputs streamed, acquisition, file
             import tempfile

@@ -22,6 +22,19 @@ if os.environ.get("PYTEST_XDIST_WORKER"):
         os.environ.setdefault(_var, "1")
 
 
+# The longest modules first (CI's --durations): pytest-xdist's --dist loadfile hands a worker one
+# module at a time in collection order, and a long module left for last kept one worker (one
+# numba thread) busy alone for minutes while the other had nothing to do
+LONG_FIRST = ("test_install.py", "test_both_sides_car.py", "test_validation.py", "test_mbs_core.py",
+              "test_coupled.py", "test_vehicle.py", "test_wheelset.py", "test_inner_ring_car.py",
+              "test_checkpoint.py", "test_families.py", "test_sweep_survives.py")
+
+
+def pytest_collection_modifyitems(config, items):
+    rank = {name: i for i, name in enumerate(LONG_FIRST)}
+    items.sort(key=lambda item: rank.get(item.path.name, len(rank)))      # stable: the rest as collected
+
+
 def pytest_sessionfinish(session, exitstatus):
     if _SESSION_CACHE:
         shutil.rmtree(_SESSION_CACHE, ignore_errors=True)
