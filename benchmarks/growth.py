@@ -58,8 +58,9 @@ def one(case: str, duration: float, bodies: str) -> dict:
             name = "vehicle"
             over["bodies"]["flexible"] = ["frame1", "ws1", "ws2", "ab1L", "ab1R", "ab2L", "ab2R"]
         # the track as long as the run needs (the shipped configs' 400 m hold about 28 s)
-        speed = vconfig.load(configs.path(name))[0].get("run", {}).get("speed_kmh", 80.0)
-        over["track"] = {"length": max(400.0, 50.0 * math.ceil((speed / 3.6 * duration + 40.0) / 50.0))}
+        short, _ = psim.load_config(configs.path(name), overrides=over)
+        over["track"] = {"length": max(short["track"]["length"],
+                                       math.ceil(vconfig.track_needed(short, duration)))}
         cfg, _ = psim.load_config(configs.path(name), duration=duration, overrides=over)
         s = psim.settings(cfg)
         if case == CASES[5]:              # the command: outputs streamed, acquisition, file

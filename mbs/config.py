@@ -175,6 +175,12 @@ def _check(sec: str, key: str, value, spec) -> object:
     return list(value)
 
 
+def track_needed(cfg: dict, duration: float) -> float:
+    """Metres of track a validated config's car covers in ``duration`` s: the distance run
+    plus its length (the bogie distance and 5 m)."""
+    return cfg["run"]["speed_kmh"] / 3.6 * duration + cfg["geometry"]["bogie_distance"] + 5.0
+
+
 def validate(user: dict) -> dict:
     """Defaults overridden by ``user`` (a parsed TOML dict), every value checked."""
     cfg = defaults()
@@ -200,7 +206,7 @@ def validate(user: dict) -> dict:
         raise ParameterError(f"track.lambda_min = {t['lambda_min']:g} is not allowed: expected less "
                              f"than track.lambda_max = {t['lambda_max']:g}")
     run = cfg["run"]
-    need = run["speed_kmh"] / 3.6 * run["duration"] + cfg["geometry"]["bogie_distance"] + 5.0
+    need = track_needed(cfg, run["duration"])
     if t["irregularity"] and t["length"] < need:
         raise ParameterError(f"track.length = {t['length']:g} is not allowed: the car runs "
                              f"{need:.0f} m (distance plus its length); expected at least that")

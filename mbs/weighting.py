@@ -21,7 +21,7 @@ with ``w_i = 2 pi f_i``; an infinite ``f_i`` leaves its factor out.  Parameters 
   available here.  It differs from ``Wb_iso`` by -8 % at 4 Hz and +13 % at 16 Hz.
 
 :func:`weigh` applies a weighting to a record exactly on the FFT grid of the record padded to
-twice its length (no wrap-around, no bilinear warping, any sampling rate); the result is the
+at least twice its length (no wrap-around, no bilinear warping, any sampling rate); the result is the
 causal filter's response.
 """
 from __future__ import annotations
@@ -30,6 +30,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import fft as sp_fft
 
 INF = math.inf
 
@@ -90,14 +91,22 @@ def gain(name: str, f_hz) -> np.ndarray:
 
 def filtered(a, fs: float, H) -> np.ndarray:
     """The record ``a`` ((n, ...) at ``fs`` Hz, along axis 0) through the linear filter of
-    complex gain ``H(f_hz)``, applied exactly on the FFT grid of the record padded to twice its
-    length, so the output is the filter's response to the record preceded by rest (no
+    complex gain ``H(f_hz)``, applied exactly on the FFT grid of the record padded to at least
+    twice its length, so the output is the filter's response to the record preceded by rest (no
     wrap-around, no bilinear warping, any sampling rate)."""
     a = np.asarray(a, float)
     n = a.shape[0]
-    f = np.fft.rfftfreq(2 * n, 1.0 / fs)
-    G = np.asarray(H(f)).reshape((-1,) + (1,) * (a.ndim - 1))
-    return np.fft.irfft(np.fft.rfft(a, 2 * n, axis=0) * G, 2 * n, axis=0)[:n]
+    # padded to a length of small factors: 2n itself can be a poor one (a 60 s, 50 kHz record's
+    # 6,000,120 has the factor 2381 and transforms ten times slower than 6,075,000)
+    m = sp_fft.next_fast_len(2 * n, real=True)
+    f = np.fft.rfftfreq(m, 1.0 / fs)
+    G = np.asarray(H(f))
+    out = np.empty_like(a)
+    # a column at a time: a long record's padded spectra are the memory (an 8 s, 50 kHz (n, 3)
+    # record: 46 MB above it at once, 31 MB by column)
+    for src, dst in zip(a.reshape(n, -1).T, out.reshape(n, -1).T):
+        dst[:] = sp_fft.irfft(sp_fft.rfft(src, m) * G, m)[:n]
+    return out
 
 
 def weigh(a, fs: float, name: str) -> np.ndarray:
