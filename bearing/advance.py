@@ -36,7 +36,7 @@ from numba import njit
 from .implicit import NEWMARK_K, damped_kick
 from .kernel import dtrb_rhs_damped
 from .layout import KINEMATIC, N_CAGE, N_ROLLER, QUASI
-from .quasidynamic import J_EVERY, equilibrium, spin_step
+from .quasidynamic import equilibrium, spin_step
 
 EXPLICIT, IMEX, IMEX2 = 0, 1, 2
 MODES = {"leapfrog": EXPLICIT, "imex": IMEX, "imex2": IMEX2}
@@ -82,14 +82,15 @@ def advance(x, ring_a, ring_b, P, D, t_b, h, n, first, mode, F_mean, Qc, cages, 
 
     Out: ``F_mean`` (2, 6) the ring loads averaged over the samples; ``Qc`` (2, Z, 6) the
     contact forces and ``cages`` (:func:`cage_outputs`) at the sample at the exchange (half a
-    sub-step after it where ``n`` is even), before its step.  Scratch: ``G`` (2, Z + 1, 6, 12)
-    for ``mode`` > 0, else empty; ``dx`` like ``x``; ``ring`` (2, 12); ``F`` (2, 6); ``Qs`` like
+    sub-step after it where ``n`` is even), before its step.  Scratch: ``G``
+    (:func:`block_rows`, Z + 1, 6, 12); ``dx`` like ``x``; ``ring`` (2, 12); ``F`` (2, 6); ``Qs`` like
     ``Qc`` (:func:`scratch`).  ``theta``: the implicit kick's weight (bearing/implicit.py; 1 as
     shipped).  A quasi-dynamic bearing (``P[QUASI]``, bearing/quasidynamic.py) takes each
-    sub-step by its own scheme whatever ``mode`` is, its scratch in ``G``."""
+    sub-step by its own scheme whatever ``mode`` is."""
     h_k = NEWMARK_K * h / theta if mode == IMEX2 else 0.0
     quasi = P[QUASI] != 0.0
-    buf = G.reshape(G.size)
+    Gb = G[0:2]                              # a quasi-dynamic bearing's blocks, then its scratch
+    buf = G.reshape(G.size)[Gb.size:]
     F_mean[:, :] = 0.0
     c0 = 0.5 * (n + 1)                       # the window's centre, in samples
     j_out = n // 2 + 1                       # the sample at (or just after) the exchange
@@ -102,8 +103,7 @@ def advance(x, ring_a, ring_b, P, D, t_b, h, n, first, mode, F_mean, Qc, cages, 
                 ring[r, c] = (ring_b[r, c] if first
                               else (1.0 - s) * ring_a[r, c] + s * ring_b[r, c])
         if quasi:
-            t_j = t_b + (j - c0) * h
-            equilibrium(t_j, x, ring, P, D, dx, F, Qs, buf, round(t_j / h) % J_EVERY == 0)
+            equilibrium(t_b + (j - c0) * h, x, ring, P, D, dx, F, Qs, Gb, buf)
         else:
             dtrb_rhs_damped(t_b + (j - c0) * h, x, ring, P, D, dx, F, Qs, G, h_k)
         for r in range(2):
@@ -113,7 +113,7 @@ def advance(x, ring_a, ring_b, P, D, t_b, h, n, first, mode, F_mean, Qc, cages, 
             Qc[:, :, :] = Qs
             cage_outputs(x, dx, cages)
         if quasi:
-            spin_step(t_b + (j - c0) * h, x, ring, P, D, h, dx, buf)
+            spin_step(x, P, h, dx, Gb, buf)
             continue
         hk = 0.5 * h if (first and j == j0) else h
         if mode != EXPLICIT:
@@ -128,11 +128,15 @@ def advance(x, ring_a, ring_b, P, D, t_b, h, n, first, mode, F_mean, Qc, cages, 
 def scratch(P: np.ndarray, n_state: int, mode: int):
     """``advance``'s scratch arrays for a bearing of ``n_state`` states: (G, dx, ring, F, Qs)."""
     nz = int(P[0])
-    G = np.zeros((2, nz + 1, 6, 12)) if needs_blocks(P, mode) else np.empty((0, 1, 6, 12))
+    rows = block_rows(P, mode)
+    G = np.zeros((rows, nz + 1, 6, 12)) if rows else np.empty((0, 1, 6, 12))
     return G, np.empty(n_state), np.zeros((2, 12)), np.zeros((2, 6)), np.zeros((2, nz, 6))
 
 
-def needs_blocks(P: np.ndarray, mode: int) -> bool:
-    """Whether :func:`advance` needs its ``G`` for bearing(s) ``P`` (one row or a stack): the
-    implicit kick's blocks, or a quasi-dynamic bearing's scratch."""
-    return mode != EXPLICIT or bool(np.any(np.atleast_2d(P)[:, QUASI] != 0.0))
+def block_rows(P: np.ndarray, mode: int) -> int:
+    """The first dimension of :func:`advance`'s ``G`` for bearing(s) ``P`` (one row or a
+    stack): 2 for the implicit kick's blocks, 4 for a quasi-dynamic bearing (its blocks and its
+    scratch), 0 for the explicit leapfrog."""
+    if np.any(np.atleast_2d(P)[:, QUASI] != 0.0):
+        return 4
+    return 0 if mode == EXPLICIT else 2

@@ -133,7 +133,7 @@ def run_leapfrog(Y, t0, dt, n_steps, every, P, D, rig, acc, Fout, Qout, cage, mo
     F = np.zeros((2, 6))
     Qc = np.zeros((2, nz, 6))
     cages = np.zeros(4)
-    G = np.zeros((2 if mode > 0 or P[QUASI] != 0.0 else 0, nz + 1, 6, 12))
+    G = np.zeros((4 if P[QUASI] != 0.0 else (2 if mode > 0 else 0), nz + 1, 6, 12))   # advance.block_rows
     dx, ring, Fs, Qs = np.empty(nb), np.zeros((2, 12)), np.zeros((2, 6)), np.zeros((2, nz, 6))
     a = np.empty(3)
     x = Y[:nb]

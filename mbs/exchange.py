@@ -21,7 +21,8 @@ both are measured against the single-rate run (tests/test_coupled.py, benchmarks
 :class:`Exchange` (a named tuple numba compiles): ``ring`` the ring motion at the last exchange
 (n_bearings, 2, 12), ``flags[0]`` 1 before the run's first exchange, ``h`` and ``n`` the
 bearings' sub-step and sub-steps an exchange, ``mode`` (bearing/advance.py ``MODES``), ``G``
-the implicit kick's blocks (n_bearings, 2, Z + 1, 6, 12), or the quasi-dynamic bearings' scratch;
+the implicit kick's blocks (n_bearings, 2, Z + 1, 6, 12), or the quasi-dynamic bearings' blocks
+and scratch (n_bearings, 4, ...);
 empty for the explicit leapfrog's dynamic bearings.
 """
 from __future__ import annotations
@@ -30,7 +31,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from axlebox.bearing.advance import MODES, needs_blocks
+from axlebox.bearing.advance import MODES, block_rows
 
 Exchange = namedtuple("Exchange", ["ring", "flags", "h", "n", "mode", "G"])
 
@@ -43,8 +44,8 @@ def exchange(model, method: str, h: float, n: int, ring=None) -> Exchange:
     nbr = len(model.bearing_names)
     mode = MODES[method]
     Z = int(model.S.br_P[0, 0]) if nbr else 0
-    G = (np.zeros((nbr, 2, Z + 1, 6, 12)) if nbr and needs_blocks(model.S.br_P, mode)
-         else np.zeros((0, 2, 1, 6, 12)))
+    rows = block_rows(model.S.br_P, mode) if nbr else 0
+    G = np.zeros((nbr, rows, Z + 1, 6, 12)) if rows else np.zeros((0, 2, 1, 6, 12))
     start = ring is None
     ring = np.zeros((nbr, 2, 12)) if start else np.array(ring, float).reshape(nbr, 2, 12)
     return Exchange(ring=ring, flags=np.array([1 if start else 0], np.int64), h=float(h), n=int(n),

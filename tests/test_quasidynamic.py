@@ -7,6 +7,8 @@ import pytest
 from axlebox._params import ParameterError
 from axlebox.bearing import quasidynamic as qd
 from axlebox.bearing.defects import Defect
+from axlebox.bearing.kernel import dtrb_rhs
+from axlebox.bearing.layout import J_RA, N_ROLLER, PSI
 from axlebox.bearing.diagnostics.channel import analyse
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.params import BearingParams
@@ -15,7 +17,10 @@ from axlebox.bearing.rig import RigConfig, initial_state, simulate
 QD = BearingParams(model="quasi-dynamic")
 
 
-def _rig(dt=5e-5, duration=0.3, defects=(Defect(W=2e-3),)):
+DEFECT = (Defect(W=2e-3),)
+
+
+def _rig(dt=5e-5, duration=0.3, defects=DEFECT):
     return RigConfig(duration=duration, dt=dt, method="leapfrog", defects=defects, bearing=QD)
 
 
@@ -33,12 +38,40 @@ def test_rollers_in_equilibrium_pass_the_load_from_ring_to_ring():
     ring[0, 10] = c.omega_w
     ring[1, :3] = Y[nb:nb + 3]
     F, Qc, dx = np.zeros((2, 6)), np.zeros((2, Z, 6)), np.zeros(nb)
-    buf = np.zeros(qd.n_buffer(Z, nb))
-    evals = qd.equilibrium(0.0, x, ring, P, D, dx, F, Qc, buf)
+    Gb, buf = np.zeros((2, Z + 1, 6, 12)), np.zeros(qd.n_buffer(Z, nb))
+    evals = qd.equilibrium(0.0, x, ring, P, D, dx, F, Qc, Gb, buf)
     assert evals <= 10
     assert F[1, 2] == pytest.approx(c.F_r, rel=5e-3)
     np.testing.assert_allclose(F[0, :3], -F[1, :3], atol=2e-3 * c.F_r)
     assert (Qc[:, :, 0] > 1e3).sum() >= 8                  # a load zone of several rollers a row
+
+
+def test_spin_step_jacobian_is_the_kernels_friction_derivative():
+    """The spin step's Jacobian comes from the kernel's secant friction rows (no evaluation of
+    its own): on every loaded roller of the rig's start, ``d(omega_s')/d(omega_s)`` from the
+    blocks equals the kernel's own finite difference within 2 % (near pure rolling, slip below
+    the regularisation speed, secant and tangent agree), and the cage's coupling has its sign."""
+    c = _rig(defects=())
+    Y, P, D, rig = initial_state(c)
+    nb, Z = Y.size - 6, c.bearing.Z
+    x = Y[:nb].copy()
+    ring = np.zeros((2, 12))
+    ring[0, 10] = c.omega_w
+    ring[1, :3] = Y[nb:nb + 3]
+    F, Qc, dx = np.zeros((2, 6)), np.zeros((2, Z, 6)), np.zeros(nb)
+    Gb, buf = np.zeros((2, Z + 1, 6, 12)), np.zeros(qd.n_buffer(Z, nb))
+    qd.equilibrium(0.0, x, ring, P, D, dx, F, Qc, Gb, buf)
+    eps = 1e-3                                           # rad/s on each spin: 1e-5 m/s of slip
+    xp, ap = x.copy(), np.zeros(nb)
+    w = np.arange(2 * Z) * N_ROLLER + 6 + PSI
+    xp[w] += eps
+    dtrb_rhs(0.0, xp, ring, P, D, ap, F.copy(), Qc.copy())
+    d_fd = (ap[w] - dx[w]) / eps
+    d_blocks = -Gb[:, :Z, 5, 5].reshape(-1) / P[J_RA]
+    loaded = Qc[:, :, 0].reshape(-1) > 1e3
+    assert loaded.sum() >= 8
+    np.testing.assert_allclose(d_blocks[loaded], d_fd[loaded], rtol=0.02)
+    assert (d_blocks[loaded] < 0).all()                  # friction damps the slip
 
 
 @pytest.fixture(scope="module")
