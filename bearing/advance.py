@@ -103,7 +103,7 @@ def advance(x, ring_a, ring_b, P, D, t_b, h, n, first, mode, F_mean, Qc, cages, 
                 ring[r, c] = (ring_b[r, c] if first
                               else (1.0 - s) * ring_a[r, c] + s * ring_b[r, c])
         if quasi:
-            equilibrium(t_b + (j - c0) * h, x, ring, P, D, dx, F, Qs, Gb, buf)
+            equilibrium(t_b + (j - c0) * h, x, ring, P, D, h, dx, F, Qs, Gb, buf)
         else:
             dtrb_rhs_damped(t_b + (j - c0) * h, x, ring, P, D, dx, F, Qs, G, h_k)
         for r in range(2):

@@ -19,14 +19,16 @@ A step of ``h`` (:func:`equilibrium`, then :func:`spin_step`):
 
 1. **Contact equilibrium.**  Every roller's radial place ``rho``, axial place ``eta`` and tilt
    ``theta_t`` solve ``a_rho = a_eta = a_theta_t = 0``: the dynamic model's accelerations
-   (kernel.py, Eq. 12) with those rates zero, so that the centrifugal and gyroscopic loads stay
-   and the inertia of those DOFs goes.  Newton's method, each roller's 3 x 3 block the
-   kernel's exact contact stiffness (the rows :func:`.kernel.dtrb_rhs_damped` makes for the
-   "imex2" kick, at ``h_k`` = 1 s^2), so an evaluation gives the residual and the next
-   Jacobian at once; a roller touches only the rings and its own pocket, so the blocks do not
-   couple.  A roller whose residual grows takes half its step back (a line search per roller).
-   The step of an iteration is capped (a roller out of contact has no stiffness to divide by) and a
-   block with no stiffness in a direction gets a floor there (:data:`J_FLOOR`).
+   (kernel.py, Eq. 12) with those rates the step's backward differences (the contacts' damping
+   then sees the roller follow the rings: implicit Euler on a massless, damped roller), so that
+   the centrifugal and gyroscopic loads stay and the inertia of those DOFs goes.  Newton's
+   method, each roller's 3 x 3 block the kernel's exact contact stiffness and damping,
+   ``K + C / h`` (the rows :func:`.kernel.dtrb_rhs_damped` makes for the "imex2" kick, at
+   ``h_k = h``), so an evaluation gives the residual and the next Jacobian at once; a roller
+   touches only the rings and its own pocket, so the blocks do not couple.  A roller whose
+   residual grows takes half its step back (a line search per roller).  The step of an
+   iteration is capped (a roller out of contact has no stiffness to divide by) and a block with
+   no stiffness in a direction gets a floor there (:data:`J_FLOOR`).
 2. **Spins and cage.**  The rollers sit centred in their pockets (roller k at the cage's
    ``phi_c + 2 pi k / Z``) and the cage's rotation carries their orbital inertia,
    ``(J_cp + Z M_r R^2) phi_c'' = sum_k F_t,k (R + rho_k)`` plus the pockets' and side beams'
@@ -68,13 +70,13 @@ TWO_PI = 2.0 * np.pi
 def n_buffer(nz: int, n_state: int) -> int:
     """Floats of scratch :func:`equilibrium` and :func:`spin_step` need (bearing/advance.py's
     ``G`` holds them)."""
-    return 32 * nz
+    return 38 * nz
 
 
 @njit(cache=True)
 def _hold(x, nz):
-    """The held DOFs: rollers centred in their pockets (azimuth, orbit rate), no skew, the rates
-    of the solved positions zero; the cages centred on the inner ring."""
+    """The held DOFs: rollers centred in their pockets (azimuth, orbit rate), no skew; the cages
+    centred on the inner ring.  (The solved positions' rates are :func:`equilibrium`'s.)"""
     nr = 2 * nz * N_ROLLER
     for j in range(2):
         cb = nr + j * N_CAGE
@@ -85,10 +87,7 @@ def _hold(x, nz):
             b0 = (j * nz + k) * N_ROLLER
             x[b0 + PHI] = x[cb + 5] + TWO_PI * k / nz
             x[b0 + TH_S] = 0.0
-            x[b0 + 6 + RHO] = 0.0
             x[b0 + 6 + PHI] = x[cb + 11]
-            x[b0 + 6 + ETA] = 0.0
-            x[b0 + 6 + TH_T] = 0.0
             x[b0 + 6 + TH_S] = 0.0
 
 
@@ -119,49 +118,56 @@ def _merit(dx, b0, w_t):
 
 
 @njit(cache=True)
-def _blocks(Gb, x, P, J, nz):
-    """Every roller's 3 x 3 block of d(a_rho, a_eta, a_theta_t) / d(rho, eta, theta_t) from the
-    kernel's stiffness rows ``Gb`` (``-K / m`` with m the DOF's mass or inertia), floored."""
+def _blocks(Gb, P, h, J, nz):
+    """Every roller's 3 x 3 block of d(a_rho, a_eta, a_theta_t) / d(rho, eta, theta_t), the rates
+    the backward differences ``(q - q_0) / h``, from the kernel's rows ``Gb = C + h K``:
+    ``-(K + C / h) / m`` with m the DOF's mass or inertia, floored."""
     m = (P[M_R], P[M_R], P[J_RD])
     rows = (0, 2, 3)                       # rho, eta, theta_t among a roller's six rates
     for k in range(2 * nz):
         j, kk = k // nz, k % nz
         for q in range(3):
             for c in range(3):
-                J[9 * k + 3 * q + c] = -Gb[j, kk, rows[q], rows[c]] / m[q]
+                J[9 * k + 3 * q + c] = -Gb[j, kk, rows[q], rows[c]] / (m[q] * h)
             if J[9 * k + 4 * q] > -J_FLOOR:
                 J[9 * k + 4 * q] = -J_FLOOR
 
 
 @njit(cache=True)
-def equilibrium(t, x, ring, P, D, dx, F, Qc, Gb, buf):
+def equilibrium(t, x, ring, P, D, h, dx, F, Qc, Gb, buf):
     """Step 1 (module docstring): every roller's ``rho, eta, theta_t`` in contact equilibrium
-    with the rings ``ring`` (2, 12) at ``t``; ``dx`` left with the state's derivative there (the
-    spins' and cages' accelerations), ``F`` (2, 6) the ring loads, ``Qc`` (2, Z, 6) the contact
-    forces.  ``buf``: :func:`n_buffer` floats.  Newton's method with a backtracking line search
-    per roller (a roller whose residual grows takes half its step back, up to
-    :data:`MAX_HALVE` times): a roller off a raceway has only the floor's stiffness, and its full
-    step would carry it deep into the raceway.  The Jacobian is kept in ``buf`` from step to
-    step (a chord method) and made afresh where ``refresh`` (the caller's schedule), at a
-    bearing's first step, and when two iterations on a kept one have not converged.  Returns
-    the right-hand side evaluations taken."""
+    with the rings ``ring`` (2, 12) at the end ``t`` of a step of ``h``, their rates the
+    step's backward differences (implicit Euler: the contacts' damping sees the roller move with
+    the rings; with the rates held at zero it saw the rings' whole velocity, and a flexible axle
+    box's vibration stalled Newton on the damping's kinks); ``dx`` left with the state's
+    derivative there (the spins' and cages' accelerations), ``F`` (2, 6) the ring loads, ``Qc``
+    (2, Z, 6) the contact forces, ``Gb`` the kernel's blocks (:func:`spin_step` takes its
+    friction rows).  ``buf``: :func:`n_buffer` floats.  Newton's method with a backtracking line
+    search per roller (a roller whose residual grows takes half its step back, up to
+    :data:`MAX_HALVE` times): a roller off a raceway has only the floor's stiffness, and its
+    full step would carry it deep into the raceway.  Returns the right-hand side evaluations
+    taken."""
     nz = int(P[Z])
     nr = 2 * nz
     J = buf[0:18 * nz]
     dq = buf[18 * nz:24 * nz]
     lam = buf[24 * nz:26 * nz]
     m0 = buf[26 * nz:28 * nz]
+    q0 = buf[32 * nz:38 * nz]                    # the positions at the step's start
     r = np.empty(3)
     d = np.empty(3)
     w_t = 2.0 * P[J_RD] / (P[M_R] * P[L_B])
     _hold(x, nz)
-    # each evaluation gives the residual and every roller's exact contact stiffness (the "imex2"
-    # rows with h_k = 1 s^2: the stiffness, 1e8-1e10 N/m, swamps the damping and friction rows,
-    # 1e3-1e5 N s/m, in the same blocks)
-    dtrb_rhs_damped(t, x, ring, P, D, dx, F, Qc, Gb, 1.0)
+    for k in range(nr):
+        for q in range(3):
+            q0[3 * k + q] = x[k * N_ROLLER + SLOTS[q]]
+            x[k * N_ROLLER + 6 + SLOTS[q]] = 0.0
+    # each evaluation gives the residual and every roller's exact contact stiffness and damping
+    # (the "imex2" rows at h_k = h: C + h K)
+    dtrb_rhs_damped(t, x, ring, P, D, dx, F, Qc, Gb, h)
     evals = 1
     for _it in range(MAX_IT):
-        _blocks(Gb, x, P, J, nz)
+        _blocks(Gb, P, h, J, nz)
         done = True
         for k in range(nr):
             b0 = k * N_ROLLER
@@ -174,9 +180,10 @@ def equilibrium(t, x, ring, P, D, dx, F, Qc, Gb, buf):
             for q in range(3):
                 dq[3 * k + q] = 0.0 if balanced else min(max(d[q], -CAP[q]), CAP[q])
                 x[b0 + SLOTS[q]] += dq[3 * k + q]
+                x[b0 + 6 + SLOTS[q]] = (x[b0 + SLOTS[q]] - q0[3 * k + q]) / h
                 if abs(dq[3 * k + q]) > TOL[q] and not balanced:
                     done = False
-        dtrb_rhs_damped(t, x, ring, P, D, dx, F, Qc, Gb, 1.0)
+        dtrb_rhs_damped(t, x, ring, P, D, dx, F, Qc, Gb, h)
         evals += 1
         if done:
             return evals
@@ -188,12 +195,13 @@ def equilibrium(t, x, ring, P, D, dx, F, Qc, Gb, buf):
                     lam[k] *= 0.5
                     for q in range(3):
                         x[b0 + SLOTS[q]] -= lam[k] * dq[3 * k + q]
+                        x[b0 + 6 + SLOTS[q]] = (x[b0 + SLOTS[q]] - q0[3 * k + q]) / h
                     again = True
                 else:
                     lam[k] = 0.0                        # accepted: stays
             if not again:
                 break
-            dtrb_rhs_damped(t, x, ring, P, D, dx, F, Qc, Gb, 1.0)
+            dtrb_rhs_damped(t, x, ring, P, D, dx, F, Qc, Gb, h)
             evals += 1
     return evals
 

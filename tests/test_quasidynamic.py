@@ -39,7 +39,7 @@ def test_rollers_in_equilibrium_pass_the_load_from_ring_to_ring():
     ring[1, :3] = Y[nb:nb + 3]
     F, Qc, dx = np.zeros((2, 6)), np.zeros((2, Z, 6)), np.zeros(nb)
     Gb, buf = np.zeros((2, Z + 1, 6, 12)), np.zeros(qd.n_buffer(Z, nb))
-    evals = qd.equilibrium(0.0, x, ring, P, D, dx, F, Qc, Gb, buf)
+    evals = qd.equilibrium(0.0, x, ring, P, D, 5e-5, dx, F, Qc, Gb, buf)
     assert evals <= 10
     assert F[1, 2] == pytest.approx(c.F_r, rel=5e-3)
     np.testing.assert_allclose(F[0, :3], -F[1, :3], atol=2e-3 * c.F_r)
@@ -60,7 +60,7 @@ def test_spin_step_jacobian_is_the_kernels_friction_derivative():
     ring[1, :3] = Y[nb:nb + 3]
     F, Qc, dx = np.zeros((2, 6)), np.zeros((2, Z, 6)), np.zeros(nb)
     Gb, buf = np.zeros((2, Z + 1, 6, 12)), np.zeros(qd.n_buffer(Z, nb))
-    qd.equilibrium(0.0, x, ring, P, D, dx, F, Qc, Gb, buf)
+    qd.equilibrium(0.0, x, ring, P, D, 5e-5, dx, F, Qc, Gb, buf)
     eps = 1e-3                                           # rad/s on each spin: 1e-5 m/s of slip
     xp, ap = x.copy(), np.zeros(nb)
     w = np.arange(2 * Z) * N_ROLLER + 6 + PSI
