@@ -8,6 +8,8 @@
 * ``inner_48kmh``: the same case with the defect on the inner ring (beyond the paper)
 * ``study``: the paper's study matrix (speeds x defect widths) of the car, for ``axlebox sweep``
 * ``study_rig``: the same matrix on the standalone bearing rig
+* ``study_fast``: the same matrix on the quasi-dynamic bearing (bearing/quasidynamic.py), for
+  datasets and quick studies
 * ``study_both``: defect kinds (outer, inner, roller) and sides (one, both) x speeds, beyond the paper
 """
 from __future__ import annotations
