@@ -1,6 +1,6 @@
 """The coupled car's step against the scheme: stability and what the diagnosis reads.
 
-    python3 benchmarks/step.py [--duration 1.5] [--runs imex:5e-6 imex:5e-6:5e-5 imex2:1e-5 ...]
+    python3 benchmarks/step.py [--duration 1.5] [--runs imex:5e-6 imex:5e-6:5e-5 imex2:1e-5 qd:5e-5 ...]
 
 The validation case (configs/validation_48kmh.toml, front bogie flexible, coarse bodies; the
 integrator's own 10 kHz output, no sensor model) by each ``method:dt[:exchange_dt]`` (the
@@ -9,12 +9,16 @@ configs' step limits: whether it runs, wall seconds per simulated second, and af
 fade-in the defect-side (ws2_R) and healthy-side RMS, the defect side's BPFO envelope line, its
 largest |a|, the healthy side's lag behind it (impulse by impulse, broadband: what the
 diagnosis' lag reads first) and both sides' FC and VF (paper Eq. 17-18, 0-5 kHz), each against
-the first run's.  ``--perturb EPS``: each run again with +-EPS added to one roller's first
+the first run's, and the defect bearing's cage slip (its row 2 against the rolling speed of Eq. 2).
+``qd:dt``: the quasi-dynamic bearing (bearing/quasidynamic.py) stepped by the leapfrog at dt.
+``--perturb EPS``: each run again with +-EPS added to one roller's first
 state (the rollers' chaos: what any change of the scheme moves by itself).
 """
 from __future__ import annotations
 
 import argparse
+
+import numpy as np
 
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.diagnostics.lag import impulse_lag
@@ -44,18 +48,33 @@ def main():
     except (IndexError, ValueError):
         ap.error(f"--runs {' '.join(a.runs)!r} is not allowed: expected method:dt[:exchange_dt], e.g. "
                  "imex:5e-6:5e-5")
-    model, y0 = variant(a.bodies, {"bodies": {"flexible": FRONT}})
+    models = {}
+
+    def model_for(quasi):
+        if quasi not in models:
+            over = {"bodies": {"flexible": FRONT}}
+            if quasi:
+                over["bearing"] = {"model": "quasi-dynamic"}
+            models[quasi] = variant(a.bodies, over)
+        return models[quasi]
+    model, y0 = model_for(False)
+    bp = BearingParams()
+    f_cage = 0.5 * (1 - bp.D_b / bp.D_m) * shaft_hz(48.0, 0.42)       # Eq. 2, Hz
+    i_defect = model.bearing_names.index("bearing2R")
     fs = 1e4
     skip = int(TRACK_FADE_IN_S * fs)
     bpfo = orders(BearingParams()).BPFO * shaft_hz(48.0, 0.42)
     print("| method | dt s | exchange s | status | wall s per simulated s | ws2_R RMS | ws2_L RMS | "
-          "ws2_R BPFO line | ws2_R peak | lag ms | FC R / L Hz | VF R / L Hz^2 | against the first |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+          "ws2_R BPFO line | ws2_R peak | lag ms | FC R / L Hz | VF R / L Hz^2 | cage slip % | "
+          "against the first |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     ref = None
     first = int(model.S.br_i[0, 3])                  # the first bearing's first roller state
     for (method, dt, H), eps in ((run, e) for run in runs
                                  for e in ((0.0, a.perturb, -a.perturb) if a.perturb else (0.0,))):
-        s = integrate.Settings(method=method, dt=dt, output_rate_hz=fs, state_rate_hz=100, exchange_dt=H)
+        model, y0 = model_for(method == "qd")
+        s = integrate.Settings(method="leapfrog" if method == "qd" else method, dt=dt, output_rate_hz=fs,
+                               state_rate_hz=100, exchange_dt=H)
         integrate.simulate(model, 0.001, s, y0=y0)                  # compile outside the timing
         y = y0.copy()
         y[first] += eps
@@ -63,18 +82,20 @@ def main():
         if eps:
             method = f"{method} ({eps:+g})"
         if r.status != "done":
-            print(f"| {method} | {dt:g} | {H or dt:g} | {r.status}: {r.message} | | | | | | | | | |",
+            print(f"| {method} | {dt:g} | {H or dt:g} | {r.status}: {r.message} | | | | | | | | | | |",
                   flush=True)
             continue
         R, L = (r.sensors[n][skip:, 2] for n in ("ws2_R", "ws2_L"))
         lag = impulse_lag(R, L, fs, 1.0 / bpfo).delay_b_samples / fs * 1e3
         (fcR, vfR, _), (fcL, vfL, _) = fc_vf(R, fs), fc_vf(L, fs)
+        rate = r.bearings[skip:, i_defect, 2, 5].mean() / (2 * np.pi)     # row 2's cage, Hz
+        slip = (1 - rate / f_cage) * 100
         x = (R.std(), L.std(), bpfo_line(R, fs, bpfo), abs(R).max(), lag, fcR, fcL, vfR, vfL)
         ref = ref or x
         diff = ", ".join(f"{(v / w - 1) * 100:+.1f} %" for v, w in zip(x, ref))
         print(f"| {method} | {dt:g} | {H or dt:g} | done | {r.wall_s / a.duration:.1f} | {x[0]:.3f} | "
               f"{x[1]:.3f} | {x[2]:.3f} | {x[3]:.1f} | {x[4]:.3f} | {fcR:.0f} / {fcL:.0f} | "
-              f"{vfR:.3g} / {vfL:.3g} | {diff} |", flush=True)
+              f"{vfR:.3g} / {vfL:.3g} | {slip:.2f} | {diff} |", flush=True)
 
 
 if __name__ == "__main__":
