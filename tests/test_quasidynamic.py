@@ -142,3 +142,19 @@ def test_the_validation_car_runs_on_quasi_dynamic_bearings():
     np.testing.assert_allclose(Fz_i, -Fz_o, rtol=0.02)
     rms = {s: run.sensors[s][late, 2].std() for s in ("ws2_R", "ws2_L")}
     assert rms["ws2_R"] > rms["ws2_L"], rms
+
+
+def test_study_fast_is_the_papers_study_on_the_quasi_dynamic_bearing():
+    """configs/study_fast: the study's 16 cases (4 speeds x 4 widths), each a valid car config on
+    the quasi-dynamic bearing, equal to configs/study but for the bearing model, the step and the
+    exchange."""
+    import tomllib
+
+    from axlebox import configs
+    from axlebox.pipelines.sweep import load_config, matrix
+    fast, study = (tomllib.loads(configs.path(n).read_text()) for n in ("study_fast", "study"))
+    assert len(matrix(*load_config("study_fast"))) == 16
+    assert fast["bearing"].pop("model") == "quasi-dynamic"
+    for sec in ("integrator", "coupling"):
+        fast.pop(sec), study.pop(sec)
+    assert fast == study
