@@ -24,12 +24,10 @@ def _rig(dt=5e-5, duration=0.3, defects=DEFECT):
     return RigConfig(duration=duration, dt=dt, method="leapfrog", defects=defects, bearing=QD)
 
 
-def test_rollers_in_equilibrium_pass_the_load_from_ring_to_ring():
-    """At the rig's quasi-static start (the outer ring where the static solution puts it under
-    the 54 kN load) the solved rollers carry the load: the outer ring's vertical load is the
-    applied one within 0.5 %, and the inner ring's is its opposite within 0.2 % of the load (the
-    rollers' own weight, 40 x 1.3 N, and the solver's residual, at most 30 N a roller: F_TOL,
-    are the difference).  Newton converges in a few evaluations."""
+def _at_start():
+    """The healthy rig's bearing at its quasi-static start, the rollers put in contact
+    equilibrium: (config, state, ring motion, P, D, derivative, ring loads, contact forces,
+    blocks, evaluations taken)."""
     c = _rig(defects=())
     Y, P, D, rig = initial_state(c)
     nb, Z = Y.size - 6, c.bearing.Z
@@ -40,6 +38,16 @@ def test_rollers_in_equilibrium_pass_the_load_from_ring_to_ring():
     F, Qc, dx = np.zeros((2, 6)), np.zeros((2, Z, 6)), np.zeros(nb)
     Gb, buf = np.zeros((2, Z + 1, 6, 12)), np.zeros(qd.n_buffer(Z, nb))
     evals = qd.equilibrium(0.0, x, ring, P, D, 5e-5, dx, F, Qc, Gb, buf)
+    return c, x, ring, P, D, dx, F, Qc, Gb, evals
+
+
+def test_rollers_in_equilibrium_pass_the_load_from_ring_to_ring():
+    """At the rig's quasi-static start (the outer ring where the static solution puts it under
+    the 54 kN load) the solved rollers carry the load: the outer ring's vertical load is the
+    applied one within 0.5 %, and the inner ring's is its opposite within 0.2 % of the load (the
+    rollers' own weight, 40 x 1.3 N, and the solver's residual, at most 30 N a roller: F_TOL,
+    are the difference).  Newton converges in a few evaluations."""
+    c, x, ring, P, D, dx, F, Qc, Gb, evals = _at_start()
     assert evals <= 10
     assert F[1, 2] == pytest.approx(c.F_r, rel=5e-3)
     np.testing.assert_allclose(F[0, :3], -F[1, :3], atol=2e-3 * c.F_r)
@@ -50,17 +58,9 @@ def test_spin_step_jacobian_is_the_kernels_friction_derivative():
     """The spin step's Jacobian comes from the kernel's secant friction rows (no evaluation of
     its own): on every loaded roller of the rig's start, ``d(omega_s')/d(omega_s)`` from the
     blocks equals the kernel's own finite difference within 2 % (near pure rolling, slip below
-    the regularisation speed, secant and tangent agree), and the cage's coupling has its sign."""
-    c = _rig(defects=())
-    Y, P, D, rig = initial_state(c)
-    nb, Z = Y.size - 6, c.bearing.Z
-    x = Y[:nb].copy()
-    ring = np.zeros((2, 12))
-    ring[0, 10] = c.omega_w
-    ring[1, :3] = Y[nb:nb + 3]
-    F, Qc, dx = np.zeros((2, 6)), np.zeros((2, Z, 6)), np.zeros(nb)
-    Gb, buf = np.zeros((2, Z + 1, 6, 12)), np.zeros(qd.n_buffer(Z, nb))
-    qd.equilibrium(0.0, x, ring, P, D, 5e-5, dx, F, Qc, Gb, buf)
+    the regularisation speed, secant and tangent agree), and it damps the slip."""
+    c, x, ring, P, D, dx, F, Qc, Gb, _ = _at_start()
+    nb, Z = x.size, c.bearing.Z
     eps = 1e-3                                           # rad/s on each spin: 1e-5 m/s of slip
     xp, ap = x.copy(), np.zeros(nb)
     w = np.arange(2 * Z) * N_ROLLER + 6 + PSI
