@@ -1,10 +1,12 @@
 """How the cost grows, so that a user can plan a study: wall time and peak memory of one DTRB on
 the rig (RK4 and the leapfrog), one wheelset with its two DTRBs in the car
 (``joint.wheelsets = [2]``), the car without bearings, and the car with its eight, for 1, 2, 4
-and 8 simulated seconds, and the car as ``axlebox simulate`` runs it (outputs streamed to disk,
-the acquisition chain, the result file) for 1 and 4.
+and 8 simulated seconds, the car as ``axlebox simulate`` runs it (outputs streamed to disk,
+the acquisition chain, the result file) for 1 and 4, and the rig and the car on the
+quasi-dynamic bearing (configs/study_fast's step, 5e-5 s) for 1 and 1, 2, 4.
 
-    python3 benchmarks/growth.py [--durations 1 2 4 8] [--streamed 1 4] [--only-car] [--bodies DIR]
+    python3 benchmarks/growth.py [--durations 1 2 4 8] [--streamed 1 4] [--quasi 1 2 4] [--only-car]
+                                 [--bodies DIR]
 
 Every case runs in a fresh process (peak memory is a process's own): the shipped configs
 (configs/validation_48kmh.toml with its integrator for the coupled cases, configs/vehicle.toml
@@ -26,7 +28,8 @@ import time
 
 CASES = ("rig: one DTRB", "car: wheelset 2 on two DTRBs", "car: no bearings (row bushings)",
          "car: eight DTRBs", "rig: one DTRB, leapfrog",
-         "car: eight DTRBs, axlebox simulate (streamed)")
+         "car: eight DTRBs, axlebox simulate (streamed)",
+         "rig: one quasi-dynamic DTRB", "car: eight quasi-dynamic DTRBs (study_fast's step)")
 
 
 def _steps(s) -> str:
@@ -36,11 +39,13 @@ def _steps(s) -> str:
 
 def one(case: str, duration: float, bodies: str) -> dict:
     t0 = time.perf_counter()
-    if case in (CASES[0], CASES[4]):
+    if case in (CASES[0], CASES[4], CASES[6]):
         from axlebox.bearing.defects import Defect
+        from axlebox.bearing.params import BearingParams
         from axlebox.bearing.rig import RigConfig, simulate
+        quasi = {"bearing": BearingParams(model="quasi-dynamic"), "dt": 5e-5} if case == CASES[6] else {}
         c = RigConfig(duration=duration, defects=(Defect(W=2e-3),),
-                      method="rk4" if case == CASES[0] else "leapfrog")
+                      method="rk4" if case == CASES[0] else "leapfrog", **quasi)
         t1 = time.perf_counter()
         simulate(c)
         run_s, steps = time.perf_counter() - t1, f"{c.method} {c.dt:g}"
@@ -54,6 +59,9 @@ def one(case: str, duration: float, bodies: str) -> dict:
         name = "validation_48kmh"
         if case == CASES[1]:
             over["joint"] = {"wheelsets": [2]}
+        elif case == CASES[7]:          # configs/study_fast's bearing and step
+            over.update(bearing={"model": "quasi-dynamic"}, coupling={"exchange_dt": 0.0},
+                        integrator={"method": "leapfrog", "dt": 5e-5, "output_rate_hz": 20000.0})
         elif case == CASES[2]:
             name = "vehicle"
             over["bodies"]["flexible"] = ["frame1", "ws1", "ws2", "ab1L", "ab1R", "ab2L", "ab2R"]
@@ -88,6 +96,8 @@ def main():
                     help="simulated seconds of the eight-DTRB car")
     ap.add_argument("--streamed", type=float, nargs="*", default=[1.0, 4.0],
                     help="simulated seconds of the car run as `axlebox simulate` runs it (streamed)")
+    ap.add_argument("--quasi", type=float, nargs="*", default=[1.0, 2.0, 4.0],
+                    help="simulated seconds of the car on quasi-dynamic bearings")
     ap.add_argument("--only-car", action="store_true", help="leave out the rig and the partial cars")
     ap.add_argument("--bodies", default="", help="reduced-body folder (default: built into the cache)")
     ap.add_argument("--one", nargs=2, metavar=("CASE", "DURATION"), help=argparse.SUPPRESS)
@@ -95,8 +105,8 @@ def main():
     if a.one:
         print(json.dumps(one(CASES[int(a.one[0])], float(a.one[1]), a.bodies)))
         return
-    todo = ([] if a.only_car else [(0, 1.0), (4, 1.0), (1, 1.0), (2, 1.0)]) + \
-        [(3, d) for d in a.durations] + [(5, d) for d in a.streamed]
+    todo = ([] if a.only_car else [(0, 1.0), (4, 1.0), (6, 1.0), (1, 1.0), (2, 1.0)]) + \
+        [(3, d) for d in a.durations] + [(5, d) for d in a.streamed] + [(7, d) for d in a.quasi]
     print("| case | integrator, dt s | states | simulated s | run wall s | wall s per simulated s | "
           "process wall s | peak memory MB |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")
