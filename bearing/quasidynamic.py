@@ -133,11 +133,18 @@ def _blocks(Gb, P, h, J, nz):
                 J[9 * k + 4 * q] = -J_FLOOR
 
 
+@njit(inline="always")
+def _balanced(m, P):
+    """Whether a roller of residual ``m`` (:func:`_merit`, in accelerations) is balanced: its
+    residual force below :data:`F_TOL` (then Newton leaves it where it is)."""
+    return m * P[M_R] * P[M_R] < F_TOL * F_TOL
+
+
 @njit(cache=True)
-def _all_balanced(dx, nz, w_t, m2):
-    """Whether every roller's residual (:func:`_merit`, in accelerations) is below ``m2``."""
+def _all_balanced(dx, nz, w_t, P):
+    """Whether every roller is :func:`_balanced`."""
     for k in range(2 * nz):
-        if _merit(dx, k * N_ROLLER, w_t) > m2:
+        if not _balanced(_merit(dx, k * N_ROLLER, w_t), P):
             return False
     return True
 
@@ -185,7 +192,7 @@ def equilibrium(t, x, ring, P, D, h, dx, F, Qc, Gb, buf):
             _solve3(J[9 * k:9 * k + 9], r, d)
             lam[k] = 1.0
             m0[k] = _merit(dx, b0, w_t)
-            balanced = m0[k] * P[M_R] * P[M_R] < F_TOL * F_TOL      # stays where it is
+            balanced = _balanced(m0[k], P)                  # stays where it is
             for q in range(3):
                 dq[3 * k + q] = 0.0 if balanced else min(max(d[q], -CAP[q]), CAP[q])
                 x[b0 + SLOTS[q]] += dq[3 * k + q]
@@ -197,7 +204,7 @@ def equilibrium(t, x, ring, P, D, h, dx, F, Qc, Gb, buf):
         # every roller balanced after an update: done (the next iteration would move none of them
         # and evaluate again; only the line search might still halve back a roller whose residual
         # grew under F_TOL: rig runs read the same to the last printed digit)
-        if done or _all_balanced(dx, nz, w_t, (F_TOL / P[M_R]) ** 2):
+        if done or _all_balanced(dx, nz, w_t, P):
             return evals
         for _h in range(MAX_HALVE):
             again = False
