@@ -58,12 +58,12 @@ def main():
             models[quasi] = variant(a.bodies, over)
         return models[quasi]
     model, y0 = model_for(False)
-    bp = BearingParams()
-    f_cage = 0.5 * (1 - bp.D_b / bp.D_m) * shaft_hz(48.0, 0.42)       # Eq. 2, Hz
+    bp, f_s = BearingParams(), shaft_hz(48.0, 0.42)
+    f_cage = 0.5 * (1 - bp.gamma) * f_s                  # paper Eq. 2 (bearing/layout.py RATIO), Hz
     i_defect = model.bearing_names.index("bearing2R")
     fs = 1e4
     skip = int(TRACK_FADE_IN_S * fs)
-    bpfo = orders(BearingParams()).BPFO * shaft_hz(48.0, 0.42)
+    bpfo = orders(bp).BPFO * f_s
     print("| method | dt s | exchange s | status | wall s per simulated s | ws2_R RMS | ws2_L RMS | "
           "ws2_R BPFO line | ws2_R peak | lag ms | FC R / L Hz | VF R / L Hz^2 | cage slip % | "
           "against the first |")

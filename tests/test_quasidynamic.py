@@ -96,7 +96,7 @@ def test_cage_runs_at_the_rolling_speed_of_eq_2(runs):
     """The cage's speed follows from the traction law (a state, as in the dynamic model): within
     1 % of the pure-rolling speed of the paper's Eq. (2), ``(1 - D_b / D_m) omega_w / 2``."""
     r = runs[2.5e-5]
-    f_c = 0.5 * (1 - QD.D_b / QD.D_m) * shaft_hz(r.config.speed_kmh, r.config.r_wheel)
+    f_c = 0.5 * (1 - QD.gamma) * shaft_hz(r.config.speed_kmh, r.config.r_wheel)
     assert r.cage_hz(0.1) == pytest.approx(f_c, rel=0.01)
 
 
