@@ -48,7 +48,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .kernel import dtrb_rhs_damped
+from .kernel import N_PART, dtrb_rhs_part
 from .layout import (ETA, J_CP, J_RA, J_RD, KINEMATIC, L_B, M_R, N_CAGE, N_ROLLER, PHI, PSI, R_M,
                      RHO, TH_S, TH_T, Z)
 
@@ -70,7 +70,13 @@ TWO_PI = 2.0 * np.pi
 def n_buffer(nz: int, n_state: int) -> int:
     """Floats of scratch :func:`equilibrium` and :func:`spin_step` need (bearing/advance.py's
     ``G`` holds them)."""
-    return 38 * nz
+    return _B_END * nz
+
+
+# where equilibrium's and spin_step's scratch lie in ``buf``, in units of Z floats
+_B_J, _B_DQ, _B_LAM, _B_M0, _B_ARROW, _B_Q0, _B_ACT, _B_NIT, _B_NH, _B_DONE, _B_PARTS = (
+    0, 18, 24, 26, 28, 32, 38, 40, 42, 44, 46)
+_B_END = _B_PARTS + 2 * N_PART
 
 
 @njit(cache=True)
@@ -118,19 +124,17 @@ def _merit(dx, b0, w_t):
 
 
 @njit(cache=True)
-def _blocks(Gb, P, h, J, nz):
-    """Every roller's 3 x 3 block of d(a_rho, a_eta, a_theta_t) / d(rho, eta, theta_t), the rates
-    the backward differences ``(q - q_0) / h``, from the kernel's rows ``Gb = C + h K``:
-    ``-(K + C / h) / m`` with m the DOF's mass or inertia, floored."""
+def _block(Gb, P, h, J, j, kk):
+    """Roller kk of row j's 3 x 3 block of d(a_rho, a_eta, a_theta_t) / d(rho, eta, theta_t),
+    the rates the backward differences ``(q - q_0) / h``, from the kernel's rows
+    ``Gb = C + h K``: ``-(K + C / h) / m`` with m the DOF's mass or inertia, floored."""
     m = (P[M_R], P[M_R], P[J_RD])
     rows = (0, 2, 3)                       # rho, eta, theta_t among a roller's six rates
-    for k in range(2 * nz):
-        j, kk = k // nz, k % nz
-        for q in range(3):
-            for c in range(3):
-                J[9 * k + 3 * q + c] = -Gb[j, kk, rows[q], rows[c]] / (m[q] * h)
-            if J[9 * k + 4 * q] > -J_FLOOR:
-                J[9 * k + 4 * q] = -J_FLOOR
+    for q in range(3):
+        for c in range(3):
+            J[3 * q + c] = -Gb[j, kk, rows[q], rows[c]] / (m[q] * h)
+        if J[4 * q] > -J_FLOOR:
+            J[4 * q] = -J_FLOOR
 
 
 @njit(inline="always")
@@ -138,15 +142,6 @@ def _balanced(m, P):
     """Whether a roller of residual ``m`` (:func:`_merit`, in accelerations) is balanced: its
     residual force below :data:`F_TOL` (then Newton leaves it where it is)."""
     return m * P[M_R] * P[M_R] < F_TOL * F_TOL
-
-
-@njit(cache=True)
-def _all_balanced(dx, nz, w_t, P):
-    """Whether every roller is :func:`_balanced`."""
-    for k in range(2 * nz):
-        if not _balanced(_merit(dx, k * N_ROLLER, w_t), P):
-            return False
-    return True
 
 
 @njit(cache=True)
@@ -158,18 +153,30 @@ def equilibrium(t, x, ring, P, D, h, dx, F, Qc, Gb, buf):
     box's vibration stalled Newton on the damping's kinks); ``dx`` left with the state's
     derivative there (the spins' and cages' accelerations), ``F`` (2, 6) the ring loads, ``Qc``
     (2, Z, 6) the contact forces, ``Gb`` the kernel's blocks (:func:`spin_step` takes its
-    friction rows).  ``buf``: :func:`n_buffer` floats.  Newton's method with a backtracking line
-    search per roller (a roller whose residual grows takes half its step back, up to
-    :data:`MAX_HALVE` times): a roller off a raceway has only the floor's stiffness, and its
-    full step would carry it deep into the raceway.  Returns the right-hand side evaluations
-    taken."""
+    friction rows).  ``buf``: :func:`n_buffer` floats.
+
+    Newton's method roller by roller: the rollers do not couple (each touches the rings and its
+    own pocket), so each iterates on its own, and an evaluation of the right-hand side takes
+    only the rollers that moved (:func:`.kernel.dtrb_rhs_part`; the others keep their loads):
+    a roller balanced at the step's first evaluation costs nothing more, and a roller that
+    stalls at a contact's kink costs only itself.  A roller whose residual grew takes half its
+    step back, up to :data:`MAX_HALVE` times (a roller off a raceway has only the floor's
+    stiffness, and its full step would carry it deep into the raceway); it stops when it is
+    :func:`_balanced`, when its update was below :data:`TOL` (once evaluated there) or after
+    :data:`MAX_IT` updates.  Returns the evaluations taken, counted in whole bearings (the
+    rollers evaluated over 2 Z)."""
     nz = int(P[Z])
     nr = 2 * nz
-    J = buf[0:18 * nz]
-    dq = buf[18 * nz:24 * nz]
-    lam = buf[24 * nz:26 * nz]
-    m0 = buf[26 * nz:28 * nz]
-    q0 = buf[32 * nz:38 * nz]                    # the positions at the step's start
+    dq = buf[_B_DQ * nz:(_B_DQ + 6) * nz]
+    lam = buf[_B_LAM * nz:(_B_LAM + 2) * nz]
+    m0 = buf[_B_M0 * nz:(_B_M0 + 2) * nz]
+    q0 = buf[_B_Q0 * nz:(_B_Q0 + 6) * nz]        # the positions at the step's start
+    active = buf[_B_ACT * nz:(_B_ACT + 2) * nz]
+    n_it = buf[_B_NIT * nz:(_B_NIT + 2) * nz]    # Newton updates a roller has taken
+    n_h = buf[_B_NH * nz:(_B_NH + 2) * nz]       # its halvings in this line search
+    done = buf[_B_DONE * nz:(_B_DONE + 2) * nz]  # its last update was below TOL
+    parts = buf[_B_PARTS * nz:(_B_PARTS + 2 * N_PART) * nz].reshape(2, nz, N_PART)
+    J = np.empty(9)
     r = np.empty(3)
     d = np.empty(3)
     w_t = 2.0 * P[J_RD] / (P[M_R] * P[L_B])
@@ -178,51 +185,57 @@ def equilibrium(t, x, ring, P, D, h, dx, F, Qc, Gb, buf):
         for q in range(3):
             q0[3 * k + q] = x[k * N_ROLLER + SLOTS[q]]
             x[k * N_ROLLER + 6 + SLOTS[q]] = 0.0
-    # each evaluation gives the residual and every roller's exact contact stiffness and damping
-    # (the "imex2" rows at h_k = h: C + h K)
-    dtrb_rhs_damped(t, x, ring, P, D, dx, F, Qc, Gb, h)
-    evals = 1
-    for _it in range(MAX_IT):
-        _blocks(Gb, P, h, J, nz)
-        done = True
+        active[k] = 1.0
+        lam[k] = 0.0
+        n_it[k] = 0.0
+        n_h[k] = 0.0
+        done[k] = 0.0
+    # each evaluation gives the residual and the evaluated rollers' exact contact stiffness and
+    # damping (the "imex2" rows at h_k = h: C + h K)
+    dtrb_rhs_part(t, x, ring, P, D, dx, F, Qc, Gb, h, None, parts)
+    evaluated = nr
+    for _pass in range(MAX_IT * (MAX_HALVE + 1)):
+        n_active = 0
         for k in range(nr):
+            if active[k] == 0.0:
+                continue
             b0 = k * N_ROLLER
-            for q in range(3):
-                r[q] = dx[b0 + 6 + SLOTS[q]]
-            _solve3(J[9 * k:9 * k + 9], r, d)
-            lam[k] = 1.0
-            m0[k] = _merit(dx, b0, w_t)
-            balanced = _balanced(m0[k], P)                  # stays where it is
-            for q in range(3):
-                dq[3 * k + q] = 0.0 if balanced else min(max(d[q], -CAP[q]), CAP[q])
-                x[b0 + SLOTS[q]] += dq[3 * k + q]
-                x[b0 + 6 + SLOTS[q]] = (x[b0 + SLOTS[q]] - q0[3 * k + q]) / h
-                if abs(dq[3 * k + q]) > TOL[q] and not balanced:
-                    done = False
-        dtrb_rhs_damped(t, x, ring, P, D, dx, F, Qc, Gb, h)
-        evals += 1
-        # every roller balanced after an update: done (the next iteration would move none of them
-        # and evaluate again; only the line search might still halve back a roller whose residual
-        # grew under F_TOL: rig runs read the same to the last printed digit)
-        if done or _all_balanced(dx, nz, w_t, P):
-            return evals
-        for _h in range(MAX_HALVE):
-            again = False
-            for k in range(nr):
-                b0 = k * N_ROLLER
-                if lam[k] > 0.0 and _merit(dx, b0, w_t) > m0[k]:
+            m = _merit(dx, b0, w_t)
+            if lam[k] > 0.0:                            # its last update's line search
+                if m > m0[k] and n_h[k] < MAX_HALVE:
                     lam[k] *= 0.5
+                    n_h[k] += 1.0
                     for q in range(3):
                         x[b0 + SLOTS[q]] -= lam[k] * dq[3 * k + q]
                         x[b0 + 6 + SLOTS[q]] = (x[b0 + SLOTS[q]] - q0[3 * k + q]) / h
-                    again = True
-                else:
-                    lam[k] = 0.0                        # accepted: stays
-            if not again:
-                break
-            dtrb_rhs_damped(t, x, ring, P, D, dx, F, Qc, Gb, h)
-            evals += 1
-    return evals
+                    n_active += 1
+                    continue
+                lam[k] = 0.0                            # accepted
+            if done[k] != 0.0 or _balanced(m, P) or n_it[k] >= MAX_IT:
+                active[k] = 0.0
+                continue
+            for q in range(3):
+                r[q] = dx[b0 + 6 + SLOTS[q]]
+            _block(Gb, P, h, J, k // nz, k % nz)
+            _solve3(J, r, d)
+            small = True
+            for q in range(3):
+                dq[3 * k + q] = min(max(d[q], -CAP[q]), CAP[q])
+                x[b0 + SLOTS[q]] += dq[3 * k + q]
+                x[b0 + 6 + SLOTS[q]] = (x[b0 + SLOTS[q]] - q0[3 * k + q]) / h
+                if abs(dq[3 * k + q]) > TOL[q]:
+                    small = False
+            done[k] = 1.0 if small else 0.0
+            m0[k] = m
+            lam[k] = 1.0
+            n_h[k] = 0.0
+            n_it[k] += 1.0
+            n_active += 1
+        if n_active == 0:
+            break
+        dtrb_rhs_part(t, x, ring, P, D, dx, F, Qc, Gb, h, active, parts)
+        evaluated += n_active
+    return evaluated / nr
 
 
 @njit(cache=True)
@@ -249,7 +262,7 @@ def spin_step(x, P, h, dx, Gb, buf):
     nz = int(P[Z])
     nr = 2 * nz * N_ROLLER
     free = P[KINEMATIC] == 2.0                       # the cage's rotation a state (else Eq. 2's)
-    arrow = buf[28 * nz:32 * nz]                     # per roller: 1 - h d_k, b_k
+    arrow = buf[_B_ARROW * nz:(_B_ARROW + 4) * nz]   # per roller: 1 - h d_k, b_k
     Ja = P[J_RA]
     J_orb = P[J_CP] + nz * P[M_R] * P[R_M] * P[R_M]
     for j in range(2):
