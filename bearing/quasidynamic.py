@@ -25,8 +25,10 @@ A step of ``h`` (:func:`equilibrium`, then :func:`spin_step`):
    method, each roller's 3 x 3 block the kernel's exact contact stiffness and damping,
    ``K + C / h`` (the rows :func:`.kernel.dtrb_rhs_damped` makes for the "imex2" kick, at
    ``h_k = h``), so an evaluation gives the residual and the next Jacobian at once; a roller
-   touches only the rings and its own pocket, so the blocks do not couple.  A roller whose
-   residual grows takes half its step back (a line search per roller).  The step of an
+   touches only the rings and its own pocket, so the blocks do not couple and each roller
+   iterates on its own: an evaluation takes only the rollers that moved
+   (:func:`.kernel.dtrb_rhs_part`; the others keep their loads).  A roller whose residual
+   grows takes half its step back (a line search per roller).  The step of an
    iteration is capped (a roller out of contact has no stiffness to divide by) and a block with
    no stiffness in a direction gets a floor there (:data:`J_FLOOR`).
 2. **Spins and cage.**  The rollers sit centred in their pockets (roller k at the cage's
@@ -39,9 +41,12 @@ A step of ``h`` (:func:`equilibrium`, then :func:`spin_step`):
    system is an arrowhead (a spin couples only to its own cage) and is solved in O(Z).
 3. ``psi += h omega_s``, ``phi_c += h phi_c'``.
 
-Cost: about two evaluations of the right-hand side a step (measured on the rig with the
-validation defect at 1e-4 s: 2.05 on average, at most 4); no roller mode limits the step, only
-accuracy (:data:`DT_MAX`).
+Cost: about 1.25 evaluations of the whole right-hand side a step (one of every roller, then the
+quarter of them that Newton moved; measured on the rig with a 1 um, 600 Hz ring vibration at
+5e-5 s: 1.24 on average, and 1.2-1.35 on the validation car's eight bearings); solved as one
+system, the rollers took 2.05 evaluations a step on the rig and 3-5 on the car, where a roller
+at a contact's kink held the whole bearing's iterations (benchmarks/README.md).  No roller mode
+limits the step, only accuracy (:data:`DT_MAX`).
 """
 from __future__ import annotations
 

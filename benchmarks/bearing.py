@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from axlebox.bearing import equilibrium, kernel, layout, stiffness
+from axlebox.bearing import contact, equilibrium, kernel, layout, stiffness
 from axlebox.bearing.defects import Defect
 from axlebox.bearing.integrate import run_leapfrog, run_rk4
 from axlebox.bearing.kernel_numpy import dtrb_rhs_numpy
@@ -73,19 +73,24 @@ def rhs_timings():
 
 def fastmath_kernel():
     """The shipped kernel's source compiled again with ``fastmath=True`` (what it was before
-    the in-process / cached bit difference, bearing/kernel.py's docstring), as a sibling module
-    so that both run side by side in this process."""
-    src = Path(kernel.__file__).read_text()
-    src = src.replace('@njit(inline="always")', '@njit(inline="always", fastmath=True)')
-    src = src.replace("@njit(cache=True)", "@njit(fastmath=True)")
-    path = Path(tempfile.mkdtemp()) / "kernel_fastmath.py"
-    path.write_text(src)
-    name = "axlebox.bearing.kernel_fastmath"
-    spec = importlib.util.spec_from_file_location(name, path)
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[name] = mod
-    spec.loader.exec_module(mod)
-    return mod
+    the in-process / cached bit difference, bearing/kernel.py's docstring), as sibling modules
+    (the kernel and its contact laws, bearing/contact.py) so that both run side by side in this
+    process."""
+    folder = Path(tempfile.mkdtemp())
+    mods = {}
+    for name in ("contact", "kernel"):
+        src = Path((kernel if name == "kernel" else contact).__file__).read_text()
+        src = src.replace('@njit(inline="always")', '@njit(inline="always", fastmath=True)')
+        src = src.replace("@njit(cache=True)", "@njit(fastmath=True)")
+        src = src.replace("from .contact import", "from axlebox.bearing.contact_fastmath import")
+        path = folder / f"{name}_fastmath.py"
+        path.write_text(src)
+        full = f"axlebox.bearing.{name}_fastmath"
+        spec = importlib.util.spec_from_file_location(full, path)
+        mods[name] = importlib.util.module_from_spec(spec)
+        sys.modules[full] = mods[name]
+        spec.loader.exec_module(mods[name])
+    return mods["kernel"]
 
 
 def fastmath_cost(repeats=7, n=20000):

@@ -7,8 +7,8 @@ import pytest
 from axlebox._params import ParameterError
 from axlebox.bearing import quasidynamic as qd
 from axlebox.bearing.defects import Defect
-from axlebox.bearing.kernel import dtrb_rhs
-from axlebox.bearing.layout import J_RA, N_ROLLER, PSI
+from axlebox.bearing.kernel import N_PART, dtrb_rhs, dtrb_rhs_damped, dtrb_rhs_part
+from axlebox.bearing.layout import J_RA, N_ROLLER, PSI, RHO
 from axlebox.bearing.diagnostics.channel import analyse
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.params import BearingParams
@@ -52,6 +52,37 @@ def test_rollers_in_equilibrium_pass_the_load_from_ring_to_ring():
     assert F[1, 2] == pytest.approx(c.F_r, rel=5e-3)
     np.testing.assert_allclose(F[0, :3], -F[1, :3], atol=2e-3 * c.F_r)
     assert (Qc[:, :, 0] > 1e3).sum() >= 8                  # a load zone of several rollers a row
+
+
+def test_a_partial_evaluation_gives_the_whole_bearings_loads():
+    """The quasi-dynamic Newton evaluates only the rollers it moved (kernel.dtrb_rhs_part): the
+    others' stored shares must make the whole bearing.  At the rig's start, (1) with every roller
+    evaluated and shares kept, the result is dtrb_rhs_damped's bit for bit; (2) after one loaded
+    roller is moved by 1 um and evaluated alone, the ring loads, that roller's rows, the cage's
+    rotation row and the cage's block entry equal a whole evaluation's to rounding (1e-9 of the
+    load: a stored share is a difference of running sums)."""
+    c, x, ring, P, D, dx, F, Qc, Gb, evals = _at_start()
+    Z, h = c.bearing.Z, 5e-5
+    whole = [np.zeros_like(a) for a in (dx, F, Qc, Gb)]
+    dtrb_rhs_damped(0.0, x, ring, P, D, *whole, h)
+    part = [np.zeros_like(a) for a in (dx, F, Qc, Gb)]
+    parts = np.zeros((2, Z, N_PART))
+    dtrb_rhs_part(0.0, x, ring, P, D, *part, h, None, parts)
+    for a, b in zip(whole, part):
+        assert np.array_equal(a, b)
+    k = int(np.argmax(Qc[0, :, 0]))                       # the most loaded roller of row 1
+    x[k * N_ROLLER + RHO] += 1e-6
+    active = np.zeros(2 * Z)
+    active[k] = 1.0
+    dtrb_rhs_part(0.0, x, ring, P, D, *part, h, active, parts)
+    dtrb_rhs_damped(0.0, x, ring, P, D, *whole, h)
+    np.testing.assert_allclose(part[1], whole[1], rtol=0, atol=1e-9 * c.F_r)
+    assert whole[1][1, 2] != pytest.approx(F[1, 2], abs=1.0)    # the move changed the loads
+    rows = slice(k * N_ROLLER, (k + 1) * N_ROLLER)
+    np.testing.assert_array_equal(part[0][rows], whole[0][rows])
+    cb = 2 * Z * N_ROLLER
+    assert part[0][cb + 11] == pytest.approx(whole[0][cb + 11], rel=1e-9, abs=1e-9)
+    assert part[3][0, Z, 5, 5] == pytest.approx(whole[3][0, Z, 5, 5], rel=1e-9, abs=1e-12)
 
 
 def test_spin_step_jacobian_is_the_kernels_friction_derivative():
