@@ -62,6 +62,8 @@ def line_integrals(d0, kap, a, b, n):
     h = b - a
     m = 0.5 * (a + b)
     um = d0 + kap * m
+    if um != um:            # NaN, a diverged state: passed on to the integrator's finite check
+        return um, um       # (the closed form below would divide by a zero kap)
     if um > 0.0 and abs(kap) * h < 0.1 * um:
         r = kap * h / um
         r2 = r * r
@@ -104,6 +106,8 @@ def line_stiffness(d0, kap, a, b, n):
     h = b - a
     m = 0.5 * (a + b)
     um = d0 + kap * m
+    if um != um:            # NaN: as line_integrals
+        return um, um, um
     p = n - 1.0
     if um > 0.0 and abs(kap) * h < 0.1 * um:
         g = um ** p

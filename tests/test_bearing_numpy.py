@@ -156,6 +156,16 @@ def test_line_integrals(case):
     assert line_integrals(d0, kap, b, a, N) == (0.0, 0.0)
 
 
+def test_a_diverged_compression_passes_nan_on_instead_of_raising():
+    """A NaN compression (a state that diverged) with no tilt used to reach the closed form's
+    division by ``kap`` and stop the run with numba's ZeroDivisionError; it must come back as
+    NaN, so that the integrators' finite check ends the run with its own message."""
+    from axlebox.bearing.kernel import line_stiffness
+    for kap in (0.0, 1e-3):
+        assert all(np.isnan(line_integrals(np.nan, kap, -H, H, N)))
+        assert all(np.isnan(line_stiffness(np.nan, kap, -H, H, N)))
+
+
 def test_line_integrals_vectorised():
     d0, kap, a, b = (np.array(v) for v in zip(*LINE_CASES.values()))
     i0, i1 = line_integrals_numpy(d0, kap, a, b, N)
