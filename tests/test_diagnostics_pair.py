@@ -67,6 +67,42 @@ def test_lag_of_a_delayed_attenuated_copy_within_a_tenth_of_a_sample(ringing, d,
     assert 0.9 < r.peak <= 1.0 + 1e-12        # the envelopes are the same up to noise
 
 
+_LAG_BITS = """
+import sys, numpy as np
+from axlebox.bearing.diagnostics.lag import impulse_lag, time_lag
+from axlebox.bearing.diagnostics.synthetic import impulse_train, resonance
+fs, bpfo = 10_000.0, float(sys.argv[1])
+rng = np.random.default_rng(11)
+a = resonance(impulse_train(30_000, fs, bpfo, rng), fs, 2500.0, 0.05) + 0.05 * rng.standard_normal(30_000)
+b = 0.3 * np.roll(a, 9) + 0.02 * rng.standard_normal(30_000)
+r, q = time_lag(a, b, fs), impulse_lag(a, b, fs, 1.0 / bpfo)
+print(repr((r.peak, r.delay_b_samples, q.peak, q.delay_b_samples)))
+"""
+
+
+def test_the_lag_has_the_same_bits_whatever_blas_threads_the_process_runs():
+    """A sweep analyses its cases on dask workers, whose BLAS runs on one thread, and a rerun
+    in the main process, whose BLAS runs on every core: a long np.dot is split by the thread
+    count, and the lag's correlation peak differed in its last bit between the two (seen in
+    study_fast's summary).  The same pair in a process with one BLAS thread and in one with
+    BLAS's default must give the same bits (3 s records: long enough for BLAS to split)."""
+    import os
+    import subprocess
+    import sys
+    outs = []
+    for one in (True, False):
+        env = {k: v for k, v in os.environ.items()
+               if k not in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")}
+        if one:
+            env.update(OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
+        else:
+            env.update(OPENBLAS_NUM_THREADS="4", OMP_NUM_THREADS="4", MKL_NUM_THREADS="4")
+        p = subprocess.run([sys.executable, "-c", _LAG_BITS, repr(BPFO)], env=env,
+                           capture_output=True, text=True, check=True)
+        outs.append(p.stdout.strip())
+    assert outs[0] == outs[1]
+
+
 def test_lag_is_antisymmetric_and_zero_for_identical_channels(ringing):
     """Swapping the channels negates the delay (correlate(b, a)[k] = correlate(a, b)[-k]); a
     channel against itself has lag 0, no leader and correlation 1 (Cauchy-Schwarz equality)."""

@@ -86,7 +86,7 @@ def _refine(X: np.ndarray, nfft: int, k0: int) -> tuple[float, float]:
     wX = w * X
 
     def neg_r(tau):
-        return -float(np.real(np.dot(wX, np.exp(2j * np.pi * k * tau / nfft)))) / nfft
+        return -float(np.real(np.sum(wX * np.exp(2j * np.pi * k * tau / nfft)))) / nfft
     best = minimize_scalar(neg_r, bounds=(k0 - 1.0, k0 + 1.0), method="bounded",
                            options={"xatol": 1e-4})
     at_k0 = neg_r(float(k0))
@@ -114,7 +114,9 @@ def time_lag(a, b, fs: float, band: tuple[float, float] | None = None,
     m = a.size // 50
     ea = ea[m:a.size - m] - ea[m:a.size - m].mean()
     eb = eb[m:b.size - m] - eb[m:b.size - m].mean()
-    norm = np.sqrt(np.dot(ea, ea) * np.dot(eb, eb))
+    # sums, not np.dot: BLAS splits a long dot product by its thread count, so the last bit
+    # would depend on the process (a dask worker runs BLAS on one thread)
+    norm = np.sqrt(np.sum(ea * ea) * np.sum(eb * eb))
     if not norm > 0:
         raise ParameterError("time lag: an envelope is constant: expected channels with impulses")
     # correlate(eb, ea)[k] = sum_n eb[n + k] ea[n]: a peak at k > 0 means b is late (a leads)
@@ -211,7 +213,7 @@ def impulse_lag(a, b, fs: float, period_s: float, band: tuple[float, float] | No
     k = int(tau)
     ea, eb = (e[m:a.size - m] - e[m:a.size - m].mean() for e in env)
     x, y = (ea[:ea.size - k], eb[k:]) if k >= 0 else (ea[-k:], eb[:eb.size + k])
-    r = float(np.dot(x, y) / max(np.sqrt(np.dot(x, x) * np.dot(y, y)), 1e-300))
+    r = float(np.sum(x * y) / max(np.sqrt(np.sum(x * x) * np.sum(y * y)), 1e-300))  # as above
     return LagResult(lag_s=abs(tau) / fs, lag_samples=abs(tau),
                      leading=("a" if tau > 0 else "b") if sure else "none", delay_b_samples=tau,
                      peak=r, fs=fs, method="impulses", n_impulses=n,
