@@ -242,26 +242,8 @@ def is_finished(path, toml_text: str) -> bool:
         return False
 
 
-def analysed(c: Case, path: str):
-    """A finished case's summary rows, and for a vehicle case its report case (:func:`vehicle_rows`):
-    ``(report case or None, rows, None)``, or ``(None, [], message)`` where it cannot be
-    analysed.  A plain top-level function of plain arguments: the workers run it (below)."""
-    try:
-        if c.kind == "rig":
-            return None, rig_rows(c, Path(path)), None
-        rc, rows = vehicle_rows(c, Path(path))
-        return rc, rows, None
-    except ParameterError as err:
-        return None, [], str(err)
-
-
-def run_cases(todo: list[Case], out, scheduler=None, workers=None, log=print, analyses=None,
-              finished=()) -> list[str]:
-    """Run ``todo`` on dask, one line per finished case; returns the names of the failed ones.
-    ``analyses`` (a dict): each case that ran, and each of ``finished``, is also analysed on the
-    workers (:func:`analysed`) as soon as its file is complete, ahead of the runs still waiting,
-    and its result put there by name: the summary then need not diagnose every case in this
-    process, one after the other, once all have run (a quarter of a minute of study_fast's four)."""
+def run_cases(todo: list[Case], out, scheduler=None, workers=None, log=print) -> list[str]:
+    """Run ``todo`` on dask, one line per finished case; returns the names of the failed ones."""
     from dask.distributed import Client, LocalCluster, as_completed
     n = max(1, min(workers or os.cpu_count() or 1, len(todo)))
     t0 = time.perf_counter()
@@ -289,29 +271,15 @@ def run_cases(todo: list[Case], out, scheduler=None, workers=None, log=print, an
         threads = 0 if scheduler else max(1, (os.cpu_count() or 1) // n)
         futs = {client.submit(run_case, c.kind, c.toml, str(c.path(out)), threads, pure=False): c
                 for c in todo}
-        pending = {}                    # analyses on the workers, ahead of the waiting runs
-
-        def analyse(c):
-            if analyses is not None:
-                pending[c.name] = client.submit(analysed, c, str(c.path(out)), pure=False, priority=1)
-
-        for c in finished:
-            analyse(c)
         for k, fut in enumerate(as_completed(futs), 1):
             c, head = futs[fut], f"[{k}/{len(todo)}] {futs[fut].name}"
             try:
                 r = fut.result()
                 log(f"{head}: done in {r['wall_s']:.1f} s (elapsed {time.perf_counter() - t0:.1f} s)"
                     if r["computed"] else f"{head}: finished by another runner meanwhile: not computed again")
-                analyse(c)
             except Exception as err:  # noqa: BLE001 - one case's failure does not stop the others
                 failed.append(c.name)
                 log(f"{head}: failed: {type(err).__name__}: {err}")
-        for name, fut in pending.items():
-            try:
-                analyses[name] = fut.result()
-            except Exception:  # noqa: BLE001 - the summary analyses it here instead
-                pass
     finally:
         client.close()
         if cluster is not None:
@@ -376,19 +344,20 @@ def table(rows: list[dict]) -> str:
     return "\n".join(out)
 
 
-def summarise(cases: list[Case], out, log=print, analyses=None) -> list[dict]:
-    """Diagnose every finished case (or take its analysis from ``analyses``, :func:`run_cases`),
-    print the table, write ``out/summary.csv``."""
+def summarise(cases: list[Case], out, log=print) -> list[dict]:
+    """Diagnose every finished case, print the table, write ``out/summary.csv``."""
     from .report import write_csv, write_tables
     rows, report_cases = [], []
     for c in (c for c in cases if is_finished(c.path(out), c.toml)):
-        rc, r, err = (analyses or {}).get(c.name) or analysed(c, str(c.path(out)))
-        if err is not None:
+        try:
+            if c.kind == "rig":
+                rows += rig_rows(c, c.path(out))
+            else:
+                rc, r = vehicle_rows(c, c.path(out))
+                report_cases.append(rc)
+                rows += r
+        except ParameterError as err:
             log(f"summary: {c.name}: not analysed: {err}")
-            continue
-        if rc is not None:
-            report_cases.append(rc)
-        rows += r
     if not rows and not report_cases:
         return rows
     if rows:
@@ -439,11 +408,9 @@ def _sweep(cases: list[Case], out: Path, scheduler, workers, log) -> dict:
             log(f"sweep: {c.name}: skipped (finished)")
         elif c.path(out).exists():
             log(f"sweep: {c.name}: its file is not a finished run of this config: recomputing")
-    analyses = {}
-    failed = (run_cases(todo, out, scheduler, workers, log, analyses,
-                        finished=[c for c in cases if c not in todo]) if todo else [])
+    failed = run_cases(todo, out, scheduler, workers, log) if todo else []
     log(f"sweep: {len(cases)} case(s): {len(cases) - len(todo)} skipped, {len(todo) - len(failed)} run, "
         f"{len(failed)} failed")
     return {"cases": cases, "skipped": [c.name for c in cases if c not in todo],
             "ran": [c.name for c in todo if c.name not in failed], "failed": failed,
-            "rows": summarise(cases, out, log, analyses)}
+            "rows": summarise(cases, out, log)}
