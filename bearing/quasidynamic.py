@@ -78,9 +78,10 @@ def n_buffer(nz: int, n_state: int) -> int:
     return _B_END * nz
 
 
-# where equilibrium's and spin_step's scratch lie in ``buf``, in units of Z floats
-_B_J, _B_DQ, _B_LAM, _B_M0, _B_ARROW, _B_Q0, _B_ACT, _B_NIT, _B_NH, _B_DONE, _B_PARTS = (
-    0, 18, 24, 26, 28, 32, 38, 40, 42, 44, 46)
+# where equilibrium's and spin_step's scratch lie in ``buf``, in units of Z floats (the first
+# six hold one roller's 3 x 3 block, residual and step, 15 floats: Z is at least 3)
+_B_W, _B_DQ, _B_LAM, _B_M0, _B_ARROW, _B_Q0, _B_ACT, _B_NIT, _B_NH, _B_DONE, _B_PARTS = (
+    0, 6, 12, 14, 16, 20, 26, 28, 30, 32, 34)
 _B_END = _B_PARTS + 2 * N_PART
 
 
@@ -181,9 +182,9 @@ def equilibrium(t, x, ring, P, D, h, dx, F, Qc, Gb, buf):
     n_h = buf[_B_NH * nz:(_B_NH + 2) * nz]       # its halvings in this line search
     done = buf[_B_DONE * nz:(_B_DONE + 2) * nz]  # its last update was below TOL
     parts = buf[_B_PARTS * nz:(_B_PARTS + 2 * N_PART) * nz].reshape(2, nz, N_PART)
-    J = np.empty(9)
-    r = np.empty(3)
-    d = np.empty(3)
+    J = buf[_B_W * nz:_B_W * nz + 9]               # scratch in buf: no allocation a step
+    r = buf[_B_W * nz + 9:_B_W * nz + 12]
+    d = buf[_B_W * nz + 12:_B_W * nz + 15]
     w_t = 2.0 * P[J_RD] / (P[M_R] * P[L_B])
     _hold(x, nz)
     for k in range(nr):
