@@ -171,16 +171,17 @@ def _line_contact(i0, i1, K, L, d0, kap, ddot, m, mu, vrel, nrm, P, k_imp, h_k):
 
 
 @njit(inline="always")
-def _tilt_rows(G, j, k, nz, kdk, kkk, Jd, Jk, Jdc, Jkc, cage):
+def _tilt_rows(G, j, k, nz, kdk, kkk, Jd, Jk, Jdc, Jkc, cage, qd):
     """A line contact's stiffness in its tilt ``kap`` (``kkk = dm1/dkap``) and between tilt and
     approach (``kdk = dQ/dkap = dm1/dd0``): ``kdk (Jd^T Jk + Jk^T Jd) + kkk Jk^T Jk`` in the
     blocks, ``Jd``/``Jk`` the gradients of the approach and of ``kap`` in the roller's rates,
     ``Jdc``/``Jkc`` in the cage's (``cage``: a pocket wall).  The cross term as the difference of
     two squares, ``(A + B)^T (A + B) - (A - B)^T (A - B) = 2 (A^T B + B^T A)``."""
-    _damping_rows(G, j, k, nz, kkk, Jk, Jkc, cage)
+    _damping_rows(G, j, k, nz, kkk, Jk, Jkc, cage, qd)
     if kdk != 0.0:
-        _damping_rows(G, j, k, nz, 0.5 * kdk, _add6(Jd, Jk, 1.0), _add6(Jdc, Jkc, 1.0), cage)
-        _damping_rows(G, j, k, nz, -0.5 * kdk, _add6(Jd, Jk, -1.0), _add6(Jdc, Jkc, -1.0), cage)
+        _damping_rows(G, j, k, nz, 0.5 * kdk, _add6(Jd, Jk, 1.0), _add6(Jdc, Jkc, 1.0), cage, qd)
+        _damping_rows(G, j, k, nz, -0.5 * kdk, _add6(Jd, Jk, -1.0), _add6(Jdc, Jkc, -1.0), cage,
+                      qd)
 
 
 @njit(inline="always")
@@ -190,7 +191,7 @@ def _add6(a, b, sb):
 
 
 @njit(inline="always")
-def _friction_rows(G, j, k, nz, muq, v, nrm, vs, t1, r, er, et, ey, ax, bx, Rr, cage, rel):
+def _friction_rows(G, j, k, nz, muq, v, nrm, vs, t1, r, er, et, ey, ax, bx, Rr, cage, rel, qd):
     """The friction's secant damping ``mu Q / sqrt(|v_t|^2 + v_s^2)`` in the contact plane
     (spanned by the unit ``t1`` and ``t1 x n``) on roller k's rates and, for a pocket
     (``cage``, the contact ``rel`` from the cage centre), the cage's, for the implicit kick: the
@@ -202,7 +203,7 @@ def _friction_rows(G, j, k, nz, muq, v, nrm, vs, t1, r, er, et, ey, ax, bx, Rr, 
     t2 = _cross(t1, nrm)
     for t in (t1, t2):
         _damping_rows(G, j, k, nz, cf, _rates(1.0, t, r, er, et, ey, ax, bx, Rr),
-                      _cage_rates(1.0, t, rel), cage)
+                      _cage_rates(1.0, t, rel), cage, qd)
 
 
 @njit(inline="always")
@@ -233,10 +234,14 @@ def _cage_rates(sd, nrm, rel):
 
 
 @njit(inline="always")
-def _damping_rows(G, j, k, nz, c, Jr, Jc, cage):
+def _damping_rows(G, j, k, nz, c, Jr, Jc, cage, qd):
     """Add the contact's damping ``c J^T J`` to row j's implicit-damping blocks: roller k's own
     ``G[j, k, :, :6]``, its coupling to the cage ``G[j, k, :, 6:]`` and the cage's own
-    ``G[j, nz, :, :6]`` (a contact's damping force is ``-c J u``, u the rates)."""
+    ``G[j, nz, :, :6]`` (a contact's damping force is ``-c J u``, u the rates).  With ``qd``
+    only the entries the quasi-dynamic step reads (:func:`_qd_rows`)."""
+    if qd:
+        _qd_rows(G, j, k, nz, c, Jr, Jc, cage)
+        return
     for a in range(6):
         ca = c * Jr[a]
         for b in range(6):
@@ -245,6 +250,28 @@ def _damping_rows(G, j, k, nz, c, Jr, Jc, cage):
             for b in range(6):
                 G[j, k, a, 6 + b] += ca * Jc[b]
                 G[j, nz, a, b] += c * Jc[a] * Jc[b]
+
+
+@njit(inline="always")
+def _qd_rows(G, j, k, nz, c, Jr, Jc, cage):
+    """:func:`_damping_rows`' entries that bearing/quasidynamic.py reads, 16 of 108, each
+    computed as there (the same bits): the block of ``(rho, eta, theta_t)`` for its Newton, and
+    of the orbit and spin rates ``(phi', omega_s)`` with the cage's rotation for its spin step
+    (the roller's orbit rate is the cage's there).  Writing the other entries cost 40 % of an
+    evaluation (benchmarks/README.md)."""
+    for a in (0, 2, 3):
+        ca = c * Jr[a]
+        G[j, k, a, 0] += ca * Jr[0]
+        G[j, k, a, 2] += ca * Jr[2]
+        G[j, k, a, 3] += ca * Jr[3]
+    for a in (1, 5):
+        ca = c * Jr[a]
+        G[j, k, a, 1] += ca * Jr[1]
+        G[j, k, a, 5] += ca * Jr[5]
+        if cage:
+            G[j, k, a, 11] += ca * Jc[5]
+    if cage:
+        G[j, nz, 5, 5] += c * Jc[5] * Jc[5]
 
 
 @njit(cache=True)

@@ -100,12 +100,13 @@ def dtrb_rhs_part(t, y, ring, P, D, ydot, F, Qc, G, h_k, active, parts):
     rings and the cage (:data:`N_PART`); ``active`` (2 Z), unless None, says which
     rollers to evaluate (nonzero): the others keep their rows of ``ydot``, ``Qc`` and ``G``
     and put their stored ``parts`` into the sums, so ``F`` and the cages' rows are always the
-    whole bearing's.  Of the cage's block ``G[j, Z]`` only the entry of its rotation is
-    summed so (the one the quasi-dynamic step reads).  With both None this is
+    whole bearing's.  With ``parts``, ``G`` gets only the entries the quasi-dynamic step reads
+    (:func:`.contact._qd_rows`), the rest stay 0.  With both None this is
     :func:`dtrb_rhs_damped`, bit for bit and as fast: numba compiles the None case apart and
     prunes the branches on them (``is None`` tests on the arguments themselves)."""
     acc = G.shape[0] > 0
     stiff = acc and h_k > 0.0                     # "imex2": the stiffness in the blocks too
+    qd = parts is not None                        # only the blocks' entries the QD step reads
     if acc:
         if active is not None:
             G[:, G.shape[1] - 1, :, :] = 0.0
@@ -237,12 +238,12 @@ def dtrb_rhs_part(t, y, ring, P, D, ydot, F, Qc, G, h_k, active, parts):
                                                 Mr, P[MU_R], vrel, no, P, KL * kdd, h_k)
                 if acc and cdmp > 0.0:
                     Jr = _rates(1.0, no, _mul(rb, no), er, et, ey, ax, bx, R + rho)
-                    _damping_rows(G, j, k, nz, cdmp, Jr, Jr, False)
+                    _damping_rows(G, j, k, nz, cdmp, Jr, Jr, False, qd)
                     if stiff:
                         _tilt_rows(G, j, k, nz, h_k * KL * kdk, h_k * KL * kkk, Jr,
-                                   (0.0, 0.0, 0.0, s, 0.0, 0.0), Z6, Z6, False)
+                                   (0.0, 0.0, 0.0, s, 0.0, 0.0), Z6, Z6, False, qd)
                         _friction_rows(G, j, k, nz, P[MU_R] * Qo, vrel, no, vs, et, _mul(rb, no),
-                                       er, et, ey, ax, bx, R + rho, False, ey)
+                                       er, et, ey, ax, bx, R + rho, False, ey, qd)
                 fr = _lin(-Qo, no, 1.0, f)
                 Fr = _add(Fr, fr)
                 Mr_ = _add(Mr_, _add(_mul(-s * m1, et), _cross(_mul(rb, no), f)))
@@ -265,12 +266,12 @@ def dtrb_rhs_part(t, y, ring, P, D, ydot, F, Qc, G, h_k, active, parts):
                                                 Mr, P[MU_R], vrel, ni, P, KL * kdd, h_k)
                 if acc and cdmp > 0.0:
                     Jr = _rates(-1.0, ni, _mul(-rb, ni), er, et, ey, ax, bx, R + rho)
-                    _damping_rows(G, j, k, nz, cdmp, Jr, Jr, False)
+                    _damping_rows(G, j, k, nz, cdmp, Jr, Jr, False, qd)
                     if stiff:
                         _tilt_rows(G, j, k, nz, h_k * KL * kdk, h_k * KL * kkk, Jr,
-                                   (0.0, 0.0, 0.0, -s, 0.0, 0.0), Z6, Z6, False)
+                                   (0.0, 0.0, 0.0, -s, 0.0, 0.0), Z6, Z6, False, qd)
                         _friction_rows(G, j, k, nz, P[MU_R] * Qi, vrel, ni, vs, et, _mul(-rb, ni),
-                                       er, et, ey, ax, bx, R + rho, False, ey)
+                                       er, et, ey, ax, bx, R + rho, False, ey, qd)
                 fr = _lin(Qi, ni, 1.0, f)
                 Fr = _add(Fr, fr)
                 Mr_ = _add(Mr_, _add(_mul(s * m1, et), _cross(_mul(-rb, ni), f)))
@@ -288,10 +289,10 @@ def dtrb_rhs_part(t, y, ring, P, D, ydot, F, Qc, G, h_k, active, parts):
                                 0.0, h_k)
                 if acc and cdmp > 0.0:
                     Jr = _rates(-1.0, na, ra, er, et, ey, ax, bx, R + rho)
-                    _damping_rows(G, j, k, nz, cdmp, Jr, Jr, False)
+                    _damping_rows(G, j, k, nz, cdmp, Jr, Jr, False, qd)
                     if h_k > 0.0:
                         _friction_rows(G, j, k, nz, P[MU_A] * Qa, vrel, na, vs, et, ra, er, et,
-                                       ey, ax, bx, R + rho, False, ey)
+                                       ey, ax, bx, R + rho, False, ey, qd)
                 f = _friction(vrel, na, P[MU_A] * Qa, vs)
                 fr = _lin(Qa, na, 1.0, f)
                 Fr = _add(Fr, fr)
@@ -326,15 +327,15 @@ def dtrb_rhs_part(t, y, ring, P, D, ydot, F, Qc, G, h_k, active, parts):
                     if acc and cdmp > 0.0:
                         Jw = _rates(1.0, nw, _mul(rb, nw), er, et, ey, ax, bx, R + rho)
                         Jwc = _cage_rates(1.0, nw, _sub(pw, xc))
-                        _damping_rows(G, j, k, nz, cdmp, Jw, Jwc, True)
+                        _damping_rows(G, j, k, nz, cdmp, Jw, Jwc, True, qd)
                         if stiff:
                             _friction_rows(G, j, k, nz, P[MU_C] * Qw, vrel, nw, vs, ey,
                                            _mul(rb, nw), er, et, ey, ax, bx, R + rho, True,
-                                           _sub(pw, xc))
+                                           _sub(pw, xc), qd)
                             gs = -sw * s * cac    # the skew in the pocket: kap's gradient
                             _tilt_rows(G, j, k, nz, h_k * KL * kdk, h_k * KL * kkk, Jw,
                                        (0.0, 0.0, 0.0, 0.0, gs, 0.0), Jwc,
-                                       (0.0, 0.0, 0.0, -gs * bx[0], -gs * bx[2], 0.0), True)
+                                       (0.0, 0.0, 0.0, -gs * bx[0], -gs * bx[2], 0.0), True, qd)
                     fr = _lin(-Qw, nw, 1.0, f)
                     couple = _mul(m1, _cross(ax, nw))
                     Fr = _add(Fr, fr)
@@ -357,7 +358,7 @@ def dtrb_rhs_part(t, y, ring, P, D, ydot, F, Qc, G, h_k, active, parts):
                     if acc and cdmp > 0.0:
                         _damping_rows(G, j, k, nz, cdmp,
                                       _rates(sw, ey, (0.0, 0.0, 0.0), er, et, ey, ax, bx, R + rho),
-                                      _cage_rates(sw, ey, _sub(c, xc)), True)
+                                      _cage_rates(sw, ey, _sub(c, xc)), True, qd)
                     fr = _mul(-sw * Q, ey)
                     pe = _lin(1.0, c, 0.5 * sw * Lb, ey)
                     Fr = _add(Fr, fr)
