@@ -156,6 +156,11 @@ def _cmd_simulate(a) -> None:
         raise RuntimeError(f"{res.message}; what was computed is in {a.out}")
 
 
+def _vf_band(a):
+    from .diagnose import parse_pair
+    return parse_pair(a.vf_band, "--vf-band") if a.vf_band else None
+
+
 def _analysis_options(a) -> dict:
     """The options ``diagnose`` and ``report`` share, as keyword arguments of
     :func:`axlebox.pipelines.diagnose.analyse_file`."""
@@ -165,7 +170,7 @@ def _analysis_options(a) -> dict:
     crit = Criterion(mode="relative" if a.relative else "absolute",
                      **({"vf_range": parse_pair(a.vf_range, "--vf-range")} if a.vf_range else {}),
                      **({"rel_range": parse_pair(a.rel_range, "--rel-range")} if a.rel_range else {}),
-                     lag="off" if a.no_lag else a.lag)
+                     lag="off" if a.no_lag else a.lag, vf_band=_vf_band(a))
     return dict(left=a.left, right=a.right, fs=a.fs, column=a.column, scale=a.scale,
                 shaft=a.shaft_hz, speed_kmh=a.speed_kmh, wheel_radius=a.wheel_radius, rpm=a.rpm,
                 orders_text=a.orders, bore=a.bore, bearing=a.bearing, orders_left=a.orders_left,
@@ -188,7 +193,8 @@ def _cmd_report(a) -> None:
 def _cmd_sweep(a) -> None:
     from .sweep import sweep
     res = sweep(a.config, a.out, speeds=a.speeds, widths=a.widths, duration=a.duration,
-                scheduler=a.scheduler, workers=a.workers, kinds=a.kinds, sides=a.sides)
+                scheduler=a.scheduler, workers=a.workers, kinds=a.kinds, sides=a.sides,
+                vf_band=_vf_band(a))
     if res["failed"]:
         raise RuntimeError(f"{len(res['failed'])} case(s) failed ({', '.join(res['failed'])}); the "
                            f"finished ones are in {a.out}, a rerun retries the rest")
@@ -250,7 +256,12 @@ def _add_sweep(sub) -> None:
     sw.add_argument("--duration", type=float, metavar="S", help="simulated time of every case "
                                                                 "(default: the config's)")
     sw.add_argument("--out", required=True, help="output folder (one .h5 per case, summary.csv)")
+    sw.add_argument("--vf-band", metavar="LO,HI", help=VF_BAND_HELP)
     sw.set_defaults(func=_cmd_sweep)
+
+
+VF_BAND_HELP = ("band in Hz over which each side's FC and VF (the paper's Eq. 18) are taken, "
+                "e.g. 0,1000 (default: the record's whole band)")
 
 
 def _add_analysis_options(dg) -> None:
@@ -286,6 +297,7 @@ def _add_analysis_options(dg) -> None:
                          "a fault line (default: search that side again in the band where the line "
                          "stands highest)")
     dg.add_argument("--nperseg", type=int, help="Welch segment for FC/VF (default about 1 s)")
+    dg.add_argument("--vf-band", metavar="LO,HI", help=VF_BAND_HELP)
     dg.add_argument("--vf-range", metavar="LO,HI", help="VF difference range in Hz^2 meaning a "
                                                         "pseudo-fault (default the paper's 8000,74900)")
     dg.add_argument("--relative", action="store_true", help="compare |VF_L - VF_R| / max(VF) "

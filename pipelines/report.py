@@ -222,7 +222,8 @@ def write_html(cases, figures: list[tuple[str, Path]], modes: list[Path], out: P
     if diagnosed:
         crit = diagnosed[0].pair.criterion
         criterion = (f"Criterion: {esc(crit.mode)}, range [{crit.range[0]:.4g}, {crit.range[1]:.4g}] "
-                     f"{esc(crit.unit)}, compared {esc(', '.join(crit.compare))}. Hover a verdict "
+                     f"{esc(crit.unit)}, FC and VF over {esc(crit.band_text)}, "
+                     f"compared {esc(', '.join(crit.compare))}. Hover a verdict "
                      "for its reason. ")
     parts = ["<!doctype html><html><head><meta charset='utf-8'><title>axlebox report</title>",
              "<style>body{font-family:sans-serif;margin:2em;max-width:1300px}"

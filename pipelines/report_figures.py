@@ -156,7 +156,9 @@ def comparison(case, path: Path, n_periods: float = 3.0) -> Path:
     ax[0].set(xlabel="time (s)", ylabel="a (m/s$^2$)",
               title=f"{case.label}: {lead} leads by {lag.lag_s * 1e3:.2f} ms")
     ax[1].set(xlabel="frequency (Hz)", ylabel="PSD ((m/s$^2$)$^2$/Hz)",
-              title=f"VF difference {case.pair.vf_diff:.3g} Hz$^2$")
+              title=f"VF difference {case.pair.vf_diff:.3g} Hz$^2$ over {case.pair.criterion.band_text}")
+    if case.pair.criterion.vf_band is not None:
+        ax[1].axvspan(*case.pair.criterion.vf_band, color="0.9", zorder=0, label="FC, VF band")
     for a in ax:
         a.legend(fontsize=7)
         a.title.set_fontsize(9)
@@ -203,8 +205,9 @@ def vf(cases, path: Path) -> Path:
         a.title.set_fontsize(8)
         a.set_ylim(0, 1.25 * max(max(c.pair.left.VF, c.pair.right.VF) for c in cs))
         a.legend(fontsize=7, loc="upper center", ncol=2)
-    fig.suptitle("Frequency variance VF (Eq. 18) of both sides; numbers: the VF difference "
-                 "(cf. paper Fig. 14)", fontsize=10)
+    fig.suptitle(f"Frequency variance VF (Eq. 18) of both sides over "
+                 f"{crit.band_text}; numbers: "
+                 "the VF difference (cf. paper Fig. 14)", fontsize=10)
     return _save(fig, path)
 
 

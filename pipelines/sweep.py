@@ -294,7 +294,7 @@ def _row(c: Case, path: Path, side: str, sensor: str, ch, verdict: str, lag_s=No
                 vf_diff=vf_diff)
 
 
-def rig_rows(c: Case, path: Path) -> list[dict]:
+def rig_rows(c: Case, path: Path, criterion=None) -> list[dict]:
     """The rig's one sensor: one-channel indicators, searching the fault lines the record holds
     two periods of (``channel.analyse`` needs that; a 0.3 s run at 20 km/h holds BPFO only)."""
     from axlebox.bearing.diagnostics.channel import analyse
@@ -306,12 +306,13 @@ def rig_rows(c: Case, path: Path) -> list[dict]:
     f = rec.orders.at(rec.shaft_hz)
     lines = tuple(n for n in ("BPFO", "BPFI", "2BSF", "FTF")
                   if rec.left.size / rec.fs >= 2.0 / f[n]) or ("BPFO",)
-    ch = analyse(rec.left, rec.fs, rec.shaft_hz, rec.orders, DTRB_BORE, lines=lines)
+    ch = analyse(rec.left, rec.fs, rec.shaft_hz, rec.orders, DTRB_BORE, lines=lines,
+                 vf_band=None if criterion is None else criterion.vf_band)
     verdict = f"lines {' '.join(ch.detected)}" if ch.detected else "no fault line"
     return [_row(c, path, "-", SENSOR, ch, verdict)]
 
 
-def vehicle_rows(c: Case, path: Path):
+def vehicle_rows(c: Case, path: Path, criterion=None):
     """Both sides of the defect's wheelset (``wheelset`` of the first defect, else ws2) as
     ``axlebox diagnose`` does, and the carbody's ride comfort: ``(axlebox.pipelines.report.Case,
     rows)``; a run whose axle-box record cannot be diagnosed (a comfort run's 1 kHz) gives its
@@ -320,7 +321,8 @@ def vehicle_rows(c: Case, path: Path):
     defects = tomllib.loads(c.toml).get("defects", [])
     ws = defects[0].get("wheelset") if defects else None
     rc = diagnosed_case(path, c.speed_kmh, c.width_mm, None, lambda *_: None,
-                        **(dict(left=f"ws{ws}_L", right=f"ws{ws}_R") if ws else {}))
+                        **(dict(left=f"ws{ws}_L", right=f"ws{ws}_R") if ws else {}),
+                        **({} if criterion is None else dict(criterion=criterion)))
     p = rc.pair
     if p is None:
         return rc, []
@@ -344,16 +346,17 @@ def table(rows: list[dict]) -> str:
     return "\n".join(out)
 
 
-def summarise(cases: list[Case], out, log=print) -> list[dict]:
-    """Diagnose every finished case, print the table, write ``out/summary.csv``."""
+def summarise(cases: list[Case], out, log=print, criterion=None) -> list[dict]:
+    """Diagnose every finished case (under ``criterion``, default the paper's), print the
+    table, write ``out/summary.csv``."""
     from .report import write_csv, write_tables
     rows, report_cases = [], []
     for c in (c for c in cases if is_finished(c.path(out), c.toml)):
         try:
             if c.kind == "rig":
-                rows += rig_rows(c, c.path(out))
+                rows += rig_rows(c, c.path(out), criterion)
             else:
-                rc, r = vehicle_rows(c, c.path(out))
+                rc, r = vehicle_rows(c, c.path(out), criterion)
                 report_cases.append(rc)
                 rows += r
         except ParameterError as err:
@@ -374,8 +377,11 @@ def summarise(cases: list[Case], out, log=print) -> list[dict]:
 
 
 def sweep(config, out, *, speeds=None, widths=None, duration=None, scheduler=None, workers=None,
-          log=print, kinds=None, sides=None) -> dict:
-    """The whole command.  Returns ``{"cases", "skipped", "ran", "failed", "rows"}``."""
+          log=print, kinds=None, sides=None, vf_band=None) -> dict:
+    """The whole command.  Returns ``{"cases", "skipped", "ran", "failed", "rows"}``;
+    ``vf_band``: the summary's band of FC and VF (``Criterion.vf_band``), default the whole."""
+    from axlebox.bearing.diagnostics.criterion import Criterion
+    criterion = Criterion(vf_band=vf_band)
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
         raise ParameterError(f"--workers = {workers!r} is not allowed: expected an integer >= 1")
     if workers is not None and scheduler:
@@ -392,10 +398,10 @@ def sweep(config, out, *, speeds=None, widths=None, duration=None, scheduler=Non
         except BlockingIOError as err:         # only the lock's own refusal, not the sweep's
             raise ParameterError(f"--out {str(out)!r} is in use by another sweep ({err.strerror}): "
                                  "wait for it to finish, or give another --out") from None
-        return _sweep(cases, out, scheduler, workers, log)
+        return _sweep(cases, out, scheduler, workers, log, criterion)
 
 
-def _sweep(cases: list[Case], out: Path, scheduler, workers, log) -> dict:
+def _sweep(cases: list[Case], out: Path, scheduler, workers, log, criterion=None) -> dict:
     for p in sorted(out.glob("*.tmp")):
         if is_locked(case_lock(p)):             # a runner of an earlier sweep is still writing it
             log(f"sweep: {p.name}: kept (its case is being computed by another runner)")
@@ -413,4 +419,4 @@ def _sweep(cases: list[Case], out: Path, scheduler, workers, log) -> dict:
         f"{len(failed)} failed")
     return {"cases": cases, "skipped": [c.name for c in cases if c not in todo],
             "ran": [c.name for c in todo if c.name not in failed], "failed": failed,
-            "rows": summarise(cases, out, log)}
+            "rows": summarise(cases, out, log, criterion)}

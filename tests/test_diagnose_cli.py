@@ -212,6 +212,24 @@ def test_every_format_gives_the_array_path_indicators(fmt, reference_result, tmp
         {s: v["verdict"] for s, v in ref["verdicts"].items()}
 
 
+def test_vf_band_option_takes_fc_and_vf_over_the_band(tmp_path, reference_result, capsys):
+    """``--vf-band 0,1000``: each side's FC and VF are :func:`fc_vf`'s over 0-1000 Hz of its
+    samples, the JSON's criterion and sides say so, and the printed summary names the band."""
+    from axlebox.bearing.diagnostics.spectral import fc_vf
+    left, right, _ = reference_result
+    path, extra = write_inputs(tmp_path, left, right)["csv with header"]
+    out = tmp_path / "d.json"
+    assert main(["diagnose", str(path), *extra, "--shaft-hz", str(SHAFT), "--vf-band", "0,1000",
+                 "--json", str(out)]) == 0, capsys.readouterr().err
+    assert "over 0-1000 Hz" in capsys.readouterr().out
+    d = json.loads(out.read_text())
+    assert d["criterion"]["vf_band"] == [0.0, 1000.0]
+    for s, x in (("left", left), ("right", right)):
+        FC, VF, _ = fc_vf(x, FS, None, (0.0, 1000.0))
+        assert d[s]["vf_band"] == [0.0, 1000.0]
+        assert d[s]["FC"] == pytest.approx(FC, rel=1e-12) and d[s]["VF"] == pytest.approx(VF, rel=1e-12)
+
+
 def test_file_kind_reads_the_content_not_the_name(tmp_path, reference_result):
     left, right, _ = reference_result
     files = write_inputs(tmp_path, left, right)
@@ -291,6 +309,10 @@ def bad_inputs(tmp_path, left, right):
         "bad side bore": ([str(files["csv with header"][0]), "--fs", str(FS), *sh, "--bearing",
                            "6205", "--bore-right", "-1"], ["--bore-right", "-1"]),
         "no shaft speed": ([str(files["csv with header"][0]), "--fs", str(FS)], ["shaft speed is missing"]),
+        "vf band above Nyquist": ([str(files["csv with header"][0]), "--fs", str(FS), *sh,
+                                   "--vf-band", "0,6000"], ["--vf-band", "Nyquist", "5000 Hz"]),
+        "vf band upside down": ([str(files["csv with header"][0]), "--fs", str(FS), *sh,
+                                 "--vf-band", "900,100"], ["--vf-band", "0 <= LO < HI"]),
     }
 
 
@@ -298,7 +320,8 @@ CASES = ["missing variable", "missing sensor", "missing fs", "missing fs (mat v7
          "too short for the lines", "too short for the Welch segment", "unknown file type",
          "unreadable file", "no file",
          "bad orders", "orders without bore", "unknown bearing", "two bearings for a side",
-         "side orders without bore", "bad side bore", "no shaft speed"]
+         "side orders without bore", "bad side bore", "no shaft speed", "vf band above Nyquist",
+         "vf band upside down"]
 
 
 @pytest.mark.parametrize("case", CASES)

@@ -100,6 +100,23 @@ def test_fc_vf_of_band_limited_noise(f1, f2):
     assert VF == pytest.approx((f2 - f1) ** 2 / 12, rel=0.03)
 
 
+def test_fc_vf_over_a_band_are_those_of_the_band_limited_psd():
+    """Two flat bands, 300-800 Hz and 2000-4500 Hz: over ``band = (0, 1000)`` FC and VF are the
+    first band's alone, (f1 + f2)/2 and (f2 - f1)^2/12 (tolerances as for one band above), over
+    (1500, 5000) the second's; a band holding every bin gives the whole-band figures bit for
+    bit.  Bad bands are named (lo >= hi, above Nyquist, under two bins)."""
+    x = _band_noise(300.0, 800.0, 200_000, seed=1) + _band_noise(2000.0, 4500.0, 200_000, seed=2)
+    for (lo, hi), (f1, f2) in (((0.0, 1000.0), (300.0, 800.0)), ((1500.0, 5000.0), (2000.0, 4500.0))):
+        FC, VF, _ = fc_vf(x, FS, band=(lo, hi))
+        assert FC == pytest.approx((f1 + f2) / 2, rel=0.01)
+        assert VF == pytest.approx((f2 - f1) ** 2 / 12, rel=0.03)
+    assert fc_vf(x, FS, band=(0.0, FS / 2)) == fc_vf(x, FS)
+    for band, word in (((800.0, 300.0), "0 <= lo < hi"), ((0.0, 6000.0), "Nyquist"),
+                       ((1000.2, 1000.4), "two"), (("0", 1000.0), "vf_band")):
+        with pytest.raises(ParameterError, match=word):
+            fc_vf(x, FS, band=band)
+
+
 def test_vf_identity_and_amplitude_invariance():
     """VF (Eq. 18, computed directly) = MSF - FC^2 to rounding: both weight the same PSD bins;
     the difference of two numbers of size MSF carries an error of a few ulp of MSF, so 1e-12 x

@@ -20,6 +20,7 @@ from axlebox.bearing.diagnostics.criterion import (REL_RANGE_DEFAULT, VF_METRO, 
                                                    Criterion, decide, vf_difference)
 from axlebox.bearing.diagnostics.lag import impulse_lag, time_lag
 from axlebox.bearing.diagnostics.pair import analyse_pair
+from axlebox.bearing.diagnostics.spectral import fc_vf
 from axlebox.bearing.diagnostics.synthetic import impulse_train, resonance, wheel_rail_noise
 from axlebox.bearing.diagnostics.verdict import RULES, SIDES, LineEvidence
 from axlebox.bearing.frequencies import orders, shaft_hz
@@ -243,6 +244,46 @@ def test_a_louder_transmitted_side_is_named_by_its_lag():
     assert ev.votes["left"] >= 2 * ev.votes["right"]
 
 
+def test_a_vf_band_takes_each_sides_fc_and_vf_over_that_band_alone(synthetic):
+    """``Criterion.vf_band``: both sides' FC and VF are :func:`fc_vf`'s over that band (the
+    synthetic pair rings 546 and 600 Hz modes in wheel-rail noise), shown in the summary and the
+    JSON; the verdict does not take them again.  ``redecide`` under another band takes them
+    again from the kept signals: equal to a fresh analysis under that criterion."""
+    _, (a, b, _, _) = synthetic
+    band = Criterion(mode="relative", vf_band=(0.0, 1000.0))
+    res = analyse_pair(a, b, FS, SHAFT, ORDERS, BORE, band)
+    for c, x in ((res.left, a), (res.right, b)):
+        assert (c.FC, c.VF, c.MSF) == fc_vf(x, FS, None, (0.0, 1000.0))
+        assert c.FC < 1000.0 and c.vf_band == (0.0, 1000.0)
+    whole = analyse_pair(a, b, FS, SHAFT, ORDERS, BORE, Criterion(mode="relative"))
+    assert whole.left.VF > res.left.VF and whole.right.VF > res.right.VF   # the tail cut off
+    assert "over 0-1000 Hz" in res.summary() and "over the whole band" in whole.summary()
+    d = json.loads(json.dumps(res.to_dict(), allow_nan=False))
+    assert d["criterion"]["vf_band"] == [0.0, 1000.0] and d["left"]["vf_band"] == [0.0, 1000.0]
+    assert res.redecide(whole.criterion) == whole.verdict
+    assert whole.redecide(band) == res.verdict
+    again = whole.in_vf_band((0.0, 1000.0))
+    assert (again.left.VF, again.right.VF, again.m, again.verdict) == (res.left.VF, res.right.VF,
+                                                                       res.m, res.verdict)
+
+
+def test_the_papers_band_is_where_its_rk4_step_keeps_a_ring():
+    """The reasoning behind ``VF_BAND_PAPER`` (criterion.py's docstring), from the classical
+    RK4's stability polynomial at the paper's 1e-4 s step: the share of a free oscillation's
+    amplitude kept over one period, and the numerical damping ratio it amounts to."""
+    from axlebox.bearing.diagnostics.criterion import PAPER_RK4_STEP, VF_BAND_PAPER
+
+    def kept(f):
+        z = 2j * np.pi * f * PAPER_RK4_STEP
+        return abs(1 + z + z ** 2 / 2 + z ** 3 / 6 + z ** 4 / 24) ** (1.0 / (f * PAPER_RK4_STEP))
+
+    for f, share, zeta in ((1000.0, 0.996, 0.0007), (1500.0, 0.971, 0.005), (2000.0, 0.894, 0.018),
+                           (2500.0, 0.732, 0.05), (3000.0, 0.492, 0.11)):
+        assert kept(f) == pytest.approx(share, abs=6e-4)
+        assert -np.log(kept(f)) / (2 * np.pi) == pytest.approx(zeta, rel=0.15)
+    assert VF_BAND_PAPER == (0.0, 1000.0) and kept(VF_BAND_PAPER[1]) > 0.99 > kept(1500.0)
+
+
 def test_pair_figure_is_written(synthetic, tmp_path):
     from PIL import Image
     _, (a, b, _, _) = synthetic
@@ -421,7 +462,9 @@ def test_relative_mode_is_invariant_to_a_frequency_scale():
                                       ({"compare": ("loudness",)}, "compare"), ({"lines": ()}, "lines"),
                                       ({"lag": "trust"}, "lag"), ({"lines": ("BSF",)}, "lines"),
                                       ({"source": "RMS"}, "source"), ({"source_ratio": 1.0}, "source_ratio"),
-                                      ({"second_db": -1.0}, "second_db")])
+                                      ({"second_db": -1.0}, "second_db"),
+                                      ({"vf_band": (1000.0, 500.0)}, "vf_band"),
+                                      ({"vf_band": (0.0, float("nan"))}, "vf_band")])
 def test_criterion_refuses_bad_settings(kw, field):
     with pytest.raises(ParameterError, match=f"Criterion.{field}"):
         Criterion(**kw)

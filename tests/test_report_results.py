@@ -174,6 +174,8 @@ def test_conclusions_table_sets_the_papers_claims_beside_ours(sweep):
     assert by_key["2a"][0]["status"] == "agrees"
     assert by_key["rms"][0]["status"] == "agrees"
     assert by_key["1a"][0]["status"] == "agrees"
+    # the paper's absolute range is read over its spectra's band (criterion.VF_BAND_PAPER)
+    assert "over 0-1000 Hz" in by_key["3"][0]["ours"] and "over 0-1000 Hz" in by_key["2c"][0]["ours"]
     rms_1c = [r for r in by_key["1c"] if r["paper"].startswith("(1) RMS")]
     assert rms_1c[0]["status"] == "agrees"
     for r in rows.values():

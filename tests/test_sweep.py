@@ -103,6 +103,17 @@ def test_killed_sweep_resumes_without_recomputing(tmp_path):
     assert all(_complete(out / f"v{v}_w1.h5") for v in speeds)
     assert (out / "summary.csv").read_text().count("\n") == 1 + 4      # header + a row per case
 
+    # a rerun with every case finished only summarises: here with FC and VF over 0-1000 Hz
+    from axlebox.bearing.diagnostics.spectral import fc_vf
+    from axlebox.bearing.rig import SENSOR
+    from axlebox.pipelines.readers import read
+    res = sweep(cfg, out, speeds=[float(v) for v in speeds], widths=[1.0], workers=1,
+                log=lambda *a: None, vf_band=(0.0, 1000.0))
+    assert res["ran"] == [] and len(res["rows"]) == 4
+    for row in res["rows"]:
+        rec = read(out / row["file"], SENSOR, SENSOR)
+        assert row["VF"] == pytest.approx(fc_vf(rec.left, rec.fs, None, (0.0, 1000.0))[1], rel=1e-12)
+
 
 def _arrays(path):
     with h5py.File(path, "r") as f:
@@ -269,6 +280,7 @@ def test_kinds_and_sides_make_their_cases():
      ["kinds", "[[defects]]"]),
     (lambda d: (d / "x.toml").write_text("[rig]\n[sweep]\nsides = ['M']\n"), ["x.toml"],
      ["sweep.sides", "'M'"]),
+    (lambda d: _config(d, name="x.toml"), ["x.toml", "--vf-band", "900,100"], ["--vf-band", "900,100"]),
 ])
 def test_bad_input_exits_2_with_one_line(tmp_path, capsys, setup, args, words):
     """Refused before any cluster starts: status 2, one line naming the field and value."""

@@ -128,3 +128,4 @@ def test_the_demo_concludes_as_the_paper(run):
     lines = conclusion(pair)
     assert lines[0].startswith("defect side ws2_R: real fault; healthy side ws2_L: pseudo-fault")
     assert "ws2_R leads" in lines[1] and "the paper's absolute range" in lines[2]
+    assert lines[3].startswith("the paper's absolute range over 0-1000 Hz: VF difference")

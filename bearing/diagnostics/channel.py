@@ -87,6 +87,8 @@ class ChannelResult:
     carried_hz: dict = field(default_factory=dict)
     carried: dict = field(default_factory=dict)
     sideband_hz: dict = field(default_factory=dict)
+    vf_band: tuple[float, float] | None = None
+    nperseg: int | None = None
 
     @property
     def duration_s(self) -> float:
@@ -109,6 +111,7 @@ class ChannelResult:
                                            "carried_hz")}
         d["duration_s"] = self.duration_s
         d["band"] = list(self.band)
+        d["vf_band"] = None if self.vf_band is None else list(self.vf_band)
         d["lines"] = {k: r.to_dict() for k, r in self.lines.items()}
         d["detected"] = self.detected
         d["carried"] = {k: r.to_dict() for k, r in self.carried.items()}
@@ -154,13 +157,15 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
             n_harmonics: int = 3, slip: float = 0.03, threshold_db: float | None = None,
             p_fa: float = 1e-3, n_required: int = 2, nperseg: int | None = None,
             spm_periods: float = 4.0, spm_segments: int = 16, max_imf: int = 4,
-            guide: str | None = None, other: FaultOrders | None = None) -> ChannelResult:
+            guide: str | None = None, other: FaultOrders | None = None,
+            vf_band: tuple[float, float] | None = None) -> ChannelResult:
     """Indicators of the 1-D acceleration ``x`` (m/s^2) sampled at ``fs`` Hz, on a bearing
     turning at ``shaft_hz`` with fault ``orders`` (multiples of the shaft frequency) and bore
     ``D`` (m).  ``band``: envelope band (Hz), default by spectral kurtosis.  ``guide``: instead,
     the band where this line (one of ``lines``) stands highest (:mod:`.guided`).  ``lines``:
     which of the orders to search.  ``other``: the other side's bearing, whose distinct lines
-    are searched too (module docstring).  ``nperseg``: Welch segment of the PSD for FC/VF.  The
+    are searched too (module docstring).  ``nperseg``: Welch segment of the PSD for FC/VF;
+    ``vf_band``: their band ``(lo, hi)`` Hz (:func:`.spectral.fc_vf`), default the whole.  The
     rest go to :func:`.faultlines.detect` and :func:`.spm.shock_value`."""
     x = _signal(x)
     fs = check_fs(fs)
@@ -182,14 +187,16 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
     env = _band_and_lines(x, fs, shaft_hz, freqs, band, guide, n_harmonics, slip,
                           threshold_db, p_fa, n_required)
     t = time_indicators(x)
-    FC, VF, MSF = fc_vf(x, fs, nperseg)
+    FC, VF, MSF = fc_vf(x, fs, nperseg, vf_band)
     SV = spm.shock_value(x, fs, period_s=1.0 / (orders.BPFO * shaft_hz), n_periods=spm_periods,
                          n_segments=spm_segments, max_imf=max_imf)
     level = spm.spm_db(SV, shaft_hz, D)
     return ChannelResult(fs=fs, n_samples=int(x.size), shaft_hz=float(shaft_hz), D=float(D),
                          rms=t["rms"], peak=t["peak"], kurtosis=t["kurtosis"], crest=t["crest"],
                          FC=FC, VF=VF, MSF=MSF, SV=SV, spm_db=level,
-                         spm_class=spm.classify(level), **freqs, **env)
+                         spm_class=spm.classify(level), **freqs, **env,
+                         vf_band=None if vf_band is None else (float(vf_band[0]), float(vf_band[1])),
+                         nperseg=nperseg)
 
 
 LINE_OPTIONS = ("n_harmonics", "slip", "threshold_db", "p_fa", "n_required")   # of reguide

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 import textwrap
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -20,6 +20,7 @@ from .guided import band_scan
 from .criterion import PAPER, Criterion, decide, vf_difference
 from .envelope import _signal, check_fs
 from .lag import LagResult, impulse_lag, time_lag
+from .spectral import fc_vf
 from .own import shares as line_shares
 from .verdict import SIDES, LineEvidence, Verdict
 
@@ -56,8 +57,22 @@ class PairResult:
         return {ev.line: ev.share for ev in self.evidence if ev.share is not None}
 
     def redecide(self, criterion: Criterion) -> Verdict:
-        """The verdict under another criterion, from the same indicators and evidence."""
-        return decide(self.left, self.right, self.lag, criterion, list(self.evidence))
+        """The verdict under another criterion, from the same indicators and evidence (each
+        side's FC and VF taken again from its signal where the criterion's ``vf_band`` differs)."""
+        p = self if criterion.vf_band == self.criterion.vf_band else self.in_vf_band(criterion.vf_band)
+        return decide(p.left, p.right, p.lag, criterion, list(p.evidence))
+
+    def in_vf_band(self, band) -> "PairResult":
+        """This pair with both sides' FC, VF and MSF over ``band`` (Hz, None: the whole), from
+        the kept signals, and the VF difference and verdict under its criterion with that band:
+        what :func:`analyse_pair` gives with ``criterion.vf_band = band``, without the rest of
+        the analysis again."""
+        crit = replace(self.criterion, vf_band=band)
+        left, right = (_in_vf_band(c, x, crit.vf_band, self.criterion)
+                       for c, x in ((self.left, self.x_left), (self.right, self.x_right)))
+        return replace(self, left=left, right=right, criterion=crit,
+                       vf_diff=abs(left.VF - right.VF), m=vf_difference(left.VF, right.VF, crit),
+                       verdict=decide(left, right, self.lag, crit, list(self.evidence)))
 
     def to_dict(self) -> dict:
         return {"names": {"left": self.names[0], "right": self.names[1]},
@@ -80,7 +95,8 @@ class PairResult:
         lo, hi = self.criterion.range
         how = (f"{self.lag.n_impulses} impulses, {100 * self.lag.agreement:.0f} % agree, spread "
                f"{self.lag.spread_s * 1e3:.2g} ms; " if self.lag.method == "impulses" else "")
-        out.append(f"VF difference {self.vf_diff:.4g} Hz^2 (criterion, {self.criterion.mode}: "
+        out.append(f"VF difference {self.vf_diff:.4g} Hz^2 over {self.criterion.band_text} "
+                   f"(criterion, {self.criterion.mode}: "
                    f"{self.m:.4g} against [{lo:.4g}, {hi:.4g}]); lag {self.lag.lag_s * 1e3:.3g} ms, "
                    f"{lead} leads ({how}envelope correlation {self.lag.peak:.2f})")
         for ev in self.evidence:
@@ -140,6 +156,15 @@ class PairResult:
         return fig
 
 
+def _in_vf_band(c: ChannelResult, x, band, was: Criterion) -> ChannelResult:
+    """Side ``c`` with its FC, VF and MSF over ``band`` instead (its Welch segment as before)."""
+    if x is None:
+        raise ParameterError(f"Criterion.vf_band = {band!r} differs from the analysis' "
+                             f"{was.vf_band!r} and the signal is not kept: analyse the pair again")
+    FC, VF, MSF = fc_vf(x, c.fs, c.nperseg, band)
+    return replace(c, FC=FC, VF=VF, MSF=MSF, vf_band=band)
+
+
 def _pair_of(v, name: str) -> tuple:
     """``v`` for both sides, or the pair it is."""
     if isinstance(v, (tuple, list)):
@@ -197,7 +222,7 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
     for i, (side, x, n) in enumerate((("left", xs[0], names[0]), ("right", xs[1], names[1]))):
         try:
             res[side] = analyse(x, fs, shaft_hz, fo[i], bore[i], band, lines=lines,
-                                other=fo[1 - i], **channel_kw)
+                                other=fo[1 - i], vf_band=criterion.vf_band, **channel_kw)
         except ParameterError as err:
             raise ParameterError(f"{side} channel {n!r}: {err}") from None
     line_kw = {k: v for k, v in channel_kw.items() if k in LINE_OPTIONS}

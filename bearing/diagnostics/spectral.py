@@ -7,7 +7,9 @@ segment mean removed):
 * ``MSF = int f^2 S df / int S df``                 (mean-square frequency)
 * ``VF  = int (f - FC)^2 S df / int S df``          (Eq. 18, frequency variance)
 
-The integrals are sums over the Welch bins (equal spacing, so ``df`` cancels).  VF is computed by
+The integrals are sums over the Welch bins (equal spacing, so ``df`` cancels); over a band
+``[lo, hi]`` (``band``), over the bins with ``lo <= f <= hi`` alone: the moments of the
+band-limited PSD, as an ideal band-pass would leave it (no filter's skirt in the moments).  VF is computed by
 Eq. 18 itself, not as ``MSF - FC^2``: the identity holds for any quadrature that weights the
 three integrals alike, but the difference loses digits when VF << FC^2 (a narrow band far from
 0 Hz).  All three are independent of the signal's amplitude (``S`` scales out).
@@ -46,10 +48,36 @@ def psd(x, fs: float, nperseg: int | None = None):
                  scaling="density")
 
 
-def fc_vf(x, fs: float, nperseg: int | None = None) -> tuple[float, float, float]:
+def check_band(band, fs: float, name: str = "vf_band (--vf-band)") -> tuple[float, float] | None:
+    """``band`` as ``(lo, hi)`` Hz with ``0 <= lo < hi <= fs / 2``, or None (the full band)."""
+    if band is None:
+        return None
+    ok = isinstance(band, (tuple, list)) and len(band) == 2 and all(
+        isinstance(v, (int, float, np.floating, np.integer)) and not isinstance(v, bool)
+        and math.isfinite(v) for v in band) and 0 <= band[0] < band[1]
+    if not ok:
+        raise ParameterError(f"{name} = {band!r} is not allowed: expected (lo, hi) in Hz with "
+                             "0 <= lo < hi")
+    if band[1] > 0.5 * fs * (1 + 1e-12):
+        raise ParameterError(f"{name} = {tuple(band)!r} is not allowed: its upper edge is above the "
+                             f"record's Nyquist frequency, {0.5 * fs:g} Hz")
+    return float(band[0]), float(band[1])
+
+
+def fc_vf(x, fs: float, nperseg: int | None = None,
+          band: tuple[float, float] | None = None) -> tuple[float, float, float]:
     """``(FC, VF, MSF)`` in Hz, Hz^2, Hz^2 of the 1-D signal ``x`` sampled at ``fs`` Hz
-    (Eq. 18 on the Welch PSD; ``nperseg`` samples a segment, default :func:`default_nperseg`)."""
+    (Eq. 18 on the Welch PSD; ``nperseg`` samples a segment, default :func:`default_nperseg`);
+    ``band`` ``(lo, hi)`` Hz: over the PSD's bins in it alone (module docstring), default all."""
     f, S = psd(x, fs, nperseg)
+    band = check_band(band, fs)
+    if band is not None:
+        keep = (f >= band[0]) & (f <= band[1])
+        if keep.sum() < 2:
+            raise ParameterError(f"vf_band (--vf-band) = {band!r} is not allowed: it holds {int(keep.sum())} "
+                                 f"bin(s) of the PSD ({f[1] - f[0]:.3g} Hz apart); expected a band "
+                                 "of at least two")
+        f, S = f[keep], S[keep]
     total = S.sum()
     if not total > 0:
         raise ParameterError("x is constant: expected a signal with a spectrum (FC and VF of "
