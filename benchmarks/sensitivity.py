@@ -11,7 +11,9 @@ For each, after the 0.5 s fade-in, on the defect side (ws2_R) and the healthy si
 the median of the per-fault-period peaks (what the paper's Fig. 8a reads as "impulses of about
 20 m/s^2"), the 99.9 % peak, RMS, the share of power in 2-3 kHz (the axle-box ring), FC and VF
 (Eq. 18), the BPFO line of the broadband envelope spectrum, the lag read on the impulses
-(:func:`axlebox.bearing.diagnostics.lag.impulse_lag`) and both criteria's verdicts.
+(:func:`axlebox.bearing.diagnostics.lag.impulse_lag`) and both criteria's verdicts; then FC
+and VF over the paper's band (0-1 kHz, ``criterion.VF_BAND_PAPER``) and the absolute
+criterion's verdicts over it.
 
 Every variant's figures go to ``DIR/<name>.json`` as it finishes; a rerun skips those done
 (``--only`` reruns the named ones).  Ends with the markdown table and a figure of the defect
@@ -28,7 +30,7 @@ import numpy as np
 from scipy.signal import welch
 
 from axlebox import configs
-from axlebox.bearing.diagnostics.criterion import Criterion
+from axlebox.bearing.diagnostics.criterion import VF_BAND_PAPER, Criterion
 from axlebox.bearing.diagnostics.envelope import envelope_spectrum
 from axlebox.pipelines import simulate as psim
 from axlebox.pipelines.diagnose import analyse_file
@@ -104,6 +106,10 @@ def run_variant(name: str, over: dict, duration: float, out: Path) -> dict:
            "agreement": pair.lag.agreement, "vf_diff": pair.vf_diff,
            "absolute": {s: v[0] for s, v in pair.verdicts.items()},
            "relative": {s: v[0] for s, v in rel.verdicts.items()}}
+    band = pair.in_vf_band(VF_BAND_PAPER)           # the paper's band (criterion.py)
+    row["band"] = {"defect": {"FC": band.right.FC, "VF": band.right.VF},
+                   "healthy": {"FC": band.left.FC, "VF": band.left.VF}, "vf_diff": band.vf_diff,
+                   "absolute": {s: v[0] for s, v in band.verdicts.items()}}
     h5.unlink(missing_ok=True)                       # the figures are what is kept
     return row
 
@@ -111,7 +117,8 @@ def run_variant(name: str, over: dict, duration: float, out: Path) -> dict:
 def table(rows: list[dict]) -> str:
     head = ("| variant | defect peak | healthy peak | defect RMS | healthy RMS | defect 2-3 kHz | "
             "FC defect / healthy Hz | VF defect / healthy 1e4 Hz^2 | BPFO line defect / healthy | "
-            "lag ms (leading) | absolute: R / L | relative: R / L |")
+            "lag ms (leading) | absolute: R / L | relative: R / L | 0-1 kHz: VF defect / healthy, "
+            "difference 1e4 Hz^2 | absolute over 0-1 kHz: R / L |")
     out = [head, "|" + " --- |" * (head.count("|") - 1)]
     short = {"real fault": "real", "pseudo-fault": "pseudo", "healthy": "healthy", "undecided": "undec."}
     for r in rows:
@@ -126,8 +133,16 @@ def table(rows: list[dict]) -> str:
                    f"{d['bpfo_line']:.2f} / {h['bpfo_line']:.2f} | "
                    f"{r['lag_ms']:.2f} ({r['leading']}) | {short[r['absolute']['right']]} / "
                    f"{short[r['absolute']['left']]} | {short[r['relative']['right']]} / "
-                   f"{short[r['relative']['left']]} |")
+                   f"{short[r['relative']['left']]} |" + _band_cells(r, short))
     return "\n".join(out)
+
+
+def _band_cells(r: dict, short: dict) -> str:
+    b = r.get("band")
+    if b is None:                                    # a row written before the band was read
+        return " - | - |"
+    return (f" {b['defect']['VF'] / 1e4:.2f} / {b['healthy']['VF'] / 1e4:.2f}, {b['vf_diff'] / 1e4:.2f} | "
+            f"{short[b['absolute']['right']]} / {short[b['absolute']['left']]} |")
 
 
 def figure(rows: list[dict], path: Path) -> None:

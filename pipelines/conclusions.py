@@ -40,12 +40,12 @@ WHY = {
           "reduction (Guyan: 0.4 ms at 48 km/h, benchmarks/README.md)",
     "2c": "over the paper's band (0-1 kHz, where its spectra lie and its 1e-4 s Runge-Kutta "
           "carried a ring; bearing/diagnostics/criterion.py) the healthy side is the more "
-          "dispersed at 60-80 km/h, where its 300-800 Hz (the wheelset's second bending) has "
-          "grown, as the paper says it grows with speed; at 20-40 km/h its energy still lies "
-          "mostly in 0-200 Hz while the defect side's impacts spread over the whole band.  Over "
-          "the whole 5 kHz record the defect side's impacts, their lobes repeating every "
-          "1.1 kHz up to the band edge, make it the more dispersed in every case "
-          "(benchmarks/README.md, \"VF by band\")",
+          "dispersed at 60-80 km/h, where its power splits between 0-200 Hz (28-61 %) and "
+          "300-800 Hz (27-38 %), the two ranges the paper names; at 20-40 km/h the wheel-rail "
+          "part below 200 Hz is weak (2-12 %) and 65-78 % lies in 300-800 Hz, about the "
+          "wheelset's second bending, a narrow spectrum.  Over the whole 5 kHz record the defect "
+          "side's impacts, their lobes repeating every 1.1 kHz up to the band edge, make it the "
+          "more dispersed in every case (benchmarks/README.md, \"VF by band\")",
     "3": "the misses are the cases whose two spectra are too alike over the paper's band: the VF "
          "difference falls below the range's lower edge, 8e3 Hz^2 (a 1 mm defect at 20-40 km/h, "
          "3 mm at 40 km/h), and both sides are left undecided, not named wrong.  Over the whole "
