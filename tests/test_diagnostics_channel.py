@@ -304,18 +304,15 @@ def test_bad_input_is_named():
             call()
 
 
-def test_analyse_is_json_and_60_s_at_10_khz_takes_under_2_s():
-    """The result is plain JSON; a 60 s channel at 10 kHz (the benchmark's size) is analysed in
-    under 2 s (the two-channel command's budget is 5 s); measured about 0.4 s."""
-    import time
+def test_analyse_of_a_60_s_channel_is_plain_json():
+    """The result is plain JSON (no NaN, no numpy types) on a 60 s channel at 10 kHz, the
+    benchmark's size, with the BPFO line found; how long it takes is benchmarks/diagnose.py's
+    measurement (a timed test would fail on a loaded machine and pass a slow change)."""
     rng = np.random.default_rng(7)
     x, _ = at_snr(impulses(60.0, ORD.BPFO * SHAFT, rng), -5.0, rng)
-    t0 = time.perf_counter()
     r = channel.analyse(x, FS, SHAFT, ORD, D_BORE)
-    elapsed = time.perf_counter() - t0
     d = json.loads(json.dumps(r.to_dict(), allow_nan=False))
     assert d["lines"]["BPFO"]["detected"] and d["duration_s"] == pytest.approx(60.0)
-    assert elapsed < 2.0, elapsed
 
 
 # ---------------------------------------------------------------- the standalone rig
