@@ -8,7 +8,8 @@ bearings' step, and the bodies' step and exchange, mbs/exchange.py; default dt),
 configs' step limits: whether it runs, wall seconds per simulated second, and after the 0.5 s
 fade-in the defect-side (ws2_R) and healthy-side RMS, the defect side's BPFO envelope line, its
 largest |a|, the healthy side's lag behind it (impulse by impulse, broadband: what the
-diagnosis' lag reads first) and both sides' FC and VF (paper Eq. 17-18, 0-5 kHz), each against
+diagnosis' lag reads first) and both sides' FC and VF (paper Eq. 17-18, 0-5 kHz; and VF over the
+paper's band, 0-1 kHz, bearing/diagnostics/criterion.py), each against
 the first run's, and the defect bearing's cage slip (its row 2 against the rolling speed of Eq. 2).
 ``qd:dt``: the quasi-dynamic bearing (bearing/quasidynamic.py) stepped by the leapfrog at dt.
 ``--perturb EPS``: each run again with +-EPS added to one roller's first
@@ -22,6 +23,7 @@ import numpy as np
 
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.diagnostics.lag import impulse_lag
+from axlebox.bearing.diagnostics.criterion import VF_BAND_PAPER
 from axlebox.bearing.diagnostics.spectral import fc_vf
 from axlebox.bearing.params import BearingParams
 from axlebox.mbs import integrate
@@ -66,8 +68,8 @@ def main():
     bpfo = orders(bp).BPFO * f_s
     print("| method | dt s | exchange s | status | wall s per simulated s | ws2_R RMS | ws2_L RMS | "
           "ws2_R BPFO line | ws2_R peak | lag ms | FC R / L Hz | VF R / L Hz^2 | cage slip % | "
-          "against the first |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+          "against the first | VF R / L over 0-1 kHz, difference Hz^2 |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     ref = None
     first = int(model.S.br_i[0, 3])                  # the first bearing's first roller state
     for (method, dt, H), eps in ((run, e) for run in runs
@@ -88,6 +90,7 @@ def main():
         R, L = (r.sensors[n][skip:, 2] for n in ("ws2_R", "ws2_L"))
         lag = impulse_lag(R, L, fs, 1.0 / bpfo).delay_b_samples / fs * 1e3
         (fcR, vfR, _), (fcL, vfL, _) = fc_vf(R, fs), fc_vf(L, fs)
+        bR, bL = fc_vf(R, fs, None, VF_BAND_PAPER)[1], fc_vf(L, fs, None, VF_BAND_PAPER)[1]
         rate = r.bearings[skip:, i_defect, 2, 5].mean() / (2 * np.pi)     # row 2's cage, Hz
         slip = (1 - rate / f_cage) * 100
         x = (R.std(), L.std(), bpfo_line(R, fs, bpfo), abs(R).max(), lag, fcR, fcL, vfR, vfL)
@@ -95,7 +98,8 @@ def main():
         diff = ", ".join(f"{(v / w - 1) * 100:+.1f} %" for v, w in zip(x, ref))
         print(f"| {method} | {dt:g} | {H or dt:g} | done | {r.wall_s / a.duration:.1f} | {x[0]:.3f} | "
               f"{x[1]:.3f} | {x[2]:.3f} | {x[3]:.1f} | {x[4]:.3f} | {fcR:.0f} / {fcL:.0f} | "
-              f"{vfR:.3g} / {vfL:.3g} | {slip:.2f} | {diff} |", flush=True)
+              f"{vfR:.3g} / {vfL:.3g} | {slip:.2f} | {diff} | {bR:.3g} / {bL:.3g}, {abs(bR - bL):.3g} |",
+              flush=True)
 
 
 if __name__ == "__main__":
