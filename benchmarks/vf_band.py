@@ -20,6 +20,8 @@ import time
 from pathlib import Path
 
 from axlebox.bearing.diagnostics.criterion import VF_BAND_PAPER, VF_RANGE_PAPER, Criterion
+from axlebox.pipelines.conclusions import (calls_no_fault, in_band, named_right,
+                                          paper_expects_pseudo, sides)
 from axlebox.pipelines.report import case_parameters, diagnosed_case, find_results
 
 BANDS = {"0-0.8 kHz": (0.0, 800.0), "0-1 kHz (the paper's)": VF_BAND_PAPER,
@@ -37,36 +39,23 @@ def cases_of(folder) -> list:
     return sorted(out, key=lambda c: (c.width_mm, c.speed_kmh))
 
 
-def healthy_side(c) -> str:
-    return "left" if c.defect_side == "right" else "right"
-
-
 def counts(cases, band) -> dict:
     """conclusions.py's counts for claim (3) and (2c) with FC and VF over ``band``."""
     crit = Criterion(source="paper", vf_band=band)
     alone = dataclasses.replace(crit, lag="off")
-    faulty = [c for c in cases if c.width_mm > 0 and c.defect_side in ("left", "right")]
-    exp = [c for c in faulty if not (c.width_mm == 1 and c.speed_kmh >= 80)]   # as conclusions.py
-    base = [c for c in cases if c.width_mm == 0]
-    banded = {id(c): c.pair.in_vf_band(band) for c in cases}
-
-    def right(c, cr):
-        w = banded[id(c)].redecide(cr).words
-        return w[c.defect_side] == "real fault" and w[healthy_side(c)] == "pseudo-fault"
-    out = {"n_exp": len(exp), "right": sum(right(c, crit) for c in exp),
-           "right_alone": sum(right(c, alone) for c in exp), "n_base": len(base),
-           "quiet": sum(all(w in ("healthy", "undecided") for w in banded[id(c)].redecide(crit)
-                            .words.values()) for c in base),
-           "in_range": sum(VF_RANGE_PAPER[0] <= banded[id(c)].vf_diff <= VF_RANGE_PAPER[1]
-                           for c in exp)}
+    banded = [in_band(c, band) for c in cases]
+    faulty = [c for c in banded if c.width_mm > 0 and c.defect_side in ("left", "right")]
+    exp = [c for c in faulty if paper_expects_pseudo(c)]
+    base = [c for c in banded if c.width_mm == 0]
+    out = {"n_exp": len(exp), "right": sum(named_right(c, c.pair.redecide(crit)) for c in exp),
+           "right_alone": sum(named_right(c, c.pair.redecide(alone)) for c in exp),
+           "n_base": len(base), "quiet": sum(calls_no_fault(c.pair.redecide(crit)) for c in base),
+           "in_range": sum(VF_RANGE_PAPER[0] <= c.pair.vf_diff <= VF_RANGE_PAPER[1] for c in exp)}
     for w in sorted({c.width_mm for c in faulty}):
         cs = [c for c in faulty if c.width_mm == w]
-        out[f"healthy_more_{w:g}"] = (sum(getattr(banded[id(c)], healthy_side(c)).VF
-                                          > getattr(banded[id(c)], c.defect_side).VF for c in cs), len(cs))
-    out["cases"] = [(c.label, getattr(banded[id(c)], c.defect_side).VF if c.defect_side else
-                     banded[id(c)].right.VF,
-                     getattr(banded[id(c)], healthy_side(c)).VF if c.defect_side else banded[id(c)].left.VF,
-                     banded[id(c)].vf_diff, banded[id(c)].redecide(crit).words) for c in cases]
+        out[f"healthy_more_{w:g}"] = (sum(sides(c)[1].VF > sides(c)[0].VF for c in cs), len(cs))
+    # (no defect: ws2_R / ws2_L, the side the study's defects are on first)
+    out["cases"] = [(c.label, *(s.VF for s in sides(c)), c.pair.vf_diff) for c in banded]
     return out
 
 
@@ -89,7 +78,7 @@ def table(name: str, cases) -> str:
     for i, c in enumerate(cases):
         cells = []
         for bname in BANDS:
-            _, vd, vh, diff, _ = per_case[bname][i]
+            _, vd, vh, diff = per_case[bname][i]
             cells.append(f"{vd:.3g} / {vh:.3g}, {diff:.3g}")
         lines.append(f"| {c.label} | " + " | ".join(cells) + " |")
     return "\n".join(lines)

@@ -73,7 +73,7 @@ class Claim:
         return WHY.get(self.key, "") if self.status in (DIFFERS, PARTLY) else ""
 
 
-def _sides(c):
+def sides(c):
     """(defect-side ChannelResult, healthy-side ChannelResult) of a case."""
     p = c.pair
     d = c.defect_side
@@ -115,9 +115,27 @@ def _bpfo_snr(ch) -> float:
 BAND = Criterion(source="paper", vf_band=VF_BAND_PAPER)
 
 
-def _in_band(c):
-    """Case ``c`` with its pair's FC and VF over the paper's band (:data:`BAND`)."""
-    return replace(c, pair=c.pair.in_vf_band(BAND.vf_band))
+def in_band(c, band=VF_BAND_PAPER):
+    """Case ``c`` with its pair's FC and VF over ``band`` (default the paper's, :data:`BAND`)."""
+    return replace(c, pair=c.pair.in_vf_band(band))
+
+
+def paper_expects_pseudo(c) -> bool:
+    """Whether the paper has a pseudo-fault in case ``c``: a defect on one side, but not 1 mm at
+    80 km/h (its conclusion (1))."""
+    return (c.width_mm > 0 and c.defect_side in ("left", "right")
+            and not (c.width_mm == 1 and c.speed_kmh >= 80))
+
+
+def named_right(c, verdict) -> bool:
+    """``verdict`` calls case ``c``'s defect side a real fault and the other a pseudo-fault."""
+    healthy = "left" if c.defect_side == "right" else "right"
+    return verdict.words[c.defect_side] == "real fault" and verdict.words[healthy] == "pseudo-fault"
+
+
+def calls_no_fault(verdict) -> bool:
+    """``verdict`` calls neither side a fault (healthy or undecided)."""
+    return all(w in ("healthy", "undecided") for w in verdict.words.values())
 
 
 def claims(cases) -> list[Claim]:
@@ -126,8 +144,8 @@ def claims(cases) -> list[Claim]:
     out = []
 
     # (1a) pseudo-fault on the healthy side, except 1 mm at 80 km/h
-    exp = [c for c in faulty if not (c.width_mm == 1 and c.speed_kmh >= 80)]
-    seen = [c for c in exp if "BPFO" in _sides(c)[1].detected]
+    exp = [c for c in faulty if paper_expects_pseudo(c)]
+    seen = [c for c in exp if "BPFO" in sides(c)[1].detected]
     missed = ", ".join(c.label for c in exp if c not in seen) or "none"
     out.append(Claim("1a", "(1) A defect on one side shows as a pseudo-fault (BPFO lines) on the "
                      "other side, except 1 mm at 80 km/h.",
@@ -137,7 +155,7 @@ def claims(cases) -> list[Claim]:
     # (1b) most pronounced at 3 mm: healthy-side BPFO SNR averaged over speeds, per width
     by_w = {}
     for c in faulty:
-        by_w.setdefault(c.width_mm, []).append(_bpfo_snr(_sides(c)[1]))
+        by_w.setdefault(c.width_mm, []).append(_bpfo_snr(sides(c)[1]))
     mean = {w: float(np.nanmean(v)) for w, v in by_w.items() if np.isfinite(v).any()}
     if len(mean) >= 2 and 3.0 in mean:
         best = max(mean, key=mean.get)
@@ -152,9 +170,9 @@ def claims(cases) -> list[Claim]:
     # (1c) defect side above healthy side in peak, RMS, SPM; all rise with width
     for name, get in (("peak", lambda ch: ch.peak), ("RMS", lambda ch: ch.rms),
                       ("SPM", lambda ch: ch.spm_db)):
-        ok = sum(get(_sides(c)[0]) > get(_sides(c)[1]) for c in faulty)
-        up_d = _monotone(faulty, lambda c, g=get: g(_sides(c)[0]), "width_mm")
-        up_h = _monotone(faulty, lambda c, g=get: g(_sides(c)[1]), "width_mm")
+        ok = sum(get(sides(c)[0]) > get(sides(c)[1]) for c in faulty)
+        up_d = _monotone(faulty, lambda c, g=get: g(sides(c)[0]), "width_mm")
+        up_h = _monotone(faulty, lambda c, g=get: g(sides(c)[1]), "width_mm")
         n_ok, n = ok + up_d[0] + up_h[0], len(faulty) + up_d[1] + up_h[1]
         out.append(Claim("1c", f"(1) {name}: defect side above healthy side, and rising with "
                          "defect width on both.",
@@ -163,9 +181,9 @@ def claims(cases) -> list[Claim]:
                          "(healthy side).", _status(n_ok, n)))
 
     # (1d) healthy side SPM "normal" only at 1 mm
-    rule = [(c, _sides(c)[1].spm_class == "normal") for c in faulty]
+    rule = [(c, sides(c)[1].spm_class == "normal") for c in faulty]
     ok = sum((normal == (c.width_mm <= 1)) for c, normal in rule)
-    txt = "; ".join(f"{c.label}: {_sides(c)[1].spm_class}" for c, _ in rule)
+    txt = "; ".join(f"{c.label}: {sides(c)[1].spm_class}" for c, _ in rule)
     out.append(Claim("1d", "(1) SPM calls the healthy side normal only for the 1 mm defect.",
                      f"holds in {_frac(ok, len(rule))} ({txt}).", _status(ok, len(rule))))
 
@@ -190,9 +208,9 @@ def claims(cases) -> list[Claim]:
     # (2c) the healthy side's spectrum is more dispersed (Fig. 14: VF healthy > defect, 3/5 mm)
     # (the VF of both sides over the paper's band, VF_BAND_PAPER, and over the whole record)
     wide = [c for c in faulty if c.width_mm >= 3]
-    banded = {id(c): _in_band(c) for c in cases if c.pair is not None}
-    ok = [c for c in wide if _sides(banded[id(c)])[1].VF > _sides(banded[id(c)])[0].VF]
-    whole = sum(_sides(c)[1].VF > _sides(c)[0].VF for c in wide)
+    banded = {id(c): in_band(c) for c in cases if c.pair is not None}
+    ok = [c for c in wide if sides(banded[id(c)])[1].VF > sides(banded[id(c)])[0].VF]
+    whole = sum(sides(c)[1].VF > sides(c)[0].VF for c in wide)
     out.append(Claim("2c", "(2) The healthy side's spectrum is more dispersed: its VF exceeds "
                      "the defect side's at 3 and 5 mm (Fig. 14).",
                      f"over {BAND.band_text} (the paper's band) healthy VF above defect VF in "
@@ -205,17 +223,13 @@ def claims(cases) -> list[Claim]:
     # each with the lag deciding (the default) and with the paper's RMS and SPM alone
     base = [c for c in cases if c.width_mm == 0]
 
-    def named_right(c, crit):
-        v = (banded[id(c)].pair if crit.vf_band else c.pair).redecide(crit)
-        healthy = "left" if c.defect_side == "right" else "right"
-        return v.words[c.defect_side] == "real fault" and v.words[healthy] == "pseudo-fault"
+    def verdict(c, crit):             # the band's FC and VF already taken: not again per call
+        return (banded[id(c)] if crit.vf_band else c).pair.redecide(crit)
 
     for key, crit in (("3", BAND), ("3r", Criterion(mode="relative", source="paper"))):
-        right = [c for c in exp if named_right(c, crit)]
-        alone = sum(named_right(c, replace(crit, lag="off")) for c in exp)
-        quiet = sum(all(w in ("healthy", "undecided") for w in
-                        (banded[id(c)].pair if crit.vf_band else c.pair).redecide(crit).words.values())
-                    for c in base)
+        right = [c for c in exp if named_right(c, verdict(c, crit))]
+        alone = sum(named_right(c, verdict(c, replace(crit, lag="off"))) for c in exp)
+        quiet = sum(calls_no_fault(verdict(c, crit)) for c in base)
         rng = f"{crit.mode} range [{crit.range[0]:.3g}, {crit.range[1]:.3g}] over {crit.band_text}"
         paper = ("(3) The VF-difference criterion (0.8e4-7.49e4 Hz^2) with RMS and SPM names the "
                  "real and the pseudo-fault (its spectra's band, 0-1 kHz)." if key == "3" else
@@ -231,7 +245,7 @@ def claims(cases) -> list[Claim]:
                          _status(len(right) + quiet, len(exp) + len(base))))
 
     # study: RMS rises with speed (and width) on both sides (Fig. 11a)
-    ups = [_monotone(faulty, lambda c, i=i: (_sides(c)[i]).rms, "speed_kmh") for i in (0, 1)]
+    ups = [_monotone(faulty, lambda c, i=i: (sides(c)[i]).rms, "speed_kmh") for i in (0, 1)]
     out.append(Claim("rms", "(Fig. 11a) RMS rises with speed on both sides.",
                      f"rising with speed at {ups[0][0]} of {ups[0][1]} widths (defect side), "
                      f"{ups[1][0]} of {ups[1][1]} (healthy side).",

@@ -294,9 +294,10 @@ def _row(c: Case, path: Path, side: str, sensor: str, ch, verdict: str, lag_s=No
                 vf_diff=vf_diff)
 
 
-def rig_rows(c: Case, path: Path, criterion=None) -> list[dict]:
-    """The rig's one sensor: one-channel indicators, searching the fault lines the record holds
-    two periods of (``channel.analyse`` needs that; a 0.3 s run at 20 km/h holds BPFO only)."""
+def rig_rows(c: Case, path: Path, criterion) -> list[dict]:
+    """The rig's one sensor: one-channel indicators (FC and VF over ``criterion.vf_band``),
+    searching the fault lines the record holds two periods of (``channel.analyse`` needs that; a
+    0.3 s run at 20 km/h holds BPFO only)."""
     from axlebox.bearing.diagnostics.channel import analyse
     from axlebox.bearing.rig import SENSOR
 
@@ -307,22 +308,22 @@ def rig_rows(c: Case, path: Path, criterion=None) -> list[dict]:
     lines = tuple(n for n in ("BPFO", "BPFI", "2BSF", "FTF")
                   if rec.left.size / rec.fs >= 2.0 / f[n]) or ("BPFO",)
     ch = analyse(rec.left, rec.fs, rec.shaft_hz, rec.orders, DTRB_BORE, lines=lines,
-                 vf_band=None if criterion is None else criterion.vf_band)
+                 vf_band=criterion.vf_band)
     verdict = f"lines {' '.join(ch.detected)}" if ch.detected else "no fault line"
     return [_row(c, path, "-", SENSOR, ch, verdict)]
 
 
-def vehicle_rows(c: Case, path: Path, criterion=None):
+def vehicle_rows(c: Case, path: Path, criterion):
     """Both sides of the defect's wheelset (``wheelset`` of the first defect, else ws2) as
-    ``axlebox diagnose`` does, and the carbody's ride comfort: ``(axlebox.pipelines.report.Case,
-    rows)``; a run whose axle-box record cannot be diagnosed (a comfort run's 1 kHz) gives its
-    ride comfort alone and no rows."""
+    ``axlebox diagnose`` does under ``criterion``, and the carbody's ride comfort:
+    ``(axlebox.pipelines.report.Case, rows)``; a run whose axle-box record cannot be diagnosed
+    (a comfort run's 1 kHz) gives its ride comfort alone and no rows."""
     from .report import diagnosed_case
     defects = tomllib.loads(c.toml).get("defects", [])
     ws = defects[0].get("wheelset") if defects else None
     rc = diagnosed_case(path, c.speed_kmh, c.width_mm, None, lambda *_: None,
-                        **(dict(left=f"ws{ws}_L", right=f"ws{ws}_R") if ws else {}),
-                        **({} if criterion is None else dict(criterion=criterion)))
+                        criterion=criterion,
+                        **(dict(left=f"ws{ws}_L", right=f"ws{ws}_R") if ws else {}))
     p = rc.pair
     if p is None:
         return rc, []
@@ -349,7 +350,10 @@ def table(rows: list[dict]) -> str:
 def summarise(cases: list[Case], out, log=print, criterion=None) -> list[dict]:
     """Diagnose every finished case (under ``criterion``, default the paper's), print the
     table, write ``out/summary.csv``."""
+    from axlebox.bearing.diagnostics.criterion import PAPER
+
     from .report import write_csv, write_tables
+    criterion = PAPER if criterion is None else criterion
     rows, report_cases = [], []
     for c in (c for c in cases if is_finished(c.path(out), c.toml)):
         try:

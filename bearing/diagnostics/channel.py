@@ -34,7 +34,7 @@ from . import faultlines, spm
 from .envelope import _signal, check_fs, envelope_spectrum, select_band
 from .guided import guided_band
 from .indicators import time_indicators
-from .spectral import fc_vf
+from .spectral import check_band, fc_vf
 
 
 def jsonable(v):
@@ -187,6 +187,7 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
     env = _band_and_lines(x, fs, shaft_hz, freqs, band, guide, n_harmonics, slip,
                           threshold_db, p_fa, n_required)
     t = time_indicators(x)
+    vf_band = check_band(vf_band, fs)
     FC, VF, MSF = fc_vf(x, fs, nperseg, vf_band)
     SV = spm.shock_value(x, fs, period_s=1.0 / (orders.BPFO * shaft_hz), n_periods=spm_periods,
                          n_segments=spm_segments, max_imf=max_imf)
@@ -195,8 +196,7 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
                          rms=t["rms"], peak=t["peak"], kurtosis=t["kurtosis"], crest=t["crest"],
                          FC=FC, VF=VF, MSF=MSF, SV=SV, spm_db=level,
                          spm_class=spm.classify(level), **freqs, **env,
-                         vf_band=None if vf_band is None else (float(vf_band[0]), float(vf_band[1])),
-                         nperseg=nperseg)
+                         vf_band=vf_band, nperseg=nperseg)
 
 
 LINE_OPTIONS = ("n_harmonics", "slip", "threshold_db", "p_fa", "n_required")   # of reguide
