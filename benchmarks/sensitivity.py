@@ -6,7 +6,8 @@ Each variant is the shipped validation case (``validation_48kmh``, the calibrate
 choice changed: the contact damping (the earlier default, damping ratios 0.1, 0.5 and 2 of each
 contact, the stiffness-proportional law at several coefficients, the paper's rule as printed),
 the reduction of every flexible body (Craig-Bampton or Guyan), the axle-box's modal damping
-(1, 2, 4, 8 %), the axle-box assembly's masses (without them) and the sensor model (ideal).
+(1, 2, 4, 8 %), the axle-box assembly's masses (without them), the sensor model (ideal) and
+short-wave wheel and rail roughness (two CNOSSOS-EU pairs).
 For each, after the 0.5 s fade-in, on the defect side (ws2_R) and the healthy side (ws2_L):
 the median of the per-fault-period peaks (what the paper's Fig. 8a reads as "impulses of about
 20 m/s^2"), the 99.9 % peak, RMS, the share of power in 2-3 kHz (the axle-box ring), FC and VF
@@ -69,6 +70,12 @@ VARIANTS = {
     "zeta_ab4": ("axle-box modal damping 4 %", {"bodies": {"zeta_axlebox": 0.04}}),
     "zeta_ab8": ("axle-box modal damping 8 %", {"bodies": {"zeta_axlebox": 0.08}}),
     "no_masses": ("without the axle-box assembly's masses", NO_MASSES),
+    # the defect side's 2-5 kHz against short-wave roughness on both sides (mbs/roughness.py,
+    # CNOSSOS-EU 2012 tables, contact filter at the static wheel load)
+    "rough_iso_composite": ("roughness: ISO 3095 limit rails, composite-block wheels, contact filter",
+                            {"track": {"rail_roughness": "iso3095", "wheel_roughness": "composite"}}),
+    "rough_network_castiron": ("roughness: average-network rails, cast-iron-block wheels, contact filter",
+                               {"track": {"rail_roughness": "network", "wheel_roughness": "cast-iron"}}),
     "ideal_sensor": ("ideal sensor (no accelerometer, no anti-alias filter)", IDEAL),
 }
 

@@ -36,7 +36,10 @@ SCHEMA: dict[str, dict[str, tuple]] = {
     "coupling": {"exchange_dt": (F, 0.0, 0.0, 1e-3)},
     "track": {"fra_class": (I, 5, 1, 6), "lambda_min": (F, 1.0, 0.1, 100.0),
               "lambda_max": (F, 80.0, 1.0, 1000.0), "length": (F, 400.0, 10.0, 1e5),
-              "irregularity": (B, True)},
+              "irregularity": (B, True),
+              "rail_roughness": (S, "none", ("none", "iso3095", "network")),
+              "wheel_roughness": (S, "none", ("none", "cast-iron", "composite", "disc")),
+              "contact_filter": (B, True), "roughness_lambda_min": (F, 0.003, 0.001, 0.1)},
     "wheelrail": {"wheel": (S, "S1002", None), "rail": (S, "UIC60", None),
                   "gauge": (F, 1.435, 0.9, 1.7), "back_to_back": (F, 1.360, 0.9, 1.6),
                   "cant": (F, 0.025, 0.0, 0.1), "mu": (F, 0.3, 0.0, 1.0),
@@ -205,6 +208,10 @@ def validate(user: dict) -> dict:
     if t["lambda_min"] >= t["lambda_max"]:
         raise ParameterError(f"track.lambda_min = {t['lambda_min']:g} is not allowed: expected less "
                              f"than track.lambda_max = {t['lambda_max']:g}")
+    if not t["irregularity"] and t["rail_roughness"] != "none":
+        raise ParameterError(f"track.rail_roughness = {t['rail_roughness']!r} is not allowed with "
+                             "track.irregularity = false: expected 'none' (the rails' roughness "
+                             "rides on their irregular record)")
     run = cfg["run"]
     need = track_needed(cfg, run["duration"])
     if t["irregularity"] and t["length"] < need:

@@ -26,7 +26,8 @@ from .kernel_wheels import G_GRAV, wheel_forces
 
 
 Arrays = namedtuple("Arrays", ["bi", "bf", "inv", "goff", "mk_i", "mk_f", "shp", "el_i", "el_f", "glob",
-                               "wh_i", "wh_f", "wtab", "wpar", "trk", "sens", "br_i", "br_P", "br_D"])
+                               "wh_i", "wh_f", "wtab", "wpar", "trk", "wrk", "sens", "br_i", "br_P",
+                               "br_D"])
 Work = namedtuple("Work", ["Ab", "rb", "vb", "omb", "omfb", "mku", "mkp", "mkv", "mkR", "mkw", "mkF",
                            "mkM", "gen", "elout", "whout", "sensout"])
 
@@ -71,8 +72,8 @@ def _dynamics(t, y, dy, S, W):
     accelerations."""
     bi, goff, Ab = S.bi, S.goff, W.Ab
     if S.wh_i.shape[0] > 0:
-        wheel_forces(t, bi, S.wh_i, S.wh_f, S.wtab, S.wpar, S.trk, S.glob, Ab, W.omb, W.mkp, W.mkv,
-                     W.mkR, W.mkw, W.mkF, W.mkM, W.whout)
+        wheel_forces(t, bi, S.wh_i, S.wh_f, S.wtab, S.wpar, S.trk, S.wrk, S.glob, Ab, W.omb, W.mkp,
+                     W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.whout)
     g = S.glob[G_GRAV:G_GRAV + 3]
     for b in range(bi.shape[0]):
         n = bi[b, BI_N]

@@ -1,13 +1,16 @@
 """Numba: the wheel-rail force elements of all wheels, on the markers at the wheel treads.
 
-Wheel ``w`` (``wh_i = [marker, side, body]``, ``wh_f = [r_c]``) acts at a marker on the tread
+Wheel ``w`` (``wh_i = [marker, side, body]``, ``wh_f = [r_c, ds_w]``) acts at a marker on the tread
 point of the nominal taping line (bottom of the wheel in the non-spinning frame).  The wheel
 centre is ``c = p + r_c R e_z`` (the marker frame's z axis), the axle direction ``e = R e_y``;
 the material angular velocity adds the body's spin to the frame rate.  The rails' irregularities
 at ``s = c_x`` come from the track table ``trk (8, ns)``: ``zL, zR, yL, yR`` and their slopes,
 cubic Hermite on a uniform periodic grid (C1, like :meth:`axlebox.mbs.track.TrackIrregularity.at`),
 faded in over the first ``glob[G_RAMP]`` seconds (half-cosine) so that a run can start from the
-equilibrium on smooth track without a jump.
+equilibrium on smooth track without a jump.  A wheel's own roughness (``wrk[w] = values,
+slopes`` on the grid ``j ds_w`` around its rolling circle, :func:`axlebox.mbs.roughness.wheel_record`)
+adds to its rails' height, read at the distance rolled, ``c_x`` (creep moves a 1 cm wave by
+less than 1e-3 of itself a metre), and fades in with the track.
 The contact itself is :func:`axlebox.mbs.wheelrail.element_kernel.wheel_rail_force`.
 """
 from __future__ import annotations
@@ -24,6 +27,37 @@ from .kernel_body import BI_SPIN, cross
 G_GRAV, G_V, G_S0, G_DS, G_TRACK, G_RAMP = 0, 3, 4, 5, 6, 7   # glob slots
 N_GLOB = 8
 WH_MARKER, WH_SIDE, WH_BODY = 0, 1, 2
+WF_RC, WF_DS = 0, 1                    # wh_f columns: r_c; the wheel record's grid step (0: none)
+
+
+@njit(cache=True)
+def _fade(glob, t):
+    """The irregularities' half-cosine fade-in over the first ``glob[G_RAMP]`` s."""
+    if t < glob[G_RAMP]:
+        return 0.5 - 0.5 * math.cos(math.pi * t / glob[G_RAMP])
+    return 1.0
+
+
+@njit(cache=True)
+def hermite_at(v, d, s, ds):
+    """Value and slope at ``s`` of the periodic record ``v`` (slopes ``d``) on the grid
+    ``j ds``: cubic Hermite on the exact slopes."""
+    ns = v.size
+    x = s / ds
+    x = x - math.floor(x / ns) * ns
+    i = int(x)
+    if i >= ns:
+        i = ns - 1
+    u = x - i
+    j = i + 1 if i + 1 < ns else 0
+    f0, f1 = v[i], v[j]
+    d0, d1 = d[i] * ds, d[j] * ds
+    u2 = u * u
+    u3 = u2 * u
+    val = (2 * u3 - 3 * u2 + 1) * f0 + (u3 - 2 * u2 + u) * d0 + (-2 * u3 + 3 * u2) * f1 + (u3 - u2) * d1
+    der = ((6 * u2 - 6 * u) * f0 + (3 * u2 - 4 * u + 1) * d0 + (-6 * u2 + 6 * u) * f1
+           + (3 * u2 - 2 * u) * d1) / ds
+    return val, der
 
 
 @njit(cache=True)
@@ -31,31 +65,14 @@ def track_at(trk, row, s, glob, t):
     """Value and slope of track row ``row`` (0..3) at ``s`` (periodic record) at time ``t``."""
     if glob[G_TRACK] == 0.0 or t <= 0.0:
         return 0.0, 0.0
-    fade = 1.0
-    if t < glob[G_RAMP]:
-        fade = 0.5 - 0.5 * math.cos(math.pi * t / glob[G_RAMP])
-    ns = trk.shape[1]
-    ds = glob[G_DS]
-    x = (s - glob[G_S0]) / ds
-    x = x - math.floor(x / ns) * ns
-    i = int(x)
-    if i >= ns:
-        i = ns - 1
-    u = x - i
-    j = i + 1 if i + 1 < ns else 0
-    f0, f1 = trk[row, i], trk[row, j]
-    d0, d1 = trk[4 + row, i] * ds, trk[4 + row, j] * ds
-    u2 = u * u
-    u3 = u2 * u
-    val = (2 * u3 - 3 * u2 + 1) * f0 + (u3 - 2 * u2 + u) * d0 + (-2 * u3 + 3 * u2) * f1 + (u3 - u2) * d1
-    der = ((6 * u2 - 6 * u) * f0 + (3 * u2 - 4 * u + 1) * d0 + (-6 * u2 + 6 * u) * f1
-           + (3 * u2 - 2 * u) * d1) / ds
+    fade = _fade(glob, t)
+    val, der = hermite_at(trk[row], trk[4 + row], s - glob[G_S0], glob[G_DS])
     return fade * val, fade * der
 
 
 @njit(cache=True)
-def wheel_forces(t, bi, wh_i, wh_f, wtab, wpar, trk, glob, Ab, omb, mkp, mkv, mkR, mkw, mkF, mkM,
-                 whout):
+def wheel_forces(t, bi, wh_i, wh_f, wtab, wpar, trk, wrk, glob, Ab, omb, mkp, mkv, mkR, mkw, mkF,
+                 mkM, whout):
     V = glob[G_V]
     c = np.empty(3)
     e = np.empty(3)
@@ -66,7 +83,7 @@ def wheel_forces(t, bi, wh_i, wh_f, wtab, wpar, trk, glob, Ab, omb, mkp, mkv, mk
     for w in range(wh_i.shape[0]):
         m, side, b = wh_i[w, WH_MARKER], wh_i[w, WH_SIDE], wh_i[w, WH_BODY]
         R = mkR[m]
-        rc = wh_f[w, 0]
+        rc = wh_f[w, WF_RC]
         ne = math.sqrt(R[0, 1] ** 2 + R[1, 1] ** 2 + R[2, 1] ** 2)
         for a in range(3):
             d[a] = rc * R[a, 2]
@@ -82,6 +99,11 @@ def wheel_forces(t, bi, wh_i, wh_f, wtab, wpar, trk, glob, Ab, omb, mkp, mkv, mk
                 om[a] += A[a, 1] * omb[b, 1]
         z_r, dz = track_at(trk, side, c[0], glob, t)
         y_r, dyr = track_at(trk, 2 + side, c[0], glob, t)
+        if wh_f[w, WF_DS] > 0.0 and t > 0.0:      # the wheel's own roughness, turning with it
+            fade = _fade(glob, t)
+            r, dr = hermite_at(wrk[w, 0], wrk[w, 1], c[0], wh_f[w, WF_DS])
+            z_r += fade * r
+            dz += fade * dr
         out = whout[w]
         wheel_rail_force(side, c, e, vc, om, V, z_r, y_r, dz * vc[0], dyr * vc[0], wtab, wpar, out)
         # out[0:3] force on the wheel, out[3:6] moment about c: move to the marker

@@ -60,6 +60,7 @@ class System:
         self.wheels: list[tuple[str, int, int, float]] = []
         self.wheel_tables: tuple[np.ndarray, np.ndarray] | None = None
         self.track = None
+        self.wheel_roughness: dict[str, tuple] = {}   # wheel name -> (values, slopes, ds)
         self.track_ramp = 0.5          # s, the irregularity fades in over this time
         self.bearings: list[tuple] = []
 
@@ -213,7 +214,22 @@ class System:
             glob[G_S0], glob[G_DS], glob[G_TRACK] = 0.0, tr.ds, 1.0
         wh_i = np.array([(m, side, self.markers[m][0]) for _, m, side, _ in self.wheels],
                         np.int64).reshape(-1, 3)
-        wh_f = np.array([[rc] for *_, rc in self.wheels]).reshape(-1, 1)
+        unknown = set(self.wheel_roughness) - {w[0] for w in self.wheels}
+        if unknown:
+            raise ParameterError(f"wheel_roughness: {', '.join(sorted(unknown))} is not allowed: "
+                                 f"expected wheels of the system ({', '.join(w[0] for w in self.wheels)})")
+        rough = [self.wheel_roughness.get(name) for name, *_ in self.wheels]
+        nw = max([r[0].size for r in rough if r is not None], default=1)
+        wrk = np.zeros((max(len(self.wheels), 1), 2, nw))
+        wh_f = np.zeros((len(self.wheels), 2))
+        for w, (r, (*_, rc)) in enumerate(zip(rough, self.wheels)):
+            wh_f[w, 0] = rc
+            if r is not None:          # each wheel's own grid: its first r[0].size points
+                values, slopes, ds = r
+                if values.size != nw:
+                    raise ParameterError(f"wheel_roughness[{self.wheels[w][0]!r}] has {values.size} "
+                                         f"points, not allowed: every wheel's record needs {nw}")
+                wrk[w, 0], wrk[w, 1], wh_f[w, 1] = values, slopes, ds
         if self.wheels and self.wheel_tables is None:
             raise ParameterError("wheels need wheel-rail tables: call set_wheel_rail() first")
         wtab, wpar = self.wheel_tables if self.wheel_tables is not None else (np.zeros((1, 1)), np.zeros(1))
@@ -221,7 +237,7 @@ class System:
         sens = np.array([self.sensors[s] for s in sens_names], np.int64)
         br_i, br_P, br_D, y0 = self._pack_bearings(y0)
         S = Arrays(bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f,
-                   np.ascontiguousarray(wtab, float), np.ascontiguousarray(wpar, float), trk, sens,
+                   np.ascontiguousarray(wtab, float), np.ascontiguousarray(wpar, float), trk, wrk, sens,
                    br_i, br_P, br_D)
         return Model(self, S, y0, nq, sens_names, [w[0] for w in self.wheels])
 

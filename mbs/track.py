@@ -38,11 +38,13 @@ wavelength.
 
 **Rail roughness** (off by default) is the ISO 3095:2013 Figure 2 limit (the same curve as
 EN 15610:2009 Annex B.9.2 and the 2007 noise TSI): one-third-octave roughness levels, dB re
-1 um, from 40 cm to 0.315 cm wavelength, :data:`ISO3095_LIMIT_DB`.  It is the upper limit for
-a smooth reference test track, not a typical rail: ``roughness_offset_db`` raises it.  It is
-sampled like the geometry and added to the vertical irregularity of each rail, independently
-on the two rails (separate rail heads; across 1.5 m their sub-0.4 m roughness is taken as
-uncorrelated).
+1 um, from 40 cm to 0.315 cm wavelength, :data:`ISO3095_LIMIT_DB` (extended to 100-0.08 cm as
+the CNOSSOS-EU tables extend it, :mod:`axlebox.mbs.roughness`), or CNOSSOS-EU's average
+network rail (``roughness_spectrum``); either through the contact filter at the static wheel
+load ``contact_load``.  The ISO limit is the upper limit for a smooth reference test track, not
+a typical rail: ``roughness_offset_db`` raises it.  It is sampled like the geometry and added
+to the vertical irregularity of each rail, independently on the two rails (separate rail
+heads; across 1.5 m their sub-0.4 m roughness is taken as uncorrelated).
 """
 from __future__ import annotations
 
@@ -54,6 +56,8 @@ import numpy as np
 from scipy.fft import irfft, next_fast_len
 
 from axlebox._params import ParameterError, check_ranges, param, require
+
+from . import roughness
 
 KINDS = ("vertical", "alignment", "crosslevel", "gauge")
 COMPONENTS = KINDS + ("roughness_L", "roughness_R")
@@ -70,8 +74,6 @@ FRA_CLASSES = {1: (1.2107, 3.3634, 0.6046), 2: (1.0181, 1.2107, 0.9308),
 ISO3095_BANDS = np.arange(4, 26)
 ISO3095_LIMIT_DB = np.array([17.1, 15.0, 13.0, 11.0, 9.0, 7.0, 4.9, 2.9, 0.9, -1.1, -3.2,
                              -5.0, -5.6, -6.2, -6.8, -7.4, -8.0, -8.6, -9.2, -9.8, -10.4, -11.0])
-_ISO_OMEGA = 2 * np.pi * 10.0 ** (ISO3095_BANDS / 10)      # band centres, rad/m, ascending
-_ISO_EDGE = 10.0 ** 0.05                                   # base-ten third-octave half width
 MAX_POINTS = 2 ** 24                                       # ~130 MB per array
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(4)
 
@@ -111,19 +113,10 @@ def psd(kind: str, Omega, grade: int = 5) -> np.ndarray:
 
 
 def roughness_psd(Omega, offset_db: float = 0.0) -> np.ndarray:
-    """One-sided PSD (m^2/(rad/m)) of the ISO 3095 limit roughness raised by ``offset_db``.
-
-    A band level L is the band's mean square r^2 = (1 um)^2 10^(L/10); spread over the band's
-    width in Omega it gives S at the band centre, and log S is interpolated linearly in log
-    Omega between centres (held flat in the half band beyond the outermost ones)."""
+    """One-sided PSD (m^2/(rad/m)) of the ISO 3095 limit roughness raised by ``offset_db``,
+    over the limit's own bands (:func:`axlebox.mbs.roughness.band_psd`)."""
     W = _positive(Omega, "roughness_psd.Omega")
-    lo, hi = _ISO_OMEGA[0] / _ISO_EDGE, _ISO_OMEGA[-1] * _ISO_EDGE
-    if W.min() < lo * (1 - 1e-12) or W.max() > hi * (1 + 1e-12):
-        raise ParameterError(f"roughness_psd.Omega = {W.min():g}..{W.max():g} is not allowed: ISO "
-                             f"3095 covers {lo:g} to {hi:g} rad/m (wavelengths 0.0028 to 0.45 m)")
-    mean_square = 1e-12 * 10.0 ** ((ISO3095_LIMIT_DB + offset_db) / 10)
-    S = mean_square / (_ISO_OMEGA * (_ISO_EDGE - 1 / _ISO_EDGE))
-    return np.exp(np.interp(np.log(W), np.log(_ISO_OMEGA), np.log(S)))
+    return roughness.band_psd(W, ISO3095_LIMIT_DB + offset_db, ISO3095_BANDS, owner="roughness_psd")
 
 
 @dataclass(frozen=True)
@@ -136,10 +129,15 @@ class IrregularityParams:
     length: float = param(1000.0, 1.0, 1e6, doc="record length")
     seed: int = param(0, 0, 2 ** 63 - 1, unit="", doc="seed of the random phases")
     ds: float | None = field(default=None, metadata={"doc": "grid step; None: shortest wavelength / 10"})
-    roughness: bool = field(default=False, metadata={"doc": "add ISO 3095 roughness to both rails"})
-    roughness_lambda_min: float = param(0.01, 0.003, 0.4, doc="shortest roughness wavelength")
-    roughness_lambda_max: float = param(0.4, 0.003, 0.4, doc="longest roughness wavelength")
-    roughness_offset_db: float = param(0.0, -40.0, 40.0, unit="dB", doc="level above the ISO 3095 limit")
+    roughness: bool = field(default=False, metadata={"doc": "add roughness to both rails"})
+    roughness_lambda_min: float = param(0.01, 0.001, 0.4, doc="shortest roughness wavelength")
+    roughness_lambda_max: float = param(0.4, 0.001, 0.4, doc="longest roughness wavelength")
+    roughness_offset_db: float = param(0.0, -40.0, 40.0, unit="dB", doc="level above the spectrum's")
+    roughness_spectrum: str = field(default="iso3095", metadata={
+        "doc": "rail roughness: 'iso3095' (the ISO 3095:2013 limit) or 'network' (CNOSSOS-EU's "
+               "average network), mbs/roughness.py"})
+    contact_load: float = param(0.0, 0.0, 1e5, unit="N", doc="static wheel load of the contact "
+                                "filter (mbs/roughness.py); 0: no filter")
 
     def __post_init__(self):
         _check_grade(self.grade, "IrregularityParams")
@@ -150,6 +148,12 @@ class IrregularityParams:
             raise ParameterError(f"IrregularityParams.roughness = {self.roughness!r} is not allowed: "
                                  "expected True or False")
         check_ranges(self)
+        require(self.roughness_spectrum in roughness.RAIL_DB, self, "roughness_spectrum",
+                f"expected one of {', '.join(roughness.RAIL_DB)}")
+        require(self.contact_load == 0.0 or roughness.CONTACT_LOADS[0] <= self.contact_load
+                <= roughness.CONTACT_LOADS[-1], self, "contact_load", "expected 0 (no contact "
+                f"filter) or a wheel load the tables cover, {roughness.CONTACT_LOADS[0]:g} to "
+                f"{roughness.CONTACT_LOADS[-1]:g} N")
         require(self.lambda_min < self.lambda_max, self, "lambda_min",
                 f"must be shorter than lambda_max = {self.lambda_max:g} m")
         require(self.length >= self.lambda_max, self, "length",
@@ -196,7 +200,9 @@ def generate(p: IrregularityParams = IrregularityParams()) -> TrackIrregularity:
     dW = 2 * np.pi / (n * ds)
     bands = {kind: (partial(psd, kind, grade=p.grade), p.lambda_max, p.lambda_min) for kind in KINDS}
     if p.roughness:
-        rough = partial(roughness_psd, offset_db=p.roughness_offset_db)
+        levels = roughness.levels_db("rail", p.roughness_spectrum, p.contact_load or None)
+        rough = partial(roughness.band_psd, levels=levels + p.roughness_offset_db,
+                        owner="rail roughness")
         for name in COMPONENTS[4:]:
             bands[name] = (rough, p.roughness_lambda_max, p.roughness_lambda_min)
     # one stream per component, spawned in a fixed order: on the same grid, switching roughness

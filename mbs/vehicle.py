@@ -80,6 +80,12 @@ def _marker(s: System, body: Body, node: str, at, align: bool = False, place: bo
     return s.marker(body.name, at=at, align=align)
 
 
+def static_wheel_load(cfg: dict) -> float:
+    """An eighth of the car's weight (N): what each wheel carries at rest on level track."""
+    return G * (cfg["carbody"]["mass"] + 2 * cfg["frame"]["mass"] + 4 * cfg["wheelset"]["mass"]
+                + 8 * cfg["axlebox"]["mass"] + 4 * cfg["gearbox"]["mass"]) / 8
+
+
 def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None = None,
           bearings: dict | None = None) -> System:
     """The car as a :class:`~axlebox.mbs.system.System` (not yet in equilibrium: see mbs.statics).
@@ -97,10 +103,8 @@ def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None 
     ic = tables.tab.shape[0] // 2
     # wheel centre height: touching, centred, then lowered by the Hertz approach under an
     # eighth of the weight (the statics start inside the contact, where it has stiffness)
-    W_all = G * (cfg["carbody"]["mass"] + 2 * cfg["frame"]["mass"] + 4 * cfg["wheelset"]["mass"]
-                 + 8 * cfg["axlebox"]["mass"] + 4 * cfg["gearbox"]["mass"])
     K_H = float(tables.tab[ic, COL_KH])
-    sink = (W_all / 8 / K_H) ** (2 / 3)
+    sink = (static_wheel_load(cfg) / K_H) ** (2 / 3)
     z_ws = float(tables.tab[ic, COL_C0Z]) - sink
     l0 = float(tables.par[P_L0])                   # nominal wheel centre half distance
     # free rolling: the spin that makes the longitudinal creepage vanish at the loaded contact

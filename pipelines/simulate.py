@@ -32,7 +32,7 @@ from axlebox.bearing import resultfile
 from axlebox.fem import bodyfile
 from axlebox.mbs import comfort
 from axlebox.mbs import config as vconfig
-from axlebox.mbs import dtrb, integrate, statics, track, vehicle
+from axlebox.mbs import dtrb, integrate, roughness, statics, track, vehicle
 from axlebox.mbs.wheelrail import element_kernel as ek
 from axlebox.mbs.wheelrail.element import WheelRailParams, build_tables
 from axlebox.mbs.wheelrail.geometry import TrackLayout
@@ -91,13 +91,42 @@ def tables(cfg: dict):
     return build_tables(_profile(w["wheel"], "wheel"), _profile(w["rail"], "rail"), lay, par)
 
 
+def _contact_load(cfg: dict):
+    """The contact filter's load: the static wheel load, when ``track.contact_filter``."""
+    return vehicle.static_wheel_load(cfg) if cfg["track"]["contact_filter"] else None
+
+
 def track_record(cfg: dict):
     t = cfg["track"]
     if not t["irregularity"]:
         return None
+    extra = {}
+    if t["rail_roughness"] != "none":
+        extra = dict(roughness=True, roughness_spectrum=t["rail_roughness"],
+                     roughness_lambda_min=t["roughness_lambda_min"], contact_load=_contact_load(cfg) or 0.0)
     return track.generate(track.IrregularityParams(grade=t["fra_class"], lambda_min=t["lambda_min"],
                                                    lambda_max=t["lambda_max"], length=t["length"],
-                                                   seed=cfg["run"]["seed"]))
+                                                   seed=cfg["run"]["seed"], **extra))
+
+
+def wheel_roughness(cfg: dict, names) -> dict:
+    """Each wheel's own roughness record (mbs/roughness.py), independent random phases per
+    wheel from the run's seed; empty with ``track.wheel_roughness = "none"``."""
+    t = cfg["track"]
+    if t["wheel_roughness"] == "none":
+        return {}
+    seeds = np.random.SeedSequence([int(cfg["run"]["seed"]), 1]).spawn(len(names))
+    return {name: roughness.wheel_record(t["wheel_roughness"], cfg["wheelset"]["r0"],
+                                         t["roughness_lambda_min"], _contact_load(cfg),
+                                         np.random.default_rng(sq))
+            for name, sq in zip(names, seeds)}
+
+
+def _car(cfg, tabs, trk, red, bearings=None):
+    """The car's system with its wheels' roughness, assembled."""
+    s = vehicle.build(cfg, tabs, trk, red, bearings=bearings)
+    s.wheel_roughness = wheel_roughness(cfg, [w[0] for w in s.wheels])
+    return s.assemble()
 
 
 def build_model(cfg: dict, log=print):
@@ -106,7 +135,7 @@ def build_model(cfg: dict, log=print):
     (mbs/dtrb.py)."""
     red = reduced_bodies(cfg, log)
     tabs, trk = tables(cfg), track_record(cfg)
-    model = vehicle.build(cfg, tabs, trk, red).assemble()
+    model = _car(cfg, tabs, trk, red)
     log(f"vehicle: {len(model.bodies)} bodies, {model.n_states} states, flexible: "
         + ", ".join(f"{b.name} ({b.n_modes} modes)" for b in model.bodies if b.n_modes))
     y0 = statics.equilibrium(model, log=log)
@@ -116,7 +145,7 @@ def build_model(cfg: dict, log=print):
     loads = {key: F for key, F in dtrb.joint_loads(model, y0).items()
              if key[0] in cfg["joint"]["wheelsets"]}        # the rest stay on row bushings
     starts = dtrb.start(cfg, loads, float(ws["omega"][1]), log)
-    model = vehicle.build(cfg, tabs, trk, red, bearings={k: v[:3] for k, v in starts.items()}).assemble()
+    model = _car(cfg, tabs, trk, red, bearings={k: v[:3] for k, v in starts.items()})
     y0 = dtrb.place_axleboxes(model, y0, starts)
     log(f"coupled: {model.n_states} states ({model.n_states - model.n_body_states} in "
         f"{len(model.bearing_names)} bearings)")

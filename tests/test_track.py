@@ -189,7 +189,11 @@ def test_plot_returns_a_figure(record):
     ({"seed": -1}, r"seed = -1 is not allowed"),
     ({"seed": 1.5}, r"seed = 1.5 is not allowed: expected an integer"),
     ({"roughness": "yes"}, r"roughness = 'yes' is not allowed"),
-    ({"roughness_lambda_min": 0.001}, r"roughness_lambda_min = 0.001 is not allowed"),
+    ({"roughness_lambda_min": 0.0005}, r"roughness_lambda_min = 0.0005 is not allowed"),
+    ({"roughness_spectrum": "smooth"}, r"roughness_spectrum = 'smooth' is not allowed: expected one "
+     "of iso3095, network"),
+    ({"contact_load": 2e5}, r"contact_load = 200000.0 is not allowed"),
+    ({"contact_load": 1e4}, r"contact_load = 10000.0 is not allowed: expected 0 \(no contact"),
     ({"roughness": True, "roughness_lambda_min": 0.2, "roughness_lambda_max": 0.1},
      r"roughness_lambda_min = 0.2 is not allowed: must be shorter"),
 ])
@@ -205,7 +209,7 @@ def test_bad_calls_are_refused(record):
         psd("vertical", 1.0, 7)
     with pytest.raises(ParameterError, match=r"psd.Omega = 0.0 is not allowed"):
         psd("vertical", np.array([1.0, 0.0]), 5)
-    with pytest.raises(ParameterError, match=r"roughness_psd.Omega = .* ISO 3095 covers"):
+    with pytest.raises(ParameterError, match=r"roughness_psd.Omega = .* the bands cover"):
         track.roughness_psd(1.0)
     with pytest.raises(ParameterError, match=r"component = 'roughness_L' is not allowed"):
         record.harmonic_sum("roughness_L", 0.0)      # roughness is off in this record
