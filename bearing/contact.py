@@ -285,8 +285,21 @@ def _defect(D, kind, j, phi, theta):
         x = (phi - theta - D[d, 2]) % TWO_PI
         tau = D[d, 3]
         if x < tau:
-            return D[d, 4] * sin(pi * x / tau), D[d, 5], D[d, 6]
+            return _depth(D, d, x, tau), D[d, 5], D[d, 6]
     return 0.0, 0.0, 0.0
+
+
+@njit(inline="always")
+def _depth(D, d, x, tau):
+    """Depth of ring defect d at ``x`` rad into its window: Eq. (14)'s half-sine, or (``rho``
+    > 0) the roller's centre path over the two rounded edges (bearing/defects.py)."""
+    rho = D[d, 8]
+    if rho == 0.0:
+        return D[d, 4] * sin(pi * x / tau)
+    e = min(x, tau - x) * D[d, 10] - D[d, 9]       # past the nearer edge's pivot (m)
+    if e <= 0.0:
+        return 0.0
+    return min(D[d, 4], e * e / (rho + sqrt(rho * rho - e * e)))   # rho - sqrt(..), no cancellation
 
 
 @njit(cache=True)

@@ -29,8 +29,23 @@ only while the roller crosses the load zone (once a cage turn).  Its depth A tak
 curvature as Eq. (14) does; where a ring's defect and the roller's meet one contact, the deeper
 counts.
 
-The table row is ``kind, row, theta, tau, A, s1, s2, roller`` (the roller's index from 0 for
-kind 2).
+**The defect's edges** (``profile = "edges"``, a documented alternative to Eq. (14)).  A
+rigid roller of radius r_b crossing a pit narrower than itself pivots on the pit's edges: its
+centre drops by ``r_b - sqrt(r_b^2 - d^2)`` at arc distance d from the nearer edge, the depth A
+of Eq. (14) at the pit's middle, where it passes from the leading edge to the trailing one.  The
+half-sine of Eq. (14) has the same depth but puts its slope breaks at the two edges; the exact
+path is smooth there and breaks at the middle, the trailing edge's re-stressing that explicit
+finite-element studies find to be the defect's impulse (Singh, Koepke, Howard and Petersen,
+J. Sound Vib. 333 (2014) 5356-5377).  An edge rounded to radius ``edge_radius`` r_e moves the
+pivot r_e into the pit and r_e below the surface: the centre drops by
+``rho - sqrt(rho^2 - (d - r_e)^2)`` for d > r_e, rho = r_b + r_e, capped by H, which lowers the
+slope break at the middle from ``W / (2 r_b)`` to ``(W / 2 - r_e) / rho`` (no published edge
+radius for a spall was found: the radius is a sensitivity parameter, 0 a sharp edge).  Ring
+defects only.
+
+The table row is ``kind, row, theta, tau, A, s1, s2, roller, rho, r_e, R`` (the roller's index
+from 0 for kind 2; rho = 0 for Eq. (14)'s half-sine, else rho = r_b + r_e and R the raceway
+radius that turns the angle into arc length), :data:`WIDTH` columns.
 """
 from __future__ import annotations
 
@@ -43,6 +58,9 @@ from axlebox._params import ParameterError, check_ranges, param, require
 
 from .layout import KINDS
 from .params import BearingParams
+
+WIDTH = 11                                 # columns of the kernel's defect table
+PROFILES = ("half-sine", "edges")
 
 
 @dataclass(frozen=True)
@@ -60,21 +78,35 @@ class Defect:
     kind: str = "outer"
     roller: int = param(1, 1, 1000, unit="", doc="the roller of the row that carries a roller "
                                                   "defect, 1..Z")
+    profile: str = "half-sine"
+    edge_radius: float = param(0.0, 0.0, 0.01, doc="radius of the defect's edges (profile 'edges')")
 
     def __post_init__(self):
         if not isinstance(self.kind, str) or self.kind not in KINDS:
             raise ParameterError(f"Defect.kind = {self.kind!r} is not allowed: expected one of "
                                  f"{', '.join(KINDS)}")
+        if not isinstance(self.profile, str) or self.profile not in PROFILES:
+            raise ParameterError(f"Defect.profile = {self.profile!r} is not allowed: expected one of "
+                                 f"{', '.join(PROFILES)}")
         for name in ("row", "roller"):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int):
                 raise ParameterError(f"Defect.{name} = {v!r} is not allowed: expected a whole number")
         check_ranges(self)
+        if self.profile == "edges":
+            require(self.kind != "roller", self, "profile", "the edges' path is a ring defect's "
+                    "under a roller; expected 'half-sine' for a roller defect")
+            require(self.edge_radius < 0.5 * self.W, self, "edge_radius",
+                    f"expected less than half the width, W / 2 = {0.5 * self.W:g} m")
+        else:
+            require(self.edge_radius == 0.0, self, "edge_radius", "an edge radius needs "
+                    "profile = 'edges'; expected 0 with the half-sine")
 
     def depth(self, p: BearingParams) -> float:
-        """A of Eq. (14), capped by H (m)."""
-        r = p.r_b
-        return min(self.H, r - sqrt(r * r - (0.5 * self.W) ** 2))
+        """The deepest drop (m), capped by H: A of Eq. (14), or with rounded edges the drop at
+        the middle, ``rho - sqrt(rho^2 - (W/2 - r_e)^2)``."""
+        r = p.r_b + self.edge_radius
+        return min(self.H, r - sqrt(r * r - (0.5 * self.W - self.edge_radius) ** 2))
 
     def raceway(self, p: BearingParams) -> float:
         """Diameter of the surface the defect is on (m): ``D_o`` (cup), ``D_i`` (cone) or ``D_b``
@@ -110,9 +142,11 @@ def table(defects, p: BearingParams) -> np.ndarray:
                 raise ParameterError(f"Defect.angle = {d.angle!r} is not allowed: the defect overlaps "
                                      f"another one on the same surface ({d.kind}, row {d.row})")
         spans.append((start, tau, surface))
+        edges = d.profile == "edges"
         rows.append([KINDS[d.kind], d.row - 1, start, tau, d.depth(p), s1, s2,
-                     d.roller - 1 if d.kind == "roller" else 0.0])
-    return np.array(rows, dtype=float).reshape(-1, 8)
+                     d.roller - 1 if d.kind == "roller" else 0.0,
+                     p.r_b + d.edge_radius if edges else 0.0, d.edge_radius, 0.5 * d.raceway(p)])
+    return np.array(rows, dtype=float).reshape(-1, WIDTH)
 
 
 def phase_clear_of(D: np.ndarray, Z: int, phase: float = 0.0) -> float:

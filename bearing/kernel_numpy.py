@@ -99,7 +99,13 @@ def _defect(D, kind, phi, theta):
         x = np.mod(phi - theta - D[d, 2], TWO_PI)
         tau = D[d, 3]
         hit = ~found & (row == D[d, 1]) & (x < tau)
-        h = np.where(hit, D[d, 4] * np.sin(np.pi * x / tau), h)
+        if D[d, 8] == 0.0:                           # Eq. (14)'s half-sine
+            depth = D[d, 4] * np.sin(np.pi * x / tau)
+        else:                                        # over the rounded edges (bearing/defects.py)
+            rho = D[d, 8]
+            e = np.maximum(np.minimum(x, tau - x) * D[d, 10] - D[d, 9], 0.0)
+            depth = np.minimum(D[d, 4], e * e / (rho + np.sqrt(np.maximum(rho * rho - e * e, 0.0))))
+        h = np.where(hit, depth, h)
         s1 = np.where(hit, D[d, 5], s1)
         s2 = np.where(hit, D[d, 6], s2)
         found |= hit

@@ -238,7 +238,7 @@ def initial_state(c: RigConfig):
     p = c.bearing
     P, D = pack(p), _defects.table(c.defects, p)
     shift = np.random.default_rng(c.seed).uniform(0, 2 * np.pi / p.Z) if c.seed else 0.0
-    y, uo = static_state(p, P, np.zeros((0, 8)), (0.0, c.F_a, -c.F_r), c.omega_w,
+    y, uo = static_state(p, P, np.zeros((0, _defects.WIDTH)), (0.0, c.F_a, -c.F_r), c.omega_w,
                          phase=_defects.phase_clear_of(D, p.Z, shift))
     Y = np.concatenate([y, uo, np.zeros(3)])
     return Y, P, D, _rig_vector(c, uo)

@@ -7,7 +7,8 @@ choice changed: the contact damping (the earlier default, damping ratios 0.1, 0.
 contact, the stiffness-proportional law at several coefficients, the paper's rule as printed),
 the reduction of every flexible body (Craig-Bampton or Guyan), the axle-box's modal damping
 (1, 2, 4, 8 %), the axle-box assembly's masses (without them), the sensor model (ideal) and
-short-wave wheel and rail roughness (two CNOSSOS-EU pairs).
+short-wave wheel and rail roughness (two CNOSSOS-EU pairs) and the defect's profile (the
+roller's path over the pit's edges, sharp and rounded).
 For each, after the 0.5 s fade-in, on the defect side (ws2_R) and the healthy side (ws2_L):
 the median of the per-fault-period peaks (what the paper's Fig. 8a reads as "impulses of about
 20 m/s^2"), the 99.9 % peak, RMS, the share of power in 2-3 kHz (the axle-box ring), FC and VF
@@ -25,6 +26,7 @@ from __future__ import annotations
 import argparse
 import json
 import time
+import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -40,6 +42,12 @@ ALL = ["frame1", "ws1", "ws2", "ab1L", "ab1R", "ab2L", "ab2R"]
 NO_MASSES = {"axlebox": {"cup_mass": 0.0, "cover_mass": 0.0, "adapter_mass": 0.0}}
 IDEAL = {"sensors": {"model": "ideal"}, "integrator": {"output_rate_hz": 1e4}}
 SPECTRA = ("shipped", "ratio0.1", "ratio2", "beta5e-5", "beta1e-3", "guyan")   # in the figure
+
+
+def edges(r_e: float) -> dict:
+    """The validation defect with the roller's path over its edges (bearing/defects.py)."""
+    d = tomllib.loads(configs.path("validation_48kmh").read_text())["defects"][0]
+    return {"defects": [{**d, "profile": "edges", "edge_radius": r_e}]}
 
 
 def guyan(kinds) -> dict:
@@ -76,6 +84,11 @@ VARIANTS = {
                             {"track": {"rail_roughness": "iso3095", "wheel_roughness": "composite"}}),
     "rough_network_castiron": ("roughness: average-network rails, cast-iron-block wheels, contact filter",
                                {"track": {"rail_roughness": "network", "wheel_roughness": "cast-iron"}}),
+    # the defect's profile: the roller's centre path over the pit's edges instead of Eq. (14)'s
+    # half-sine; sharp, and rounded (no published spall edge radius: illustrative radii)
+    "edges0": ("defect profile: roller over sharp edges", edges(0.0)),
+    "edges0.25": ("defect profile: roller over edges rounded to 0.25 mm", edges(0.25e-3)),
+    "edges0.5": ("defect profile: roller over edges rounded to 0.5 mm", edges(0.5e-3)),
     "ideal_sensor": ("ideal sensor (no accelerometer, no anti-alias filter)", IDEAL),
 }
 

@@ -16,6 +16,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from axlebox._params import ParameterError
+from axlebox.bearing import defects
 
 from . import ffrf_numpy as fn
 from .body import Body
@@ -133,7 +134,8 @@ class System:
                                      f"allowed: bearing {x[0]!r} uses ({x[1]}, {x[2]}); expected "
                                      "markers of its own")
         self.bearings.append((name, inner, outer, b, np.asarray(P, float),
-                              np.asarray(D, float).reshape(-1, 8), np.asarray(y0, float)))
+                              np.asarray(D, float).reshape(-1, defects.WIDTH),
+                              np.asarray(y0, float)))
 
     def wheel(self, name: str, marker: int, side: int, r_c: float) -> None:
         """A wheel-rail contact at the tread marker ``marker``; ``side`` 0 left, 1 right;
@@ -248,7 +250,7 @@ class System:
         from .kernel_bearings import BR_WIDTH
         br_i = np.zeros((len(self.bearings), BR_WIDTH), np.int64)
         br_P = np.zeros((max(len(self.bearings), 1), N_P))
-        D_parts, off, d0 = [np.zeros((0, 8))], y0.size, 0
+        D_parts, off, d0 = [np.zeros((0, defects.WIDTH))], y0.size, 0
         for k, (_, mi, mo, b, P, D, yb) in enumerate(self.bearings):
             br_i[k] = (mi, mo, b, off, yb.size, d0, D.shape[0])
             br_P[k] = P
@@ -256,7 +258,7 @@ class System:
             off += yb.size
             d0 += D.shape[0]
         y0 = np.concatenate([y0] + [x[6] for x in self.bearings])
-        br_D = np.concatenate(D_parts) if d0 else np.zeros((1, 8))
+        br_D = np.concatenate(D_parts) if d0 else np.zeros((1, defects.WIDTH))
         return br_i, br_P, br_D, y0
 
     def initial_marker_pose(self, m: int) -> tuple[np.ndarray, np.ndarray]:

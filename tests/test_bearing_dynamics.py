@@ -51,7 +51,7 @@ def test_static_start_balances_the_load_and_matches_stribeck():
     forces included): the ring load is carried to 1e-6, Q_max Z cos(a) / F_row within 3 % of
     4.08 (Stribeck/Harris), and each roller is in radial, axial and tilt balance."""
     p = BearingParams(u_r=0.0, u_a=0.0)
-    P, D = layout.pack(p, gravity=(0.0, 0.0, 0.0)), np.zeros((0, 8))
+    P, D = layout.pack(p, gravity=(0.0, 0.0, 0.0)), np.zeros((0, defects.WIDTH))
     Fr = 60e3
     y, uo = equilibrium.static_state(p, P, D, (0.0, 0.0, -Fr), 1e-9)
     yd, F, Q = np.zeros_like(y), np.zeros((2, 6)), np.zeros((2, p.Z, 6))

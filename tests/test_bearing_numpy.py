@@ -116,6 +116,51 @@ def test_defect(start):
     assert_same(y3, ring3, P, short)
 
 
+@pytest.mark.parametrize("r_e", [0.0, 0.3e-3])
+def test_a_defect_with_edges_is_the_rollers_centre_path_over_them(start, r_e):
+    """profile = 'edges' (bearing/defects.py): a rigid roller of radius r_b pivoting on the pit's
+    edges, rounded to r_e, drops by rho - sqrt(rho^2 - (d - r_e)^2), rho = r_b + r_e, at arc
+    distance d from the nearer edge; with sharp edges its middle is Eq. (14)'s depth A, and the
+    path breaks there by the closed-form slope (W/2 - r_e) / sqrt(rho^2 - (W/2 - r_e)^2)."""
+    from axlebox.bearing import contact, kernel_numpy
+    p, P, _, y, ring = start
+    d = defects.Defect(W=2e-3, profile="edges", edge_radius=r_e)
+    D = defects.table((d,), p)
+    tau, R, rho = d.tau(p), 0.5 * p.D_o, p.r_b + r_e
+    x = np.linspace(0.0, tau, 2001)[1:-1]
+    arc = np.minimum(x, tau - x) * R
+    e = np.clip(arc - r_e, 0.0, None)
+    ref = e ** 2 / (rho + np.sqrt(rho ** 2 - e ** 2))          # rho - sqrt(rho^2 - e^2)
+    ref = np.minimum(ref, D[0, 4])           # capped at the chord's W/2 (the arc is a hair longer)
+    got = np.array([contact._defect(D, 0.0, 1, D[0, 2] + xi, 0.0)[0] for xi in x])
+    np.testing.assert_allclose(got, ref, rtol=1e-12, atol=1e-18)
+    phi = np.zeros((2, x.size))
+    phi[1] = D[0, 2] + x
+    np.testing.assert_allclose(kernel_numpy._defect(D, 0.0, phi, 0.0)[0][1], got, rtol=1e-12, atol=1e-18)
+    if r_e == 0.0:
+        assert got.max() == pytest.approx(defects.Defect(W=2e-3).depth(p), rel=1e-3)
+    half = 0.5 * tau * R - r_e
+    slope = np.gradient(got, x * R)
+    mid = x.size // 2
+    assert slope[mid - 3] == pytest.approx(half / np.sqrt(rho ** 2 - half ** 2), rel=0.01)
+    assert slope[mid + 3] == pytest.approx(-half / np.sqrt(rho ** 2 - half ** 2), rel=0.01)
+    # the whole kernel, numba against numpy, with a roller over the pit's trailing half
+    y2 = y.copy()
+    layout.views(y2, p.Z)[0][1, 0, PHI] = 0.2 * d.tau(p)
+    assert_same(y2, ring, P, D)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"profile": "flat"}, r"Defect.profile = 'flat' is not allowed: expected one of half-sine, edges"),
+    ({"edge_radius": 1e-4}, r"Defect.edge_radius = 0.0001 is not allowed: an edge radius needs"),
+    ({"profile": "edges", "edge_radius": 1e-3}, r"edge_radius = 0.001 is not allowed: expected less than"),
+    ({"profile": "edges", "kind": "roller"}, r"Defect.profile = 'edges' is not allowed: the edges'"),
+])
+def test_bad_defect_profiles_are_refused(kwargs, match):
+    with pytest.raises(defects.ParameterError, match=match):
+        defects.Defect(W=2e-3, **kwargs)
+
+
 N = 10.0 / 9.0
 H = 0.02
 LINE_CASES = {
