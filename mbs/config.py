@@ -33,7 +33,8 @@ SCHEMA: dict[str, dict[str, tuple]] = {
                    "rho_inf": (F, 0.8, 0.0, 1.0)},
     # the bodies' step and their exchange with the bearings (mbs/exchange.py): a whole multiple
     # of integrator.dt, which is then the bearings' sub-step; 0: every step (single rate)
-    "coupling": {"exchange_dt": (F, 0.0, 0.0, 1e-3)},
+    "coupling": {"exchange_dt": (F, 0.0, 0.0, 1e-3), "body_substeps": (I, 1, 1, 1000),
+                 "hold": (S, "zoh", ("zoh", "linear"))},
     "track": {"fra_class": (I, 5, 1, 6), "lambda_min": (F, 1.0, 0.1, 100.0),
               "lambda_max": (F, 80.0, 1.0, 1000.0), "length": (F, 400.0, 10.0, 1e5),
               "irregularity": (B, True),
@@ -249,6 +250,11 @@ def validate(user: dict) -> dict:
         if round(n) < 1 or abs(n - round(n)) > 1e-6 * n:
             raise ParameterError(f"coupling.exchange_dt = {H:g} is not allowed: expected a whole multiple "
                                  f"of integrator.dt = {ig['dt']:g} s (the bearings' sub-step)")
+    m = cfg["coupling"]["body_substeps"]
+    if m > 1 and (H <= 0.0 or ig["method"] not in ("leapfrog", "imex", "imex2")):
+        raise ParameterError(f"coupling.body_substeps = {m} is not allowed with integrator.method = "
+                             f"{ig['method']!r} and coupling.exchange_dt = {H:g}: the bodies step "
+                             "between exchanges only in a leapfrog run with exchange_dt > 0; expected 1")
     step, name = (H, "coupling.exchange_dt") if H > 0.0 else (ig["dt"], "integrator.dt")
     per_output = 1.0 / ig["output_rate_hz"] / step
     if round(per_output) < 1 or abs(per_output - round(per_output)) > 1e-6 * per_output:

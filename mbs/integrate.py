@@ -16,7 +16,7 @@ import numpy as np
 from axlebox._params import ParameterError, check_ranges, param
 
 from . import kernel_integrate as ki
-from .exchange import exchange
+from .exchange import HOLDS, exchange
 from .system import Model
 
 METHODS = ("rk4", "leapfrog", "imex", "imex2", "galpha")
@@ -42,12 +42,24 @@ class Settings:
     vmax: float = param(1e3, 1.0, 1e9, unit="m/s", doc="a velocity state beyond this is a runaway")
     exchange_dt: float = param(0.0, 0.0, 1e-2, unit="s", doc="the bodies' step and their exchange "
                                "with the bearings (mbs/exchange.py), a whole multiple of dt; 0: dt")
+    body_substeps: int = param(1, 1, 1000, unit="", doc="the bodies' steps an exchange, the bearings' "
+                               "loads held between (a co-simulation, mbs/exchange.py); 1: one")
+    hold: str = field(default="zoh", metadata={"doc": "how the co-simulation holds the bearings' "
+                                                     "loads between exchanges: 'zoh' or 'linear'"})
 
     def __post_init__(self):
         if self.method not in METHODS:
             raise ParameterError(f"Settings.method = {self.method!r} is not allowed: expected one "
                                  f"of {METHODS}")
         check_ranges(self)
+        if self.hold not in HOLDS:
+            raise ParameterError(f"coupling.hold = {self.hold!r} is not allowed: expected one of "
+                                 f"{', '.join(HOLDS)}")
+        if self.body_substeps > 1 and (self.exchange_dt <= 0.0 or self.method in ("rk4", "galpha")):
+            raise ParameterError(f"coupling.body_substeps = {self.body_substeps} is not allowed with "
+                                 f"integrator.method = {self.method!r} and coupling.exchange_dt = "
+                                 f"{self.exchange_dt:g}: the bodies step between exchanges only in a "
+                                 "leapfrog run with exchange_dt > 0; expected 1")
         if self.exchange_dt > 0.0:
             if self.method in ("rk4", "galpha") and self.exchange_dt != self.dt:
                 raise ParameterError(f"coupling.exchange_dt = {self.exchange_dt:g} is not allowed with "
@@ -161,7 +173,8 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
     if resume is not None:
         exchange_ring = resume.get("exchange")
     X = exchange(model, s.method if s.method in ("leapfrog", "imex", "imex2") else "leapfrog", s.dt,
-                 s.n_exchange, exchange_ring if (continued or resume is not None) else None)
+                 s.n_exchange, exchange_ring if (continued or resume is not None) else None,
+                 m=s.body_substeps, hold=s.hold)
     se = s.state_every
     per = max(1, int(round(chunk * s.output_rate_hz)))
     rows = n_out if sink is None else min(per, n_out)        # the whole run, or one chunk

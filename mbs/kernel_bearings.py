@@ -105,6 +105,24 @@ def bearing_exchange(t, y, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, e
     X.ring[:, :, :] = ring
     X.flags[0] = 0
     _all_loads_back(br_i, mkF, mkM, elout, F, Qc, th, cages)
+    if X.m > 1:                                     # the co-simulation's held loads
+        X.held[1] = X.held[0] if X.flags[1] != 0 else F
+        X.held[0] = F
+        X.flags[1] = 1
+
+
+@njit(cache=True)
+def held_loads(br_i, mkF, mkM, X, u):
+    """The last exchange's ring loads on the markers, carried ``u`` exchange steps on along the
+    line through the last two (``u = 0``: held)."""
+    for k in range(br_i.shape[0]):
+        mi, mo = br_i[k, BR_MIN], br_i[k, BR_MOUT]
+        for a in range(3):
+            for r, mk in ((0, mi), (1, mo)):
+                F0, F1 = X.held[0, k, r, a], X.held[1, k, r, a]
+                M0, M1 = X.held[0, k, r, 3 + a], X.held[1, k, r, 3 + a]
+                mkF[mk, a] += F0 + u * (F0 - F1)
+                mkM[mk, a] += M0 + u * (M0 - M1)
 
 
 @njit(cache=True, parallel=True)

@@ -46,7 +46,7 @@ import numpy as np
 from numba import njit
 
 from .kernel_body import BI_N, BI_POS, BI_SPIN, BI_VEL, frame_kinematics, position_rates
-from .kernel_system import rhs, rhs_exchange
+from .kernel_system import rhs, rhs_exchange, rhs_held
 
 OK, NOT_FINITE, RUNAWAY, NO_CONVERGENCE = 0, 1, 2, 3
 
@@ -133,7 +133,8 @@ def run_explicit(leapfrog, y, t0, h, n_sub, n_out, k0, k_last, S, W, X, nq, nend
     Leapfrog: with ``start`` the velocities in ``y`` are ``u_0`` and the first kick is by
     ``h / 2``; after that they are ``u_{n-1/2}``, half a step behind the positions, and a run
     continued from ``y`` (``start`` False) goes on exactly as if it had not stopped.  Its
-    bearings exchange with the bodies every step (``X``: :class:`.exchange.Exchange`).
+    bearings exchange with the bodies every step (``X``: :class:`.exchange.Exchange`), and
+    between exchanges the bodies take ``X.m`` steps of ``h / X.m`` with the loads held.
     ``base``: the output the buffers' first row holds (:func:`_output`)."""
     N = y.shape[0]
     k1 = np.empty(N)
@@ -165,7 +166,12 @@ def run_explicit(leapfrog, y, t0, h, n_sub, n_out, k0, k_last, S, W, X, nq, nend
                     break
             if leapfrog:
                 first = start and k == k0 and j == 0
-                _kick_drift(y, k1, 0.5 * h if first else h, h, S, W)
+                hb = h / X.m                  # the bodies' step (co-simulation: X.m > 1)
+                _kick_drift(y, k1, 0.5 * hb if first else hb, hb, S, W)
+                for i in range(1, X.m):
+                    _normalise(y, S.bi)
+                    rhs_held(t + i * hb, y, k1, S, W, X, i / X.m if X.hold == 1 else 0.0)
+                    _kick_drift(y, k1, hb, hb, S, W)
             else:
                 _rk4_step(t, y, k1, k2, k3, k4, yt, h, S, W)
             _normalise(y, S.bi)

@@ -18,7 +18,7 @@ from collections import namedtuple
 import numpy as np
 from numba import njit, prange
 
-from .kernel_bearings import bearing_exchange, bearing_forces
+from .kernel_bearings import bearing_exchange, bearing_forces, held_loads
 from .kernel_body import BI_N, BI_VEL, body_accelerations, frame_kinematics, gravity_load, position_rates
 from .kernel_elements import element_forces
 from .kernel_markers import marker_acceleration, marker_kinematics, marker_loads
@@ -49,6 +49,15 @@ def rhs_exchange(t, y, dy, S, W, X):
     _kinematics(t, y, dy, S, W)
     bearing_exchange(t, y, S.bi, S.br_i, S.br_P, S.br_D, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM,
                      W.elout, X)
+    _dynamics(t, y, dy, S, W)
+
+
+@njit(cache=True)
+def rhs_held(t, y, dy, S, W, X, u):
+    """The bodies' ``dy`` at ``t`` between exchanges of a co-simulation: the bearings' loads
+    those of the last exchange, carried ``u`` exchange steps on (:func:`.kernel_bearings.held_loads`)."""
+    _kinematics(t, y, dy, S, W)
+    held_loads(S.br_i, W.mkF, W.mkM, X, u)
     _dynamics(t, y, dy, S, W)
 
 

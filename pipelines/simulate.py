@@ -156,7 +156,8 @@ def settings(cfg: dict) -> integrate.Settings:
     i = cfg["integrator"]
     return integrate.Settings(method=i["method"], dt=i["dt"], output_rate_hz=i["output_rate_hz"],
                               state_rate_hz=i["state_rate_hz"], rho_inf=i["rho_inf"],
-                              exchange_dt=cfg["coupling"]["exchange_dt"])
+                              exchange_dt=cfg["coupling"]["exchange_dt"],
+                              body_substeps=cfg["coupling"]["body_substeps"], hold=cfg["coupling"]["hold"])
 
 
 def write(path, run: integrate.Run, model, cfg_text: str, seed: int,

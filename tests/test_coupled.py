@@ -15,7 +15,7 @@ from axlebox.bearing.diagnostics.channel import analyse
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.params import BearingParams
 from axlebox.mbs import config as vconfig
-from axlebox.mbs import integrate
+from axlebox.mbs import exchange, integrate
 from axlebox.mbs.kernel_bearings import BR_ROWS
 from axlebox.pipelines import simulate as psim
 
@@ -209,6 +209,41 @@ def test_bodies_stepping_at_the_exchange_step_follow_the_single_rate_run(car):
     a, b = ind(runs[0.0]), ind(runs[2e-5])
     np.testing.assert_allclose(b[[0, 2]], a[[0, 2]], rtol=0.03)
     np.testing.assert_allclose(b[1], a[1], rtol=0.15)
+
+
+def test_a_co_simulation_with_a_short_exchange_follows_the_single_rate_run(car):
+    """The paper's arrangement (mbs/exchange.py, "Co-simulation"): the bodies take two steps of
+    1e-5 s an exchange of 2e-5 s with the bearings' loads held between, against everything at
+    1e-5 s: the tolerances of the multirate test above.  And the held loads are the last
+    exchange's, carried on the line through the last two by the "linear" hold."""
+    from axlebox.mbs.kernel_bearings import BR_MIN, BR_MOUT, held_loads
+    cfg, model, y0 = car
+    runs = {}
+    for H, m in ((0.0, 1), (2e-5, 2)):
+        s = integrate.Settings(method="leapfrog", dt=1e-5, exchange_dt=H, body_substeps=m,
+                               output_rate_hz=1e4, state_rate_hz=100)
+        runs[H] = integrate.simulate(model, 0.3, s, y0=y0)
+        assert runs[H].ok, runs[H].message
+    f_s = float(model.body_state(model.system.index("ws2"), y0)["omega"][1]) / (2 * np.pi)
+    fo = orders(BearingParams())
+
+    def ind(run):
+        d = analyse(run.sensors["ws2_R"][500:, 2], 1e4, f_s, fo, 0.130, lines=("BPFO",))
+        return np.array([d.rms, d.lines["BPFO"].searched[0][2], run.sensors["ws2_L"][500:, 2].std()])
+    a, b = ind(runs[0.0]), ind(runs[2e-5])
+    np.testing.assert_allclose(b[[0, 2]], a[[0, 2]], rtol=0.03)
+    np.testing.assert_allclose(b[1], a[1], rtol=0.15)
+
+    X = exchange.exchange(model, "leapfrog", 1e-5, 2, m=2, hold="linear")
+    rng = np.random.default_rng(0)
+    X.held[:] = rng.standard_normal(X.held.shape)
+    mkF, mkM = np.zeros_like(model.W.mkF), np.zeros_like(model.W.mkM)
+    held_loads(model.S.br_i, mkF, mkM, X, 0.5)
+    for k, (mi, mo) in enumerate(model.S.br_i[:, [BR_MIN, BR_MOUT]]):
+        for r, mk in ((0, mi), (1, mo)):
+            want = 1.5 * X.held[0, k, r] - 0.5 * X.held[1, k, r]
+            np.testing.assert_allclose(mkF[mk], want[:3], rtol=1e-15)
+            np.testing.assert_allclose(mkM[mk], want[3:], rtol=1e-15)
 
 
 def test_a_multirate_run_resumed_from_its_checkpoint_is_the_unbroken_run(car):

@@ -151,6 +151,10 @@ def test_implicit_and_explicit_integrators_agree_on_the_car(run48):
     ("[joint]\nwheelsets = [[1], 2]\n", "joint.wheelsets"),
     ("[track]\nlambda_min = 90.0\n", "track.lambda_min"),
     ("[run]\nduration = 'long'\n", "run.duration"),
+    ("[coupling]\nbody_substeps = 4\n", "coupling.body_substeps"),
+    ("[coupling]\nhold = 'cubic'\n", "coupling.hold"),
+    ("[track]\nwheel_roughness = 'steel'\n", "track.wheel_roughness"),
+    ("[[defects]]\nprofile = 'flat'\n", "defects[0]: Defect.profile"),
 ])
 def test_bad_config_exits_2_with_one_line_naming_the_field(tmp_path, capsys, text, field):
     p = tmp_path / "bad.toml"
