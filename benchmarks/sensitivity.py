@@ -94,10 +94,18 @@ VARIANTS = {
     "edges0": ("defect profile: roller over sharp edges", edges(0.0)),
     "edges0.25": ("defect profile: roller over edges rounded to 0.25 mm", edges(0.25e-3)),
     "edges0.5": ("defect profile: roller over edges rounded to 0.5 mm", edges(0.5e-3)),
+    # the edges with less contact damping (inside the paper's cited range): do the impulses
+    # come back to the field's size?
+    "edges0_beta5e-5": ("defect profile: sharp edges, damping 5e-5 s x stiffness",
+                        {**edges(0.0), "bearing": {"damping": "stiffness", "beta": 5e-5}}),
+    "edges0_beta2.5e-5": ("defect profile: sharp edges, damping 2.5e-5 s x stiffness",
+                          {**edges(0.0), "bearing": {"damping": "stiffness", "beta": 2.5e-5}}),
     # the paper's co-simulation: loads exchanged every 1e-4 s, the bodies in ten steps between
     # (mbs/exchange.py "Co-simulation"); 10 kHz outputs, so the ideal sensor
     "cosim_zoh": ("co-simulation, exchange 1e-4 s, loads held (zero-order hold)", cosim("zoh")),
     "cosim_linear": ("co-simulation, exchange 1e-4 s, loads extrapolated (linear)", cosim("linear")),
+    "cosim_zoh_guyan": ("co-simulation, exchange 1e-4 s, zero-order hold, Guyan wheelsets and axle-boxes "
+                        "(the paper's reduction)", {**cosim("zoh"), **guyan(("wheelset", "axlebox"))}),
     "ideal_sensor": ("ideal sensor (no accelerometer, no anti-alias filter)", IDEAL),
 }
 
