@@ -104,6 +104,8 @@ VARIANTS = {
     # (mbs/exchange.py "Co-simulation"); 10 kHz outputs, so the ideal sensor
     "cosim_zoh": ("co-simulation, exchange 1e-4 s, loads held (zero-order hold)", cosim("zoh")),
     "cosim_linear": ("co-simulation, exchange 1e-4 s, loads extrapolated (linear)", cosim("linear")),
+    "cosim_jacobian": ("co-simulation, exchange 1e-4 s, loads held with the interface Jacobian",
+                       cosim("jacobian")),
     "cosim_zoh_guyan": ("co-simulation, exchange 1e-4 s, zero-order hold, Guyan wheelsets and axle-boxes "
                         "(the paper's reduction)", {**cosim("zoh"), **guyan(("wheelset", "axlebox"))}),
     "ideal_sensor": ("ideal sensor (no accelerometer, no anti-alias filter)", IDEAL),

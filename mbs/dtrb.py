@@ -76,6 +76,25 @@ def start(cfg: dict, loads: dict, omega_w: float, log=print) -> dict:
     return out
 
 
+def stiffness(cfg: dict, loads: dict, names) -> np.ndarray:
+    """Each named bearing's tangent stiffness (n, 3) along x, y (axial), z (N/m) at its static
+    load, from the quasi-static model (bearing/quasistatic.py): the load moved by 1 % of its
+    size along each axis over the inner ring's displacement that follows.  The interface
+    Jacobian of a co-simulation's "jacobian" hold (mbs/exchange.py)."""
+    from axlebox.bearing import quasistatic
+    p = params(cfg)
+    out = np.zeros((len(names), 3))
+    for i, name in enumerate(names):
+        F = np.asarray(loads[_key(name)][:3], float)
+        q0 = quasistatic.solve(p, F).q
+        dF = 0.01 * np.linalg.norm(F)
+        for a in range(3):
+            F1 = F.copy()
+            F1[a] += dF
+            out[i, a] = dF / (quasistatic.solve(p, F1).q[a] - q0[a])
+    return out
+
+
 def place_axleboxes(model, y, start_states: dict) -> np.ndarray:
     """``y`` (body states of the bearing model) with each axle-box moved so that its bore marker
     sits at the bearing's equilibrium displacement from the journal marker, followed by the

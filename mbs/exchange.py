@@ -22,7 +22,12 @@ both are measured against the single-rate run (tests/test_coupled.py, benchmarks
 integrates on its own between exchanges): the bodies take ``m`` leapfrog steps of ``H / m`` an
 exchange, the exchange's mean ring loads on the markers throughout (``hold`` "zoh", a zero-order
 hold, as a co-simulation interface holds its inputs between communication points), or carried
-on the line through the last two exchanges' ("linear", first-order extrapolation).  The held
+on the line through the last two exchanges' ("linear", first-order extrapolation), or held
+with the interface Jacobian ("jacobian": the held loads plus ``-K`` times the outer ring's
+displacement from the inner since the exchange, ``K`` each bearing's tangent stiffness at its
+static load along x, y, z, :func:`axlebox.mbs.dtrb.stiffness`; the remedy of Kuebler and
+Schiehlen, "Two methods of simulator coupling", Math. Comput. Model. Dyn. Syst. 6 (2000)
+93-113: the stiff linear part follows the bodies at their own step, only the rest is held).  The held
 loads come from a window centred on the exchange and act over the step after it, so a zero-order
 hold lags the bearing stiffness by about ``H / 2``: on a mode of frequency ``w`` a negative
 damping ratio near ``w H / 4`` (11 % for the axle box on its bearing, 700 Hz, at the paper's
@@ -46,16 +51,19 @@ import numpy as np
 
 from axlebox.bearing.advance import MODES, block_rows
 
-Exchange = namedtuple("Exchange", ["ring", "flags", "h", "n", "mode", "G", "held", "m", "hold"])
-HOLDS = {"zoh": 0, "linear": 1}
+Exchange = namedtuple("Exchange", ["ring", "flags", "h", "n", "mode", "G", "held", "m", "hold", "K",
+                                   "r0"])
+HOLDS = {"zoh": 0, "linear": 1, "jacobian": 2}
 
 
-def exchange(model, method: str, h: float, n: int, ring=None, m: int = 1, hold: str = "zoh") -> Exchange:
+def exchange(model, method: str, h: float, n: int, ring=None, m: int = 1, hold: str = "zoh",
+             K=None) -> Exchange:
     """The exchange of ``model``'s bearings for a leapfrog ``method`` ('leapfrog', 'imex',
     'imex2') with sub-step ``h`` and ``n`` sub-steps an exchange; ``ring``: the last exchange's
     ring motion of a run this one continues (:attr:`axlebox.mbs.integrate.Run.exchange`),
     else the run starts.  ``m`` > 1: the bodies take ``m`` steps an exchange with the ring
-    loads held (``hold``, :data:`HOLDS`; module docstring, "Co-simulation")."""
+    loads held (``hold``, :data:`HOLDS`; module docstring, "Co-simulation"); ``K`` (n_bearings,
+    3): the bearings' tangent stiffness the "jacobian" hold needs (:func:`axlebox.mbs.dtrb.stiffness`)."""
     nbr = len(model.bearing_names)
     mode = MODES[method]
     Z = int(model.S.br_P[0, 0]) if nbr else 0
@@ -64,4 +72,6 @@ def exchange(model, method: str, h: float, n: int, ring=None, m: int = 1, hold: 
     start = ring is None
     ring = np.zeros((nbr, 2, 12)) if start else np.array(ring, float).reshape(nbr, 2, 12)
     return Exchange(ring=ring, flags=np.array([1 if start else 0, 0], np.int64), h=float(h), n=int(n),
-                    mode=int(mode), G=G, held=np.zeros((2, nbr, 2, 6)), m=int(m), hold=HOLDS[hold])
+                    mode=int(mode), G=G, held=np.zeros((2, nbr, 2, 6)), m=int(m), hold=HOLDS[hold],
+                    K=np.zeros((nbr, 3)) if K is None else np.array(K, float).reshape(nbr, 3),
+                    r0=np.zeros((nbr, 3)))

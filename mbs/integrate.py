@@ -45,7 +45,8 @@ class Settings:
     body_substeps: int = param(1, 1, 1000, unit="", doc="the bodies' steps an exchange, the bearings' "
                                "loads held between (a co-simulation, mbs/exchange.py); 1: one")
     hold: str = field(default="zoh", metadata={"doc": "how the co-simulation holds the bearings' "
-                                                     "loads between exchanges: 'zoh' or 'linear'"})
+                                                     "loads between exchanges: 'zoh', 'linear' or "
+                                                     "'jacobian'"})
 
     def __post_init__(self):
         if self.method not in METHODS:
@@ -172,9 +173,14 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
     S = model.S
     if resume is not None:
         exchange_ring = resume.get("exchange")
+    if s.hold == "jacobian" and s.body_substeps > 1 and model.bearing_names \
+            and getattr(model, "bearing_stiffness", None) is None:
+        raise ParameterError("coupling.hold = 'jacobian' is not allowed for this model: it has no "
+                             "bearing_stiffness (pipelines/simulate.build_model sets it; "
+                             "mbs/dtrb.stiffness); expected 'zoh' or 'linear'")
     X = exchange(model, s.method if s.method in ("leapfrog", "imex", "imex2") else "leapfrog", s.dt,
                  s.n_exchange, exchange_ring if (continued or resume is not None) else None,
-                 m=s.body_substeps, hold=s.hold)
+                 m=s.body_substeps, hold=s.hold, K=getattr(model, "bearing_stiffness", None))
     se = s.state_every
     per = max(1, int(round(chunk * s.output_rate_hz)))
     rows = n_out if sink is None else min(per, n_out)        # the whole run, or one chunk

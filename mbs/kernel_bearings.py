@@ -109,14 +109,27 @@ def bearing_exchange(t, y, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, e
         X.held[1] = X.held[0] if X.flags[1] != 0 else F
         X.held[0] = F
         X.flags[1] = 1
+        for k in range(br_i.shape[0]):
+            for a in range(3):
+                X.r0[k, a] = ring[k, 1, a]
 
 
 @njit(cache=True)
-def held_loads(br_i, mkF, mkM, X, u):
+def held_loads(y, bi, br_i, mkp, mkv, mkR, mkw, mkF, mkM, X, u):
     """The last exchange's ring loads on the markers, carried ``u`` exchange steps on along the
-    line through the last two (``u = 0``: held)."""
+    line through the last two (``u = 0``: held); with the "jacobian" hold (``X.hold == 2``) plus
+    ``-K`` times the outer ring's displacement from the inner since the exchange on the outer
+    ring, its opposite on the inner."""
+    ring = np.zeros((2, 12))
+    th = np.zeros(6)
     for k in range(br_i.shape[0]):
         mi, mo = br_i[k, BR_MIN], br_i[k, BR_MOUT]
+        if X.hold == 2:
+            _ring_motion(k, y, bi, br_i, mkp, mkv, mkR, mkw, ring, th)
+            for a in range(3):
+                dF = -X.K[k, a] * (ring[1, a] - X.r0[k, a])
+                mkF[mo, a] += dF
+                mkF[mi, a] -= dF
         for a in range(3):
             for r, mk in ((0, mi), (1, mo)):
                 F0, F1 = X.held[0, k, r, a], X.held[1, k, r, a]

@@ -57,7 +57,7 @@ def rhs_held(t, y, dy, S, W, X, u):
     """The bodies' ``dy`` at ``t`` between exchanges of a co-simulation: the bearings' loads
     those of the last exchange, carried ``u`` exchange steps on (:func:`.kernel_bearings.held_loads`)."""
     _kinematics(t, y, dy, S, W)
-    held_loads(S.br_i, W.mkF, W.mkM, X, u)
+    held_loads(y, S.bi, S.br_i, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, X, u)
     _dynamics(t, y, dy, S, W)
 
 

@@ -50,8 +50,12 @@ WHY = {
          "difference falls below the range's lower edge, 8e3 Hz^2 (a 1 mm defect at 20-40 km/h, "
          "3 mm at 40 km/h), and both sides are left undecided, not named wrong.  Over the whole "
          "record the defect side's VF (0.4-1.8e6 Hz^2) puts every difference far above the "
-         "range (benchmarks/README.md, \"VF by band\"); the relative form (--relative) is the "
-         "portable one",
+         "range (benchmarks/README.md, \"VF by band\"), and no physical cause tried moves it "
+         "there with the defect's impulses at the field's size: short-wave roughness rings the "
+         "wheelset on its contacts on these rigid rails, the defect's edges and the axle box's "
+         "damping leave it 4-20 times above its top, the paper's 1e-4 s co-simulation self-excites at "
+         "the exchange's Nyquist frequency (benchmarks/README.md, sensitivity); the relative "
+         "form (--relative) is the portable one",
     "3r": "where RMS and SPM are larger on the healthy side (its journal carries more of the "
           "wheelset's bending) the paper's rule alone names the wrong side; the lag, read on the "
           "impulses, names the defect side",

@@ -147,6 +147,8 @@ def build_model(cfg: dict, log=print):
     starts = dtrb.start(cfg, loads, float(ws["omega"][1]), log)
     model = _car(cfg, tabs, trk, red, bearings={k: v[:3] for k, v in starts.items()})
     y0 = dtrb.place_axleboxes(model, y0, starts)
+    if cfg["coupling"]["hold"] == "jacobian":
+        model.bearing_stiffness = dtrb.stiffness(cfg, loads, model.bearing_names)
     log(f"coupled: {model.n_states} states ({model.n_states - model.n_body_states} in "
         f"{len(model.bearing_names)} bearings)")
     return model, y0
