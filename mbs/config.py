@@ -21,7 +21,7 @@ BODY_NAMES = (["carbody", "frame1", "frame2"] + [f"ws{i}" for i in range(1, 5)]
               + [f"ab{i}{s}" for i in range(1, 5) for s in "LR"] + [f"gb{i}" for i in range(1, 5)])
 
 BODY_KINDS = ("wheelset", "axlebox", "frame")
-F, I, S, B, L = "float", "int", "str", "bool", "list"
+F, I, S, B, L, N = "float", "int", "str", "bool", "list", "numbers"
 INF = math.inf
 # section -> field -> (kind, default, lo, hi | choices)
 SCHEMA: dict[str, dict[str, tuple]] = {
@@ -95,7 +95,41 @@ def defaults() -> dict:
            for sec, fields in SCHEMA.items()}
     cfg["bearing"] = {}
     cfg["defects"] = []
+    cfg["wheel_defects"] = []
     return cfg
+
+
+#: ``[[wheel_defects]]`` fields (mbs/wheel_defects.py): where, what, and its shape
+WHEEL_DEFECT = {"wheelset": (I, 1, 1, 4), "side": (S, "R", ("L", "R")),
+                "kind": (S, "flat", ("flat", "polygon")),
+                "length": (F, 0.04, 1e-4, 0.2), "shape": (S, "rounded", ("rounded", "fresh")),
+                "angle_deg": (F, 0.0, -360.0, 360.0), "orders": (N, [20.0], 1.0, 200.0),
+                "amplitudes_um": (N, [50.0], 0.0, 5000.0), "phases_deg": (N, [], -360.0, 360.0)}
+_WHEEL_FIELDS = {"flat": ("wheelset", "side", "kind", "length", "shape", "angle_deg"),
+                 "polygon": ("wheelset", "side", "kind", "orders", "amplitudes_um", "phases_deg")}
+
+
+def _wheel_defects(items) -> list[dict]:
+    """Each ``[[wheel_defects]]`` entry, every field checked (defaults from :data:`WHEEL_DEFECT`)."""
+    if not isinstance(items, list) or not all(isinstance(d, dict) for d in items):
+        raise ParameterError(f"wheel_defects = {items!r} is not allowed: expected [[wheel_defects]] tables")
+    out = []
+    for i, d in enumerate(items):
+        sec = f"wheel_defects[{i}]"
+        kind = _check(sec, "kind", d.get("kind", "flat"), WHEEL_DEFECT["kind"])
+        for key in d:
+            if key not in _WHEEL_FIELDS[kind]:
+                raise ParameterError(f"{sec}.{key} is not a field of a {kind} wheel defect: expected one "
+                                     f"of {', '.join(_WHEEL_FIELDS[kind])}")
+        e = {k: _check(sec, k, d.get(k, WHEEL_DEFECT[k][1]), WHEEL_DEFECT[k]) for k in _WHEEL_FIELDS[kind]}
+        if kind == "polygon":
+            n = len(e["orders"])
+            if len(e["amplitudes_um"]) != n or len(e["phases_deg"]) not in (0, n) \
+                    or any(o != round(o) for o in e["orders"]):
+                raise ParameterError(f"{sec}.orders = {e['orders']!r} is not allowed: expected whole "
+                                     "orders, one amplitudes_um (and phases_deg, if given) each")
+        out.append(e)
+    return out
 
 
 def _bearing(fields) -> dict:
@@ -156,6 +190,13 @@ def _check(sec: str, key: str, value, spec) -> object:
             raise ParameterError(f"{name} = {value!r} is not allowed: expected "
                                  + (f"one of {list(choices)}" if choices else "a string"))
         return value
+    if kind == N:                           # a list of numbers in [lo, hi], any length
+        lo, hi = rng
+        if not isinstance(value, list) or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                                  and lo <= v <= hi for v in value):
+            raise ParameterError(f"{name} = {value!r} is not allowed: expected a list of numbers in "
+                                 f"[{lo:g}, {hi:g}]")
+        return [float(v) for v in value]
     # lists: of names (choices) or of 3 positive numbers (range)
     lim = rng[0]
     if not isinstance(value, list):
@@ -195,9 +236,12 @@ def validate(user: dict) -> dict:
         if sec == "defects":
             cfg[sec] = _defects(fields)
             continue
+        if sec == "wheel_defects":
+            cfg[sec] = _wheel_defects(fields)
+            continue
         if sec not in SCHEMA:
             raise ParameterError(f"[{sec}] is not a section of the vehicle config: expected one of "
-                                 f"{', '.join(SCHEMA)}, bearing, defects")
+                                 f"{', '.join(SCHEMA)}, bearing, defects, wheel_defects")
         if not isinstance(fields, dict):
             raise ParameterError(f"{sec} = {fields!r} is not allowed: expected a [{sec}] table")
         for key, value in fields.items():

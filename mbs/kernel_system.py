@@ -81,7 +81,7 @@ def _dynamics(t, y, dy, S, W):
     accelerations."""
     bi, goff, Ab = S.bi, S.goff, W.Ab
     if S.wh_i.shape[0] > 0:
-        wheel_forces(t, bi, S.wh_i, S.wh_f, S.wtab, S.wpar, S.trk, S.wrk, S.glob, Ab, W.omb, W.mkp,
+        wheel_forces(t, y, bi, S.wh_i, S.wh_f, S.wtab, S.wpar, S.trk, S.wrk, S.glob, Ab, W.omb, W.mkp,
                      W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.whout)
     g = S.glob[G_GRAV:G_GRAV + 3]
     for b in range(bi.shape[0]):

@@ -9,8 +9,9 @@ cubic Hermite on a uniform periodic grid (C1, like :meth:`axlebox.mbs.track.Trac
 faded in over the first ``glob[G_RAMP]`` seconds (half-cosine) so that a run can start from the
 equilibrium on smooth track without a jump.  A wheel's own roughness (``wrk[w] = values,
 slopes`` on the grid ``j ds_w`` around its rolling circle, :func:`axlebox.mbs.roughness.wheel_record`)
-adds to its rails' height, read at the distance rolled, ``c_x`` (creep moves a 1 cm wave by
-less than 1e-3 of itself a metre), and fades in with the track.
+adds to its rails' height, read at the arc ``beta r_c`` its spin angle beta has turned (on a
+body that does not spin, at the distance rolled, ``c_x``), and fades in with the track; its
+rate is taken as slope times the rolling speed, as the rails' (creep: 1e-3 of it).
 The contact itself is :func:`axlebox.mbs.wheelrail.element_kernel.wheel_rail_force`.
 """
 from __future__ import annotations
@@ -22,7 +23,7 @@ from numba import njit
 
 from axlebox.mbs.wheelrail.element_kernel import wheel_rail_force
 
-from .kernel_body import BI_SPIN, cross
+from .kernel_body import BI_POS, BI_SPIN, cross
 
 G_GRAV, G_V, G_S0, G_DS, G_TRACK, G_RAMP = 0, 3, 4, 5, 6, 7   # glob slots
 N_GLOB = 8
@@ -71,7 +72,7 @@ def track_at(trk, row, s, glob, t):
 
 
 @njit(cache=True)
-def wheel_forces(t, bi, wh_i, wh_f, wtab, wpar, trk, wrk, glob, Ab, omb, mkp, mkv, mkR, mkw, mkF,
+def wheel_forces(t, y, bi, wh_i, wh_f, wtab, wpar, trk, wrk, glob, Ab, omb, mkp, mkv, mkR, mkw, mkF,
                  mkM, whout):
     V = glob[G_V]
     c = np.empty(3)
@@ -101,7 +102,8 @@ def wheel_forces(t, bi, wh_i, wh_f, wtab, wpar, trk, wrk, glob, Ab, omb, mkp, mk
         y_r, dyr = track_at(trk, 2 + side, c[0], glob, t)
         if wh_f[w, WF_DS] > 0.0 and t > 0.0:      # the wheel's own roughness, turning with it
             fade = _fade(glob, t)
-            r, dr = hermite_at(wrk[w, 0], wrk[w, 1], c[0], wh_f[w, WF_DS])
+            s_w = y[bi[b, BI_POS] + 7] * rc if bi[b, BI_SPIN] == 1 else c[0]
+            r, dr = hermite_at(wrk[w, 0], wrk[w, 1], s_w, wh_f[w, WF_DS])
             z_r += fade * r
             dz += fade * dr
         out = whout[w]

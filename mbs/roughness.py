@@ -117,11 +117,19 @@ def band_psd(Omega, levels, bands=BANDS, owner: str = "band_psd") -> np.ndarray:
     return np.exp(np.interp(np.log(W), np.log(centre), np.log(S)))
 
 
+def wheel_grid(r0: float, lambda_min: float, points_per_wave: int = 10) -> int:
+    """Points of a wheel record around the rolling circle: ``points_per_wave`` on the shortest
+    wave, an even number."""
+    n = int(math.ceil(points_per_wave * 2 * np.pi * r0 / lambda_min))
+    return n + n % 2
+
+
 def wheel_record(name: str, r0: float, lambda_min: float, load: float | None,
-                 rng: np.random.Generator, points_per_wave: int = 10):
+                 rng: np.random.Generator, n: int | None = None):
     """``(values, slopes, ds)``: one wheel's roughness (m) and its slope on the grid
-    ``s_j = j ds`` around the rolling circle (``n ds = 2 pi r0`` exactly, so the record is
-    periodic in a wheel turn), from the longest band that fits the circle down to ``lambda_min``.
+    ``s_j = j ds`` of ``n`` points (default :func:`wheel_grid`) around the rolling circle
+    (``n ds = 2 pi r0`` exactly, so the record is periodic in a wheel turn), from the longest
+    band that fits the circle down to ``lambda_min``.
     Each FFT bin carries sqrt(2 int_bin S) with a random phase from ``rng``."""
     from .track import _harmonics                      # the rails' bin-wise sampling
     circle = 2 * np.pi * r0
@@ -129,8 +137,7 @@ def wheel_record(name: str, r0: float, lambda_min: float, load: float | None,
         raise ParameterError(f"track.roughness_lambda_min = {lambda_min!r} is not allowed: expected "
                              f"{LAMBDA_MIN:.3g} to {LAMBDA_MAX:.3g} m (the tables' bands)")
     L = levels_db("wheel", name, load)
-    n = int(math.ceil(points_per_wave * circle / lambda_min))
-    n += n % 2
+    n = wheel_grid(r0, lambda_min) if n is None else n
     ds = circle / n
     dW = 2 * np.pi / circle
     W_lo = max(2 * np.pi / LAMBDA_MAX, dW)

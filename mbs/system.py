@@ -61,7 +61,7 @@ class System:
         self.wheels: list[tuple[str, int, int, float]] = []
         self.wheel_tables: tuple[np.ndarray, np.ndarray] | None = None
         self.track = None
-        self.wheel_roughness: dict[str, tuple] = {}   # wheel name -> (values, slopes, ds)
+        self.wheel_records: dict[str, tuple] = {}   # wheel name -> (values, slopes, ds)
         self.track_ramp = 0.5          # s, the irregularity fades in over this time
         self.bearings: list[tuple] = []
 
@@ -216,11 +216,11 @@ class System:
             glob[G_S0], glob[G_DS], glob[G_TRACK] = 0.0, tr.ds, 1.0
         wh_i = np.array([(m, side, self.markers[m][0]) for _, m, side, _ in self.wheels],
                         np.int64).reshape(-1, 3)
-        unknown = set(self.wheel_roughness) - {w[0] for w in self.wheels}
+        unknown = set(self.wheel_records) - {w[0] for w in self.wheels}
         if unknown:
-            raise ParameterError(f"wheel_roughness: {', '.join(sorted(unknown))} is not allowed: "
+            raise ParameterError(f"wheel_records: {', '.join(sorted(unknown))} is not allowed: "
                                  f"expected wheels of the system ({', '.join(w[0] for w in self.wheels)})")
-        rough = [self.wheel_roughness.get(name) for name, *_ in self.wheels]
+        rough = [self.wheel_records.get(name) for name, *_ in self.wheels]
         nw = max([r[0].size for r in rough if r is not None], default=1)
         wrk = np.zeros((max(len(self.wheels), 1), 2, nw))
         wh_f = np.zeros((len(self.wheels), 2))
@@ -229,7 +229,7 @@ class System:
             if r is not None:          # each wheel's own grid: its first r[0].size points
                 values, slopes, ds = r
                 if values.size != nw:
-                    raise ParameterError(f"wheel_roughness[{self.wheels[w][0]!r}] has {values.size} "
+                    raise ParameterError(f"wheel_records[{self.wheels[w][0]!r}] has {values.size} "
                                          f"points, not allowed: every wheel's record needs {nw}")
                 wrk[w, 0], wrk[w, 1], wh_f[w, 1] = values, slopes, ds
         if self.wheels and self.wheel_tables is None:

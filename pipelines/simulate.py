@@ -32,7 +32,7 @@ from axlebox.bearing import resultfile
 from axlebox.fem import bodyfile
 from axlebox.mbs import comfort
 from axlebox.mbs import config as vconfig
-from axlebox.mbs import dtrb, integrate, roughness, statics, track, vehicle
+from axlebox.mbs import dtrb, integrate, roughness, statics, track, vehicle, wheel_defects
 from axlebox.mbs.wheelrail import element_kernel as ek
 from axlebox.mbs.wheelrail.element import WheelRailParams, build_tables
 from axlebox.mbs.wheelrail.geometry import TrackLayout
@@ -109,23 +109,45 @@ def track_record(cfg: dict):
                                                    seed=cfg["run"]["seed"], **extra))
 
 
-def wheel_roughness(cfg: dict, names) -> dict:
-    """Each wheel's own roughness record (mbs/roughness.py), independent random phases per
-    wheel from the run's seed; empty with ``track.wheel_roughness = "none"``."""
-    t = cfg["track"]
-    if t["wheel_roughness"] == "none":
+def wheel_records(cfg: dict, names) -> dict:
+    """Each wheel's radius deviation record ``(values, slopes, ds)`` around its rolling circle:
+    its roughness (mbs/roughness.py; independent random phases per wheel from the run's seed)
+    plus its ``[[wheel_defects]]`` (mbs/wheel_defects.py), on one grid (a roughness grid, or
+    0.25 mm); only the wheels that have either."""
+    t, r0 = cfg["track"], cfg["wheelset"]["r0"]
+    rough = t["wheel_roughness"] != "none"
+    mine = {name: [d for d in cfg.get("wheel_defects", []) if f"ws{d['wheelset']}_{d['side']}" == name]
+            for name in names}
+    if not rough and not any(mine.values()):
         return {}
+    C = 2 * math.pi * r0
+    n = roughness.wheel_grid(r0, t["roughness_lambda_min"]) if rough else 2 * math.ceil(C / 0.25e-3 / 2)
+    s = np.arange(n) * (C / n)
     seeds = np.random.SeedSequence([int(cfg["run"]["seed"]), 1]).spawn(len(names))
-    return {name: roughness.wheel_record(t["wheel_roughness"], cfg["wheelset"]["r0"],
-                                         t["roughness_lambda_min"], _contact_load(cfg),
-                                         np.random.default_rng(sq))
-            for name, sq in zip(names, seeds)}
+    out = {}
+    for name, sq in zip(names, seeds):
+        if not rough and not mine[name]:
+            continue
+        v, d = np.zeros(n), np.zeros(n)
+        if rough:
+            v, d, _ = roughness.wheel_record(t["wheel_roughness"], r0, t["roughness_lambda_min"],
+                                             _contact_load(cfg), np.random.default_rng(sq), n=n)
+        for e in mine[name]:
+            if e["kind"] == "flat":
+                dv, dd = wheel_defects.flat(s, e["length"], r0, r0 * math.radians(e["angle_deg"]),
+                                            e["shape"])
+            else:
+                dv, dd = wheel_defects.polygon(s, r0, e["orders"], 1e-6 * np.asarray(e["amplitudes_um"]),
+                                               np.radians(e["phases_deg"]) if e["phases_deg"] else None)
+            v, d = v + dv, d + dd
+        out[name] = (v, d, C / n)
+    return out
 
 
 def _car(cfg, tabs, trk, red, bearings=None):
     """The car's system with its wheels' roughness, assembled."""
     s = vehicle.build(cfg, tabs, trk, red, bearings=bearings)
-    s.wheel_roughness = wheel_roughness(cfg, [w[0] for w in s.wheels])
+    s.wheel_records = wheel_records(cfg, [w[0] for w in s.wheels])
     return s.assemble()
 
 

@@ -115,19 +115,19 @@ def test_the_config_gives_every_wheel_its_own_record(car):
     cfg, model, _ = car
     cfg = {**cfg, "track": {**cfg["track"], "wheel_roughness": "composite"}}
     names = model.wheel_names
-    recs = psim.wheel_roughness(cfg, names)
+    recs = psim.wheel_records(cfg, names)
     assert set(recs) == set(names)
     sysm = model.system
     try:
-        sysm.wheel_roughness = recs
+        sysm.wheel_records = recs
         S = sysm.assemble().S
     finally:
-        sysm.wheel_roughness = {}
+        sysm.wheel_records = {}
     for w, name in enumerate(names):
         np.testing.assert_array_equal(S.wrk[w, 0], recs[name][0])
         assert S.wh_f[w, 1] == recs[name][2]
     assert not np.allclose(S.wrk[0, 0], S.wrk[1, 0])          # independent phases
-    np.testing.assert_array_equal(psim.wheel_roughness(cfg, names)[names[0]][0], recs[names[0]][0])
+    np.testing.assert_array_equal(psim.wheel_records(cfg, names)[names[0]][0], recs[names[0]][0])
 
 
 @pytest.mark.parametrize("fields, match", [

@@ -155,6 +155,9 @@ def test_implicit_and_explicit_integrators_agree_on_the_car(run48):
     ("[coupling]\nhold = 'cubic'\n", "coupling.hold"),
     ("[track]\nwheel_roughness = 'steel'\n", "track.wheel_roughness"),
     ("[[defects]]\nprofile = 'flat'\n", "defects[0]: Defect.profile"),
+    ("[[wheel_defects]]\nkind = 'blob'\n", "wheel_defects[0].kind"),
+    ("[[wheel_defects]]\nkind = 'polygon'\norders = [20, 3]\namplitudes_um = [5.0]\n",
+     "wheel_defects[0].orders"),
 ])
 def test_bad_config_exits_2_with_one_line_naming_the_field(tmp_path, capsys, text, field):
     p = tmp_path / "bad.toml"

@@ -1,0 +1,129 @@
+"""Wheel flats and polygons as radius deviations (mbs/wheel_defects.py): their geometry."""
+
+import math
+
+import numpy as np
+import pytest
+
+from axlebox._params import ParameterError
+from axlebox.mbs import wheel_defects as wd
+
+R0 = 0.42
+
+
+def test_a_flats_depth_is_the_chords_sagitta():
+    for L in (0.02, 0.05, 0.1):
+        d = wd.flat_depth(L, R0)
+        assert d == pytest.approx(L * L / (8 * R0), rel=(L / R0) ** 2)    # L^2 / (8 r0) = L^2 / (4 D)
+        assert (R0 - d) ** 2 + (L / 2) ** 2 == pytest.approx(R0 ** 2, rel=1e-14)
+
+
+def test_a_fresh_flat_is_a_straight_chord_and_a_rounded_one_a_haversine_of_its_depth():
+    L, C = 0.05, 2 * math.pi * R0
+    d = wd.flat_depth(L, R0)
+    s = np.linspace(-0.05, 0.05, 20001)
+    dr, slope = wd.flat(s, L, R0, shape="fresh")
+    on = dr < 0
+    phi = s[on] / R0
+    # every point of the fresh flat lies on the chord at distance r0 - d from the centre
+    np.testing.assert_allclose((R0 + dr[on]) * np.cos(phi), R0 - d, rtol=1e-13)
+    assert np.abs(R0 * np.sin(phi)).max() == pytest.approx(L / 2, rel=1e-3)
+    dr_r, slope_r = wd.flat(s, L, R0, shape="rounded")
+    assert dr_r.min() == pytest.approx(-d, rel=1e-8)
+    assert np.all(dr_r[np.abs(s) >= L / 2] == 0.0)
+    for x, g in ((dr, slope), (dr_r, slope_r)):      # the slope is the derivative
+        fd = np.gradient(x, s)
+        inner = np.abs(np.abs(s) - L / 2) > 1e-4         # away from the fresh flat's kinks
+        np.testing.assert_allclose(g[inner], fd[inner], atol=1e-3 * np.abs(g).max())
+    # a flat centred elsewhere is the same flat moved round the circle
+    np.testing.assert_allclose(wd.flat(s + 1.0, L, R0, s_c=1.0)[0], dr_r, atol=1e-15)
+    np.testing.assert_allclose(wd.flat(s + C, L, R0)[0], dr_r, atol=1e-15)
+
+
+def test_a_polygon_carries_its_orders_round_the_wheel():
+    n = 4096
+    s = np.arange(n) * 2 * math.pi * R0 / n
+    dr, _ = wd.polygon(s, R0, [20, 3], [50e-6, 10e-6], [0.3, 0.0])
+    A = 2 * np.abs(np.fft.rfft(dr)) / n
+    assert A[20] == pytest.approx(50e-6, rel=1e-12) and A[3] == pytest.approx(10e-6, rel=1e-12)
+    assert np.delete(A, [3, 20]).max() < 1e-18
+
+
+@pytest.mark.parametrize("call, match", [
+    (lambda: wd.flat(0.0, 0.05, R0, shape="square"), r"shape = 'square' is not allowed: expected one of"),
+    (lambda: wd.flat(0.0, 0.5, R0), r"length = 0.5 is not allowed"),
+    (lambda: wd.polygon(0.0, R0, [20.5], [1e-5]), r"orders = \[20.5\] is not allowed"),
+    (lambda: wd.polygon(0.0, R0, [20, 3], [1e-5]), r"orders = \[20, 3\] is not allowed"),
+    (lambda: wd.polygon(0.0, R0, [20], [-1e-5]), r"amplitudes = \[-1e-05\] is not allowed"),
+])
+def test_bad_wheel_defects_are_refused_naming_the_field(call, match):
+    with pytest.raises(ParameterError, match=match):
+        call()
+
+
+@pytest.fixture(scope="module")
+def car_run():
+    """The shipped car at 40 km/h on smooth track with a 40 mm rounded flat on wheelset 2's
+    gearbox-side wheel and a 20th-order polygon (50 um) on wheelset 3's left wheel, their
+    fade-in shortened to 20 ms; 1 s."""
+    from axlebox import configs
+    from axlebox.mbs import config as vconfig
+    from axlebox.mbs import integrate
+    from axlebox.mbs.kernel_wheels import G_RAMP
+    from axlebox.pipelines import simulate as psim
+    base, _ = vconfig.load(configs.path("vehicle"))
+    user = {sec: dict(v) for sec, v in base.items() if isinstance(v, dict) and sec != "bearing"}
+    user["run"]["speed_kmh"] = 40.0
+    user["track"]["irregularity"] = False
+    user["wheel_defects"] = [{"wheelset": 2, "side": "R", "kind": "flat", "length": 0.04},
+                             {"wheelset": 3, "side": "L", "kind": "polygon", "orders": [20],
+                              "amplitudes_um": [50.0]}]
+    cfg = vconfig.validate(user)
+    model, y0 = psim.build_model(cfg, log=lambda *_: None)
+    model.S.glob[G_RAMP] = 0.02
+    run = integrate.simulate(model, 1.0, psim.settings(cfg), y0=y0)
+    return cfg, model, run
+
+
+def test_a_flat_lifts_the_wheel_off_the_rail_and_strikes_once_a_turn(car_run):
+    """At 40 km/h a 40 mm flat (depth 0.48 mm) drops faster than the loaded wheelset can follow:
+    the contact opens (normal force 0) and closes with an impact above twice the static load,
+    and the flat's passes come once a wheel turn, 2 pi r0 / V apart (1 %).  The run stays
+    finite.  (The impact, 470-530 kN here, is far above what a flexible track would see: these
+    rails are rigid.)"""
+    from axlebox.mbs.wheelrail import element_kernel as ek
+    cfg, model, run = car_run
+    assert run.ok, run.message
+    w = model.wheel_names.index("ws2_R")
+    N = run.wheels[:, w, ek.OUT_N]
+    t = run.time
+    late = t > 0.1
+    static = np.median(N[late])
+    assert N[late].min() == 0.0                          # contact lost
+    assert N[late].max() > 2 * static                    # and regained with an impact
+    # each pass of the flat: the wheel leaves the rail, strikes, bounces for some milliseconds
+    # (rigid rails: no pad to take it) and settles within half a turn; the passes a turn apart
+    turn = 2 * math.pi * cfg["wheelset"]["r0"] / (cfg["run"]["speed_kmh"] / 3.6)
+    lost = t[late & (N == 0.0)]
+    starts = lost[np.r_[True, np.diff(lost) > 0.5 * turn]]
+    assert starts.size >= 3
+    np.testing.assert_allclose(np.diff(starts), turn, rtol=0.01)
+    other = model.wheel_names.index("ws2_L")
+    assert run.wheels[late, other, ek.OUT_N].min() > 0.0  # the other wheel stays on the rail
+
+
+def test_a_polygon_shakes_its_wheel_at_its_order_times_the_wheel_rate(car_run):
+    """A 20th-order polygon at 40 km/h: the wheel's normal force has its strongest line above
+    20 Hz at 20 x V / (2 pi r0) = 84.2 Hz, within one bin of the spectrum."""
+    from scipy.signal import periodogram
+    from axlebox.mbs.wheelrail import element_kernel as ek
+    cfg, model, run = car_run
+    w = model.wheel_names.index("ws3_L")
+    late = run.time > 0.1
+    N = run.wheels[late, w, ek.OUT_N]
+    fs = 1.0 / np.median(np.diff(run.time))
+    f, P = periodogram(N - N.mean(), fs)
+    band = f > 20.0
+    peak = f[band][np.argmax(P[band])]
+    want = 20 * (cfg["run"]["speed_kmh"] / 3.6) / (2 * math.pi * cfg["wheelset"]["r0"])
+    assert abs(peak - want) <= f[1] - f[0]
