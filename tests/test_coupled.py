@@ -25,7 +25,7 @@ DEFECT = {"wheelset": 2, "side": "R", "row": 2, "W": 2e-3, "L": 50.4e-3, "H": 2e
 
 def coupled_config(**over):
     base, _ = vconfig.load(configs.path("vehicle"))
-    user = {sec: dict(v) for sec, v in base.items() if sec not in ("bearing", "defects")}
+    user = {sec: dict(v) for sec, v in base.items() if isinstance(v, dict) and sec != "bearing"}
     user["bodies"]["flexible"] = []
     user["joint"]["model"] = "dtrb"
     user["integrator"]["method"] = "rk4"
