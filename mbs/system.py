@@ -220,13 +220,13 @@ class System:
         if unknown:
             raise ParameterError(f"wheel_records: {', '.join(sorted(unknown))} is not allowed: "
                                  f"expected wheels of the system ({', '.join(w[0] for w in self.wheels)})")
-        rough = [self.wheel_records.get(name) for name, *_ in self.wheels]
-        nw = max([r[0].size for r in rough if r is not None], default=1)
+        recs = [self.wheel_records.get(name) for name, *_ in self.wheels]
+        nw = max([r[0].size for r in recs if r is not None], default=1)
         wrk = np.zeros((max(len(self.wheels), 1), 2, nw))
-        wh_f = np.zeros((len(self.wheels), 2))
-        for w, (r, (*_, rc)) in enumerate(zip(rough, self.wheels)):
+        wh_f = np.zeros((len(self.wheels), 2))       # ds 0: the wheel has no record
+        for w, (r, (*_, rc)) in enumerate(zip(recs, self.wheels)):
             wh_f[w, 0] = rc
-            if r is not None:          # each wheel's own grid: its first r[0].size points
+            if r is not None:          # one grid size for all: the kernel's table is rectangular
                 values, slopes, ds = r
                 if values.size != nw:
                     raise ParameterError(f"wheel_records[{self.wheels[w][0]!r}] has {values.size} "

@@ -123,6 +123,7 @@ def wheel_records(cfg: dict, names) -> dict:
     C = 2 * math.pi * r0
     n = roughness.wheel_grid(r0, t["roughness_lambda_min"]) if rough else 2 * math.ceil(C / 0.25e-3 / 2)
     s = np.arange(n) * (C / n)
+    load = _contact_load(cfg)
     seeds = np.random.SeedSequence([int(cfg["run"]["seed"]), 1]).spawn(len(names))
     out = {}
     for name, sq in zip(names, seeds):
@@ -131,7 +132,7 @@ def wheel_records(cfg: dict, names) -> dict:
         v, d = np.zeros(n), np.zeros(n)
         if rough:
             v, d, _ = roughness.wheel_record(t["wheel_roughness"], r0, t["roughness_lambda_min"],
-                                             _contact_load(cfg), np.random.default_rng(sq), n=n)
+                                             load, np.random.default_rng(sq), n=n)
         for e in mine[name]:
             if e["kind"] == "flat":
                 dv, dd = wheel_defects.flat(s, e["length"], r0, r0 * math.radians(e["angle_deg"]),
