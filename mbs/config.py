@@ -104,9 +104,12 @@ WHEEL_DEFECT = {"wheelset": (I, 1, 1, 4), "side": (S, "R", ("L", "R")),
                 "kind": (S, "flat", ("flat", "polygon")),
                 "length": (F, 0.04, 1e-4, 0.2), "shape": (S, "rounded", ("rounded", "fresh")),
                 "angle_deg": (F, 0.0, -360.0, 360.0), "orders": (N, [20.0], 1.0, 200.0),
-                "amplitudes_um": (N, [50.0], 0.0, 5000.0), "phases_deg": (N, [], -360.0, 360.0)}
-_WHEEL_FIELDS = {"flat": ("wheelset", "side", "kind", "length", "shape", "angle_deg"),
-                 "polygon": ("wheelset", "side", "kind", "orders", "amplitudes_um", "phases_deg")}
+                "amplitudes_um": (N, [50.0], 0.0, 5000.0), "phases_deg": (N, [], -360.0, 360.0),
+                "name": (S, "", None)}
+# name: a label that a sweep's [sweep] wheel_defects picks entries by (pipelines/sweep.py)
+_WHEEL_FIELDS = {"flat": ("wheelset", "side", "kind", "length", "shape", "angle_deg", "name"),
+                 "polygon": ("wheelset", "side", "kind", "orders", "amplitudes_um", "phases_deg",
+                             "name")}
 
 
 def _wheel_defects(items) -> list[dict]:

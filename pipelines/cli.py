@@ -194,7 +194,7 @@ def _cmd_sweep(a) -> None:
     from .sweep import sweep
     res = sweep(a.config, a.out, speeds=a.speeds, widths=a.widths, duration=a.duration,
                 scheduler=a.scheduler, workers=a.workers, kinds=a.kinds, sides=a.sides,
-                vf_band=_vf_band(a))
+                vf_band=_vf_band(a), wheels=a.wheel_defects)
     if res["failed"]:
         raise RuntimeError(f"{len(res['failed'])} case(s) failed ({', '.join(res['failed'])}); the "
                            f"finished ones are in {a.out}, a rerun retries the rest")
@@ -237,7 +237,8 @@ def _add_sweep(sub) -> None:
                         "cases. Ends with a table of indicators per case and side (DIR/summary.csv).")
     sw.add_argument("config", help="base config: a TOML file or a shipped config's name (axlebox "
                                    "configs): a rig config (study_rig) or a vehicle config (study); "
-                                   "an optional [sweep] gives speeds_kmh, widths_mm, kinds, sides")
+                                   "an optional [sweep] gives speeds_kmh, widths_mm, kinds, sides, "
+                                   "wheel_defects")
     sw.add_argument("--speeds", type=float, nargs="+", metavar="V",
                     help="speeds in km/h (default: sweep.speeds_kmh, else the config's speed)")
     sw.add_argument("--widths", type=float, nargs="+", metavar="MM",
@@ -249,6 +250,10 @@ def _add_sweep(sub) -> None:
     sw.add_argument("--sides", nargs="+", metavar="SIDE",
                     help="vehicle: L, R or LR (both sides of the wheelset) for every [[defects]] "
                          "entry (default: sweep.sides, else the config's)")
+    sw.add_argument("--wheel-defects", nargs="+", metavar="NAME",
+                    help="vehicle: names of [[wheel_defects]] entries, one case each (entries "
+                         "sharing a name go together), none: without (default: "
+                         "sweep.wheel_defects, else the config's)")
     sw.add_argument("--scheduler", metavar="ADDRESS",
                     help="dask scheduler (e.g. tcp://host:8786; default: a local cluster)")
     sw.add_argument("--workers", type=int, metavar="N",

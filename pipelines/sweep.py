@@ -3,11 +3,13 @@ bearing rig (a config with ``[rig]``) or the vehicle (``[run]`` ..., as ``config
 one case per dask.distributed task on a local cluster (``--workers`` one-thread processes, never
 more than the cases) or the scheduler at ``--scheduler`` (its workers must see DIR).
 
-Lists from the options, else ``[sweep] speeds_kmh``/``widths_mm``/``kinds``/``sides``, else the
-config's own speed and defects; width 0 removes the ``[[defects]]`` (one case per speed, whatever
-the kinds and sides), > 0 sets their ``W`` (m); a kind (``outer``, ``inner``, ``roller``) sets
-every defect's ``kind``; a side (vehicle only) puts every defect on ``L`` or ``R``, or ``LR`` on
-both (each entry once per side: faults on both sides of its wheelset).  Each case writes
+Lists from the options, else ``[sweep] speeds_kmh``/``widths_mm``/``kinds``/``sides``/
+``wheel_defects``, else the config's own speed and defects; width 0 removes the ``[[defects]]``
+(one case per speed, whatever the kinds and sides), > 0 sets their ``W`` (m); a kind (``outer``,
+``inner``, ``roller``) sets every defect's ``kind``; a side (vehicle only) puts every defect on
+``L`` or ``R``, or ``LR`` on both (each entry once per side: faults on both sides of its
+wheelset); a wheel defect name (vehicle only) keeps the ``[[wheel_defects]]`` entries of that
+``name``, ``none`` none of them (configs/confounders.toml).  Each case writes
 ``DIR/v48_w2.h5`` (``.`` -> ``p``; ``DIR/v48_w2_inner_LR.h5`` when kinds and sides are swept)
 with its own config inside, through a temporary name; a rerun
 skips files that open as a result of the same config and removes ``*.tmp`` left by a killed run
@@ -45,7 +47,7 @@ from axlebox._files import is_locked, locked
 from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
 
-SWEEP_FIELDS = ("speeds_kmh", "widths_mm", "kinds", "sides")
+SWEEP_FIELDS = ("speeds_kmh", "widths_mm", "kinds", "sides", "wheel_defects")
 SIDES = ("L", "R", "LR")                             # LR: the defect on both sides of its wheelset
 RUN_SECTION = {"rig": "rig", "vehicle": "run"}       # where speed_kmh and duration live
 LOCK = ".sweep.lock"                                 # held by the sweep that owns the folder
@@ -62,6 +64,7 @@ class Case:
     toml: str
     defect_kind: str | None = None      # swept kind, None: the config's own
     sides: str | None = None            # swept side(s), None: the config's own
+    wheel: str | None = None            # swept wheel defect name, None: the config's own
 
     def path(self, out) -> Path:
         return Path(out) / f"{self.name}.h5"
@@ -135,9 +138,10 @@ def _place(defects: list[dict], w, kind, sides) -> list[dict]:
 
 
 def matrix(kind: str, cfg: dict, speeds=None, widths=None, duration=None, kinds=None,
-           sides=None) -> list[Case]:
-    """The cases of ``cfg`` (parsed TOML): speeds (km/h) x widths (mm) x defect kinds x sides;
-    options over ``[sweep]``."""
+           sides=None, wheels=None) -> list[Case]:
+    """The cases of ``cfg`` (parsed TOML): speeds (km/h) x widths (mm) x defect kinds x sides x
+    wheel defects (names of ``[[wheel_defects]]`` entries, ``none``: without); options over
+    ``[sweep]``."""
     from axlebox.bearing.layout import KINDS
     sw = cfg.get("sweep", {})
     if not isinstance(sw, dict):
@@ -162,6 +166,12 @@ def matrix(kind: str, cfg: dict, speeds=None, widths=None, duration=None, kinds=
                   [None])                                # None: the config's defects as they are
     kinds = names(kinds, "kinds", "--kinds", tuple(KINDS))
     sides = names(sides, "sides", "--sides", SIDES)
+    named = [e.get("name", "") for e in cfg.get("wheel_defects", []) if isinstance(e, dict)]
+    wheels = names(wheels, "wheel_defects", "--wheel-defects",
+                   tuple(dict.fromkeys(["none"] + [n for n in named if n])))
+    if kind == "rig" and wheels != [None]:
+        raise ParameterError(f"wheel defects {wheels!r} are not allowed for the bearing rig: it "
+                             "has no wheel; sweep them with a vehicle config")
     if kind == "rig" and sides != [None]:
         raise ParameterError(f"sides {sides!r} are not allowed for the bearing rig: it has one "
                              "bearing; sweep sides with a vehicle config")
@@ -175,27 +185,29 @@ def matrix(kind: str, cfg: dict, speeds=None, widths=None, duration=None, kinds=
         raise ParameterError(f"{what} is not allowed: the config has no [[defects]] entry whose "
                              f"defects.{field} to set; add one or sweep width 0 only")
     cases = {}
-    for v in speeds:
-        for w in widths:
-            for dk in kinds:
-                for sd in sides:
-                    if w == 0:                   # no defect: one case, whatever the kind and side
-                        dk, sd = None, None
-                    d = tomllib.loads(tomli_w.dumps(base))          # a deep copy of plain TOML data
-                    d.setdefault(sec, {})["speed_kmh"] = float(v)
-                    if duration is not None:
-                        d[sec]["duration"] = float(duration)
-                    d.pop("defects", None)
-                    placed = _place(defects, w, dk, None if sd is None else
-                                    (("L", "R") if sd == "LR" else (sd,)))
-                    if placed:
-                        d["defects"] = placed
-                    mm = w if w is not None else 1e3 * max((float(e.get("W", 0.0)) for e in defects),
-                                                           default=0.0)
-                    name = f"v{v:g}_w{mm:g}".replace(".", "p") + "".join(
-                        f"_{x}" for x in (dk, sd) if x is not None)
-                    if name not in cases:
-                        cases[name] = Case(name, kind, float(v), mm, case_toml(kind, d), dk, sd)
+    for v, w, dk, sd, wd in ((v, w, dk, sd, wd) for v in speeds for w in widths for dk in kinds
+                             for sd in sides for wd in wheels):
+        if w == 0:                   # no defect: one case, whatever the kind and side
+            dk, sd = None, None
+        d = tomllib.loads(tomli_w.dumps(base))          # a deep copy of plain TOML data
+        d.setdefault(sec, {})["speed_kmh"] = float(v)
+        if duration is not None:
+            d[sec]["duration"] = float(duration)
+        d.pop("defects", None)
+        placed = _place(defects, w, dk, None if sd is None else
+                        (("L", "R") if sd == "LR" else (sd,)))
+        if placed:
+            d["defects"] = placed
+        if wd is not None:      # the entries of that name only; none: no wheel defect
+            kept = [e for e in d.pop("wheel_defects", []) if e.get("name") == wd]
+            if kept:
+                d["wheel_defects"] = kept
+        mm = w if w is not None else 1e3 * max((float(e.get("W", 0.0)) for e in defects),
+                                               default=0.0)
+        name = f"v{v:g}_w{mm:g}".replace(".", "p") + "".join(
+            f"_{x}" for x in (dk, sd, wd) if x is not None)
+        if name not in cases:
+            cases[name] = Case(name, kind, float(v), mm, case_toml(kind, d), dk, sd, wd)
     return list(cases.values())
 
 
@@ -288,10 +300,11 @@ def run_cases(todo: list[Case], out, scheduler=None, workers=None, log=print) ->
 
 
 def _row(c: Case, path: Path, side: str, sensor: str, ch, verdict: str, lag_s=None, vf_diff=None) -> dict:
+    from axlebox.bearing.diagnostics.wheel import text
     return dict(file=path.name, speed_kmh=c.speed_kmh, width_mm=c.width_mm, side=side, sensor=sensor,
                 rms=ch.rms, spm_db=ch.spm_db, spm_class=ch.spm_class, VF=ch.VF, FC=ch.FC,
                 kurtosis=ch.kurtosis, lines=" ".join(ch.detected), verdict=verdict, lag_s=lag_s,
-                vf_diff=vf_diff)
+                vf_diff=vf_diff, wheel_lines=text(ch.wheel_env, ch.wheel_spec))
 
 
 def rig_rows(c: Case, path: Path, criterion) -> list[dict]:
@@ -381,7 +394,7 @@ def summarise(cases: list[Case], out, log=print, criterion=None) -> list[dict]:
 
 
 def sweep(config, out, *, speeds=None, widths=None, duration=None, scheduler=None, workers=None,
-          log=print, kinds=None, sides=None, vf_band=None) -> dict:
+          log=print, kinds=None, sides=None, vf_band=None, wheels=None) -> dict:
     """The whole command.  Returns ``{"cases", "skipped", "ran", "failed", "rows"}``;
     ``vf_band``: the summary's band of FC and VF (``Criterion.vf_band``), default the whole."""
     from axlebox.bearing.diagnostics.criterion import Criterion
@@ -391,7 +404,7 @@ def sweep(config, out, *, speeds=None, widths=None, duration=None, scheduler=Non
     if workers is not None and scheduler:
         raise ParameterError(f"--workers {workers} is not allowed with --scheduler: the scheduler's "
                              "cluster has its own workers")
-    cases = matrix(*load_config(config), speeds, widths, duration, kinds, sides)
+    cases = matrix(*load_config(config), speeds, widths, duration, kinds, sides, wheels)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     note = (f"pid {os.getpid()} on {socket.gethostname()}, started "

@@ -127,3 +127,43 @@ def test_a_polygon_shakes_its_wheel_at_its_order_times_the_wheel_rate(car_run):
     peak = f[band][np.argmax(P[band])]
     want = 20 * (cfg["run"]["speed_kmh"] / 3.6) / (2 * math.pi * cfg["wheelset"]["r0"])
     assert abs(peak - want) <= f[1] - f[0]
+
+
+def test_the_criterion_names_the_flats_lines_and_calls_no_bearing_fault(car_run):
+    """The car's axle boxes on wheelset 2, whose right wheel has the flat (its bearings healthy):
+    no bearing fault on either side, the rule ``wheel lines only`` (lines at whole multiples of
+    the wheel's rate, bearing/diagnostics/wheel.py), the wheel's lines named.  The
+    1 s record holds two periods of every line but the cage's, which is left out."""
+    from axlebox.bearing.diagnostics.pair import analyse_pair
+    from axlebox.bearing.frequencies import orders, shaft_hz
+    from axlebox.bearing.params import BearingParams
+    cfg, model, run = car_run
+    fs = 1.0 / np.median(np.diff(run.time))       # the run's output, the field system's 10 kHz
+    x = {s: run.sensors[f"ws2_{s}"][:, 2] for s in "LR"}
+    k0 = int(0.1 * fs)
+    p = analyse_pair(x["L"][k0:], x["R"][k0:], fs, shaft_hz(40.0, cfg["wheelset"]["r0"]),
+                     orders(BearingParams()), 0.13, lines=("BPFO", "BPFI", "2BSF"))
+    assert p.verdicts["left"][0] == p.verdicts["right"][0] == "healthy"
+    assert p.verdict.rule == "wheel lines only"
+    assert any("wheel: " in p.verdicts[s][1] for s in ("left", "right"))
+
+
+def test_a_sweep_takes_the_wheel_defects_by_name():
+    """configs/confounders.toml: speeds x bearing defect widths x named wheel defects, ``none``
+    the baseline without; each case keeps only the entries of its name; a name the config does
+    not have, and a wheel defect on the rig, are refused naming the field."""
+    import tomllib
+
+    from axlebox import configs
+    from axlebox.pipelines.sweep import load_config, matrix
+    kind, cfg = load_config(configs.path("confounders"))
+    cases = {c.name: tomllib.loads(c.toml) for c in matrix(kind, cfg)}
+    assert sorted(cases) == sorted(f"v{v}_w{w}_{n}" for v in (40, 80) for w in (0, 2)
+                                   for n in ("none", "flat40", "polygon20"))
+    assert "wheel_defects" not in cases["v40_w2_none"]
+    assert [e["kind"] for e in cases["v80_w0_flat40"]["wheel_defects"]] == ["flat"]
+    assert [e["orders"] for e in cases["v40_w2_polygon20"]["wheel_defects"]] == [[20.0]]
+    assert "defects" not in cases["v40_w0_flat40"] and cases["v40_w2_flat40"]["defects"][0]["W"] == 2e-3
+    with pytest.raises(ParameterError, match=r"--wheel-defects 'square' is not allowed: expected one "
+                                             r"of none, flat40, polygon20"):
+        matrix(kind, cfg, wheels=["square"])

@@ -35,6 +35,7 @@ from .envelope import _signal, check_fs, envelope_spectrum, select_band
 from .guided import guided_band
 from .indicators import time_indicators
 from .spectral import check_band, fc_vf
+from .wheel import spectrum_orders, wheel_orders
 
 
 def jsonable(v):
@@ -61,7 +62,10 @@ class ChannelResult:
     ``carried``/``carried_hz``: the other side's bearing's lines searched here (empty when the
     bearings' lines coincide); ``sideband_hz``: the sideband offsets searched with a line
     (``2BSF``: the cage frequency; a carried line's key starts with ``~``);
-    ``env_f``/``env_A``: the envelope spectrum (for figures; not in :meth:`to_dict`)."""
+    ``env_f``/``env_A``: the envelope spectrum (for figures; not in :meth:`to_dict`);
+    ``wheel_env``/``wheel_spec``: the whole shaft orders standing over their floors in the
+    envelope spectrum and in the acceleration's own spectrum (:mod:`.wheel`: a wheel flat's
+    comb, a polygon's line; never a bearing's)."""
 
     fs: float
     n_samples: int
@@ -89,6 +93,8 @@ class ChannelResult:
     sideband_hz: dict = field(default_factory=dict)
     vf_band: tuple[float, float] | None = None
     nperseg: int | None = None
+    wheel_env: tuple[int, ...] = ()
+    wheel_spec: tuple[int, ...] = ()
 
     @property
     def duration_s(self) -> float:
@@ -108,7 +114,7 @@ class ChannelResult:
         d = {k: getattr(self, k) for k in ("fs", "n_samples", "shaft_hz", "D", "rms", "peak",
                                            "kurtosis", "crest", "FC", "VF", "MSF", "SV", "spm_db",
                                            "spm_class", "band_source", "p_fa", "fault_hz",
-                                           "carried_hz")}
+                                           "carried_hz", "wheel_env", "wheel_spec")}
         d["duration_s"] = self.duration_s
         d["band"] = list(self.band)
         d["vf_band"] = None if self.vf_band is None else list(self.vf_band)
@@ -196,7 +202,8 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
                          rms=t["rms"], peak=t["peak"], kurtosis=t["kurtosis"], crest=t["crest"],
                          FC=FC, VF=VF, MSF=MSF, SV=SV, spm_db=level,
                          spm_class=spm.classify(level), **freqs, **env,
-                         vf_band=vf_band, nperseg=nperseg)
+                         vf_band=vf_band, nperseg=nperseg,
+                         wheel_spec=spectrum_orders(x, fs, shaft_hz))
 
 
 LINE_OPTIONS = ("n_harmonics", "slip", "threshold_db", "p_fa", "n_required")   # of reguide
@@ -275,4 +282,7 @@ def _band_and_lines(x, fs, shaft_hz, freqs, band, guide, n_harmonics, slip, thre
     lines = {n: r for n, r in found.items() if not n.startswith("~")}
     carried = {n[1:]: replace(r, name=n[1:]) for n, r in found.items() if n.startswith("~")}
     return dict(band=(float(band[0]), float(band[1])), band_source=source, p_fa=float(p_fa),
-                lines=lines, carried=carried, env_f=f, env_A=A)
+                lines=lines, carried=carried, env_f=f, env_A=A,
+                wheel_env=wheel_orders(f, A, shaft_hz, faultlines.welch_averages(x.size, seg),
+                                       taken=[k * r.f_found for r in found.values() if r.detected
+                                              for k in range(1, int(f[-1] / r.f_found) + 1)]))

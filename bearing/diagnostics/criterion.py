@@ -12,7 +12,10 @@ lines' evidence (:class:`.verdict.LineEvidence`, built by :mod:`.pair`):
 
 1. *No line* (rule ``no fault line``): none of ``Criterion.lines`` (BPFO outer ring, BPFI inner
    ring, 2BSF a rolling element with its cage sidebands; :mod:`.faultlines`) is detected on
-   either side, for either side's bearing -> both healthy.
+   either side, for either side's bearing -> both healthy; ``wheel lines only`` where lines at
+   whole multiples of the shaft's rate stand there (:mod:`.wheel`: a wheel flat's comb, a
+   polygon's line; a fault line found on one is the shaft's, :func:`.faultlines.mask_sidebands`),
+   named in the evidence and the sentence.
 2. *Whose line*.  Each line seen gets its source side(s) (``how`` in the evidence):
 
    * ``bearing order``: where the two sides' bearings differ (the CWRU motor's 6205 and 6203),
@@ -293,6 +296,8 @@ def decide(left, right, lag=None, criterion: Criterion = PAPER,
                "unit": criterion.unit, "in_range": bool(lo <= m <= hi)},
         "indicators": {c: {s: float(getattr(ch[s], c)) for s in SIDES} for c in criterion.compare},
         "lag": _lag_evidence(lag, criterion),
+        "wheel": {s: {"envelope": list(getattr(ch[s], "wheel_env", ())),
+                      "spectrum": list(getattr(ch[s], "wheel_spec", ()))} for s in SIDES},
     }
     owns = {s: [e for e in lines if s in src[e.key]["sources"]] for s in SIDES}
     copies = [e for e in lines if all(e.seen.values()) and not src[e.key]["sources"]]
@@ -301,7 +306,8 @@ def decide(left, right, lag=None, criterion: Criterion = PAPER,
     def verdict(words, rule, real=None, **more):
         return Verdict(dict(zip(SIDES, words)), rule, real, {**evidence, **more})
     if not shows["left"] and not shows["right"]:
-        return verdict(("healthy", "healthy"), "no fault line")
+        wheel = any(v for w in evidence["wheel"].values() for v in w.values())
+        return verdict(("healthy", "healthy"), "wheel lines only" if wheel else "no fault line")
     if owns["left"] and owns["right"]:
         strength = {s: max(e.best_snr_db.get(s, e.snr_db[s]) for e in owns[s]) for s in SIDES}
         evidence["strength_db"] = strength

@@ -8,7 +8,8 @@ For each named line ``f0`` (BPFO, BPFI, FTF, ...):
   beside a window (``w_floor = max(3 hw, 20 df)``; the median ignores the odd other line);
 * ``snr_db = 20 log10(amplitude / floor)``; a bin *passes* when ``snr_db >= threshold_db``;
 * harmonics ``k = 2..n_harmonics`` of a candidate fundamental ``f1`` (a local maximum of the
-  fundamental window that passes, or the window's highest bin when none does) are searched in
+  fundamental window that passes, or the window's highest bin when none does; that bin passes
+  only where it is a peak, not the skirt of a line beside the window) are searched in
   the narrow windows ``|f - k f1| <= k max(df, 0.005 f1)``: slip scales every harmonic alike, so
   they sit at ``k f1`` up to the bin quantisation of ``f1`` and 0.5 % of speed drift in the
   record.  Tying the harmonics to the fundamental keeps another family's lines, which fall
@@ -201,9 +202,12 @@ def detect(f, A, lines: dict[str, float], n_harmonics: int = 3, slip: float = 0.
             ok = [r for r in rows + side if r[3] >= r[4]]
             score = (rows[0][3] >= thr, len(ok), sum(r[3] for r in ok))
             if best is None or score > best[0]:
-                best = (score, rows, side)
+                best = (score, rows, side, c)
         searched, side = tuple(best[1]), tuple(best[2])
-        passing = tuple((k, fk, a, s) for k, fk, a, s, t in searched if s >= t)
+        # a line is a peak: the window's highest bin on the skirt of a line outside it (a shaft
+        # harmonic next to the window, a wheel flat's comb) is not this line's fundamental
+        peak = bool(A[best[3]] >= A[max(best[3] - 1, 0)] and A[best[3]] >= A[min(best[3] + 1, A.size - 1)])
+        passing = tuple((k, fk, a, s) for k, fk, a, s, t in searched if s >= t and (k > 1 or peak))
         fund = bool(passing) and passing[0][0] == 1
         n_pass = sum(1 for h in passing if h[0] >= 2) + sum(1 for r in side if r[3] >= r[4])
         detected = fund and n_pass >= n_required
@@ -224,7 +228,8 @@ def mask_sidebands(found: dict[str, LineResult], shaft_hz: float, df: float,
     fundamental SNR; two lines whose windows hold the same peak tie on SNR, and the one whose
     expected frequency lies nearer the peak keeps it):
 
-    * a line found within ``max(df, 0.3 %)`` of a shaft harmonic ``n f_shaft`` that is either
+    * a line found within ``max(2 df, 0.3 %)`` of a shaft harmonic ``n f_shaft`` (the Hann window's
+  main lobe is two bins either side: nearer, the two cannot be told apart) that is either
       expected within 1 % of it or found nearer it than its own expected frequency (``masked_by``
       "shaft"): unbalance, misalignment and the rotor's own orders put lines there in the
       envelope too, and a line there cannot be told from them (the CWRU fan end's 2 BSF, 3.9874
@@ -249,7 +254,7 @@ def mask_sidebands(found: dict[str, LineResult], shaft_hz: float, df: float,
         f1 = r.f_found
         tol = max(2 * df, 0.005 * f1)
         n = round(f1 / shaft_hz)
-        near = n >= 1 and abs(f1 - n * shaft_hz) <= max(df, 0.003 * f1)
+        near = n >= 1 and abs(f1 - n * shaft_hz) <= max(2 * df, 0.003 * f1)
         # the peak is the shaft's when the line cannot be told from the harmonic (expected
         # within 1 %), or when it sits nearer the harmonic than the line's own frequency
         at_shaft = near and (abs(r.f_expected / (n * shaft_hz) - 1.0) <= 0.01

@@ -13,10 +13,15 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from .wheel import text as wheel_text
+
 SIDES = ("left", "right")
 VERDICTS = ("real fault", "pseudo-fault", "healthy", "faults on both sides", "undecided")
 RULES = {
     "no fault line": "no fault line on either side",
+    "wheel lines only": "no bearing fault: the lines on the pair stand at whole multiples of the "
+                        "shaft's rate, the wheel's (a wheel flat, an out-of-round wheel; on a "
+                        "rotor rig its unbalance and misalignment), not at a bearing's orders",
     "each side owns a line": "each side carries a fault line of its own",
     "one side owns the lines": "one side carries the fault line(s) as its own",
     "one side only, spectra alike": "a fault line on one side only, nothing on the other, and "
@@ -142,6 +147,10 @@ def sentence(v: Verdict, side: str) -> str:
     parts = [RULES[v.rule]]
     lines = _lines_text(v, side)
     parts.append(f"lines here: {lines}" if lines else "no fault line here")
+    wheel = ev.get("wheel", {}).get(side)
+    if wheel and (wheel["envelope"] or wheel["spectrum"]):
+        parts.append("wheel: " + wheel_text(wheel["envelope"], wheel["spectrum"])
+                     + " (the wheel's lines, not a bearing's)")
     st = ev.get("strength_db")
     if st:
         parts.append(f"own lines {st['left']:.3g} / {st['right']:.3g} dB over their floors in their "
@@ -152,7 +161,7 @@ def sentence(v: Verdict, side: str) -> str:
         parts.append(f"VF difference {_g(vf['m'])} {vf['unit']} {where} "
                      f"[{_g(vf['range'][0])}, {_g(vf['range'][1])}]")
     ind = ev.get("indicators")
-    if ind and v.rule not in ("no fault line",):
+    if ind and v.rule not in ("no fault line", "wheel lines only"):
         parts.append(", ".join(f"{_LABEL.get(c, c)} {_g(d['left'])} / {_g(d['right'])}"
                                for c, d in ind.items()) + " (left / right)")
     lag = ev.get("lag")
