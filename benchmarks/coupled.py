@@ -57,9 +57,9 @@ def rhs_us(model, y0, n=200, repeats=5) -> float:
 @njit
 def _stage(which, nrep, t, y, dy, S, W):
     """``nrep`` calls of one stage of :func:`axlebox.mbs.kernel_system.rhs` (same order, same arrays)."""
-    bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f, wtab, wpar, trk, sens, \
+    bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f, wtab, wpar, trk, wrk, sens, \
         br_i, br_P, br_D = S
-    Ab, rb, vb, omb, omfb, mku, mkp, mkv, mkR, mkw, mkF, mkM, gen, elout, whout, sensout, brG = W
+    Ab, rb, vb, omb, omfb, mku, mkp, mkv, mkR, mkw, mkF, mkM, gen, elout, whout, sensout = W
     nb = bi.shape[0]
     for _ in range(nrep):
         if which == 0:
@@ -70,10 +70,10 @@ def _stage(which, nrep, t, y, dy, S, W):
         elif which == 1:
             element_forces(t, el_i, el_f, mkp, mkv, mkR, mkw, mkF, mkM, elout)
         elif which == 2:
-            bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, elout, brG)
+            bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, elout)
         elif which == 3:
-            wheel_forces(t, bi, wh_i, wh_f, wtab, wpar, trk, glob, Ab, omb, mkp, mkv, mkR, mkw,
-                         mkF, mkM, whout)
+            wheel_forces(t, y, bi, wh_i, wh_f, wtab, wpar, trk, wrk, glob, Ab, omb, mkp, mkv, mkR,
+                         mkw, mkF, mkM, whout)
         elif which == 4:
             for b in range(nb):
                 n, o = bi[b, BI_N], goff[b]

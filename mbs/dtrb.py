@@ -67,9 +67,11 @@ def start(cfg: dict, loads: dict, omega_w: float, log=print) -> dict:
         D = defect_table(cfg, *key, p)
         # the healthy bearing's equilibrium: a roller that starts inside a defect has none
         # (3 and 5 mm defects at the top), and the first passes over the defect are the run's
-        # (tolerances: 0.06 N on the rings, 6 N on a roller under a 56 kN load: nothing to the run)
+        # (tolerances: 0.06 N on the rings, 11 N on a roller under a 56 kN load, one at the edge
+        # of the loaded zone where Newton stalls: nothing to the run, whose first 0.5 s are the
+        # track's fade-in; 80 km/h on the ballasted track stalled at 5.7 N, 1.0e-4 of the load)
         yb, uo = static_state(p, P, np.zeros((0, bdefects.WIDTH)), F, omega_w, tol=1e-6,
-                              roller_tol=1e-4, phase=bdefects.phase_clear_of(D, p.Z))
+                              roller_tol=2e-4, phase=bdefects.phase_clear_of(D, p.Z))
         out[key] = (P, D, yb, np.asarray(uo, float))
     log(f"bearings: {len(out)} DTRBs in equilibrium, outer-ring loads "
         f"{min(-F[2] for F in loads.values()) / 1e3:.1f}-{max(-F[2] for F in loads.values()) / 1e3:.1f} kN")

@@ -1,6 +1,6 @@
 """Numba: the wheel-rail force elements of all wheels, on the markers at the wheel treads.
 
-Wheel ``w`` (``wh_i = [marker, side, body]``, ``wh_f = [r_c, ds_w]``) acts at a marker on the tread
+Wheel ``w`` (``wh_i = [marker, side, body, track]``, ``wh_f = [r_c, ds_w]``) acts at a marker on the tread
 point of the nominal taping line (bottom of the wheel in the non-spinning frame).  The wheel
 centre is ``c = p + r_c R e_z`` (the marker frame's z axis), the axle direction ``e = R e_y``;
 the material angular velocity adds the body's spin to the frame rate.  The rails' irregularities
@@ -12,6 +12,9 @@ slopes`` on the grid ``j ds_w`` around its rolling circle, :func:`axlebox.mbs.ro
 adds to its rails' height, read at the arc ``beta r_c`` its spin angle beta has turned (on a
 body that does not spin, at the distance rolled, ``c_x``), and fades in with the track; its
 rate is taken as slope times the rolling speed, as the rails' (creep: 1e-3 of it).
+On a ballasted track (``track >= 0``, :mod:`axlebox.mbs.trackbed`) the rail body's height and
+vertical velocity add to the rail's, and the contact's vertical force acts on it (the track is
+rigid laterally and along the rail).
 The contact itself is :func:`axlebox.mbs.wheelrail.element_kernel.wheel_rail_force`.
 """
 from __future__ import annotations
@@ -27,7 +30,7 @@ from .kernel_body import BI_POS, BI_SPIN, cross
 
 G_GRAV, G_V, G_S0, G_DS, G_TRACK, G_RAMP = 0, 3, 4, 5, 6, 7   # glob slots
 N_GLOB = 8
-WH_MARKER, WH_SIDE, WH_BODY = 0, 1, 2
+WH_MARKER, WH_SIDE, WH_BODY, WH_TRACK = 0, 1, 2, 3   # WH_TRACK: the rail body's marker, -1 none
 WF_RC, WF_DS = 0, 1                    # wh_f columns: r_c; the wheel record's grid step (0: none)
 
 
@@ -106,8 +109,17 @@ def wheel_forces(t, y, bi, wh_i, wh_f, wtab, wpar, trk, wrk, glob, Ab, omb, mkp,
             r, dr = hermite_at(wrk[w, 0], wrk[w, 1], s_w, wh_f[w, WF_DS])
             z_r += fade * r
             dz += fade * dr
+        mt = wh_i[w, WH_TRACK]
+        zt = 0.0
+        vt = 0.0
+        if mt >= 0:                               # the rail body under the wheel (trackbed.py)
+            zt = mkp[mt, 2]
+            vt = mkv[mt, 2]
         out = whout[w]
-        wheel_rail_force(side, c, e, vc, om, V, z_r, y_r, dz * vc[0], dyr * vc[0], wtab, wpar, out)
+        wheel_rail_force(side, c, e, vc, om, V, z_r + zt, y_r, dz * vc[0] + vt, dyr * vc[0], wtab,
+                         wpar, out)
+        if mt >= 0:                               # its vertical force on the rail
+            mkF[mt, 2] -= out[2]
         # out[0:3] force on the wheel, out[3:6] moment about c: move to the marker
         for a in range(3):
             tmp[a] = out[a]

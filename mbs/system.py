@@ -58,7 +58,7 @@ class System:
         self.markers: list[tuple[int, str | None, np.ndarray, str]] = []
         self.elements: list = []
         self.sensors: dict[str, int] = {}
-        self.wheels: list[tuple[str, int, int, float]] = []
+        self.wheels: list[tuple[str, int, int, float, int]] = []
         self.wheel_tables: tuple[np.ndarray, np.ndarray] | None = None
         self.track = None
         self.wheel_records: dict[str, tuple] = {}   # wheel name -> (values, slopes, ds)
@@ -137,10 +137,12 @@ class System:
                               np.asarray(D, float).reshape(-1, defects.WIDTH),
                               np.asarray(y0, float)))
 
-    def wheel(self, name: str, marker: int, side: int, r_c: float) -> None:
+    def wheel(self, name: str, marker: int, side: int, r_c: float, track: int = -1) -> None:
         """A wheel-rail contact at the tread marker ``marker``; ``side`` 0 left, 1 right;
-        ``r_c`` the height of the wheel centre above the marker (the rolling radius)."""
-        self.wheels.append((name, marker, side, float(r_c)))
+        ``r_c`` the height of the wheel centre above the marker (the rolling radius); ``track``:
+        the marker of the rail body under it (mbs/trackbed.py), whose height adds to the rail's
+        and which takes the contact's vertical force, or -1 for rigid rails."""
+        self.wheels.append((name, marker, side, float(r_c), int(track)))
 
     # -- packing --------------------------------------------------------------------------
     def assemble(self) -> "Model":
@@ -214,8 +216,8 @@ class System:
             # then reproduces TrackIrregularity.at
             trk = np.ascontiguousarray(np.vstack(tr.grid() + tr.at(tr.s, derivative=True)))
             glob[G_S0], glob[G_DS], glob[G_TRACK] = 0.0, tr.ds, 1.0
-        wh_i = np.array([(m, side, self.markers[m][0]) for _, m, side, _ in self.wheels],
-                        np.int64).reshape(-1, 3)
+        wh_i = np.array([(m, side, self.markers[m][0], tm) for _, m, side, _, tm in self.wheels],
+                        np.int64).reshape(-1, 4)
         unknown = set(self.wheel_records) - {w[0] for w in self.wheels}
         if unknown:
             raise ParameterError(f"wheel_records: {', '.join(sorted(unknown))} is not allowed: "
@@ -224,7 +226,7 @@ class System:
         nw = max([r[0].size for r in recs if r is not None], default=1)
         wrk = np.zeros((max(len(self.wheels), 1), 2, nw))
         wh_f = np.zeros((len(self.wheels), 2))       # ds 0: the wheel has no record
-        for w, (r, (*_, rc)) in enumerate(zip(recs, self.wheels)):
+        for w, (r, (*_, rc, _tm)) in enumerate(zip(recs, self.wheels)):
             wh_f[w, 0] = rc
             if r is not None:          # one grid size for all: the kernel's table is rectangular
                 values, slopes, ds = r
@@ -385,8 +387,10 @@ class Model:
         nb = bi.shape[0]
         adj = np.eye(nb, dtype=bool)
         mk_body = self.S.mk_i[:, 0]
-        for e in self.system.elements:
-            b1, b2 = mk_body[e.m1], mk_body[getattr(e, "m2", e.m1)]
+        pairs = [(e.m1, getattr(e, "m2", e.m1)) for e in self.system.elements]
+        pairs += [(w[1], w[4]) for w in self.system.wheels if w[4] >= 0]    # wheel on its rail
+        for m1, m2 in pairs:
+            b1, b2 = mk_body[m1], mk_body[m2]
             if b1 >= 0 and b2 >= 0:
                 adj[b1, b2] = adj[b2, b1] = True
         N = self.n_states

@@ -30,6 +30,7 @@ from axlebox.fem.damping import modal as modal_damping
 
 from .body import Body, add_point_masses, flexible, mode_count, rigid
 from .elements import BumpStop, Bushing, Spring
+from . import trackbed
 from .system import System
 from .wheelrail.element_kernel import COL_C0Z, COL_KH, COL_PZ, P_L0
 
@@ -78,6 +79,41 @@ def _marker(s: System, body: Body, node: str, at, align: bool = False, place: bo
     if node in body.nodes:
         return s.marker(body.name, node=node, at=at if place else None, align=align)
     return s.marker(body.name, at=at, align=align)
+
+
+TIE_HZ = 300.0              # the track layers' ties along, across and in rotation (unloaded)
+
+
+def _track_under(s: System, cfg: dict, name: str, x: float, y: float, V: float) -> int:
+    """The ballasted track under wheel ``name`` (:mod:`.trackbed`): rail, sleeper and ballast
+    bodies below the contact at ``(x, y)``, moving with the car, each spring preloaded with the
+    weight above it so that the unloaded track rests as built; returns the rail's marker.  The
+    ground springs hold nothing along the track (the bodies travel with the wheel); the layers
+    are tied along, across and in rotation at :data:`TIE_HZ` (no load reaches those directions)."""
+    m = trackbed.lumped(cfg["track"])
+    w = 2 * np.pi * TIE_HZ
+    marks, weight = [], 0.0
+    for layer, mass, z in (("rail", m.m_rail, 0.0), ("sleeper", m.m_sleeper, -0.2),
+                           ("ballast", m.m_ballast, -0.5)):
+        body = f"{layer}_{name}"
+        s.add_body(rigid(body, mass, [mass * 0.01] * 3), r=(x, y, z), v=(V, 0, 0))
+        marks.append(s.marker(body))
+    ground = s.marker(None, at=(x, y, -0.8))
+    below = {"rail": (marks[1], m.k_pad, m.c_pad), "sleeper": (marks[2], m.k_ballast, m.c_ballast),
+             "ballast": (ground, m.k_subgrade, m.c_subgrade)}
+    for (layer, mass), top in zip((("rail", m.m_rail), ("sleeper", m.m_sleeper),
+                                   ("ballast", m.m_ballast)), marks):
+        weight += mass * G
+        low, k, c = below[layer]
+        kt, ct = mass * w * w, 0.1 * mass * w            # ties: 300 Hz, 5 % damping
+        kr, cr = 0.01 * kt, 0.01 * ct
+        s.add(Bushing(f"{layer}_support_{name}", low, top,
+                      k=(0.0 if low == ground else kt, kt, k, kr, kr, kr),
+                      c=(0.0 if low == ground else ct, ct, c, cr, cr, cr),
+                      preload=(0, 0, weight, 0, 0, 0)))
+    s.add(Bushing(f"rail_bending_{name}", s.marker(None, at=(x, y, -0.8)), marks[0],
+                  k=(0, 0, m.k_bend, 0, 0, 0)))
+    return marks[0]
 
 
 def static_wheel_load(cfg: dict) -> float:
@@ -189,7 +225,9 @@ def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None 
                 s.sensor(f"ws{k}_{side}", _marker(s, ab, cfg["sensors"]["node"], (0, 0, 0.175)))
                 # the tables' nominal contact line (the FE tread spider sits at the FE wheel's)
                 tread = _marker(s, ws, f"tread_{side}", (0, sg * l0, -r0), place=True)
-                s.wheel(f"ws{k}_{side}", tread, 0 if sg > 0 else 1, r0)
+                rail = (_track_under(s, cfg, f"ws{k}_{side}", x, sg * l0, V)
+                        if cfg["track"]["model"] == "ballasted" else -1)
+                s.wheel(f"ws{k}_{side}", tread, 0 if sg > 0 else 1, r0, track=rail)
             if gb["mass"] > 0:
                 toward = -1.0 if xa > 0 else 1.0            # towards the bogie centre
                 yg = gear_y * 0.42

@@ -90,7 +90,7 @@ def test_a_flat_lifts_the_wheel_off_the_rail_and_strikes_once_a_turn(car_run):
     the contact opens (normal force 0) and closes with an impact above twice the static load,
     and the flat's passes come once a wheel turn, 2 pi r0 / V apart (1 %).  The run stays
     finite.  (The impact, 470-530 kN here, is far above what a flexible track would see: these
-    rails are rigid.)"""
+    rails are rigid; on the ballasted track, tests/test_trackbed.py, it is about a third.)"""
     from axlebox.mbs.wheelrail import element_kernel as ek
     cfg, model, run = car_run
     assert run.ok, run.message

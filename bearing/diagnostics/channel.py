@@ -164,7 +164,7 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
             p_fa: float = 1e-3, n_required: int = 2, nperseg: int | None = None,
             spm_periods: float = 4.0, spm_segments: int = 16, max_imf: int = 4,
             guide: str | None = None, other: FaultOrders | None = None,
-            vf_band: tuple[float, float] | None = None) -> ChannelResult:
+            vf_band: tuple[float, float] | None = None, keep=None) -> ChannelResult:
     """Indicators of the 1-D acceleration ``x`` (m/s^2) sampled at ``fs`` Hz, on a bearing
     turning at ``shaft_hz`` with fault ``orders`` (multiples of the shaft frequency) and bore
     ``D`` (m).  ``band``: envelope band (Hz), default by spectral kurtosis.  ``guide``: instead,
@@ -172,7 +172,8 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
     which of the orders to search.  ``other``: the other side's bearing, whose distinct lines
     are searched too (module docstring).  ``nperseg``: Welch segment of the PSD for FC/VF;
     ``vf_band``: their band ``(lo, hi)`` Hz (:func:`.spectral.fc_vf`), default the whole.  The
-    rest go to :func:`.faultlines.detect` and :func:`.spm.shock_value`."""
+    rest go to :func:`.faultlines.detect` and :func:`.spm.shock_value` (``keep``: where the
+    record was not blanked, :mod:`.gate`)."""
     x = _signal(x)
     fs = check_fs(fs)
     for name, v in (("shaft_hz", shaft_hz), ("D", D)):
@@ -196,7 +197,7 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
     vf_band = check_band(vf_band, fs)
     FC, VF, MSF = fc_vf(x, fs, nperseg, vf_band)
     SV = spm.shock_value(x, fs, period_s=1.0 / (orders.BPFO * shaft_hz), n_periods=spm_periods,
-                         n_segments=spm_segments, max_imf=max_imf)
+                         n_segments=spm_segments, max_imf=max_imf, keep=keep)
     level = spm.spm_db(SV, shaft_hz, D)
     return ChannelResult(fs=fs, n_samples=int(x.size), shaft_hz=float(shaft_hz), D=float(D),
                          rms=t["rms"], peak=t["peak"], kurtosis=t["kurtosis"], crest=t["crest"],

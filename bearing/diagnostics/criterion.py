@@ -275,11 +275,12 @@ def _snr(found: dict, key: str) -> float:
 
 
 def decide(left, right, lag=None, criterion: Criterion = PAPER,
-           lines: list[LineEvidence] | None = None) -> Verdict:
+           lines: list[LineEvidence] | None = None, gate: dict | None = None) -> Verdict:
     """The :class:`.verdict.Verdict` on two :class:`.channel.ChannelResult` (``FC``/``VF``,
     ``rms``, ``spm_db``, ``lines``), an optional :class:`.lag.LagResult` whose channel ``a`` is
     ``left``, and the lines' evidence (default :func:`evidence_from_channels`: no timing, so a
-    line seen on both sides is a copy)."""
+    line seen on both sides is a copy); ``gate``: the wheel's strikes blanked before (the
+    windows, :class:`.gate.Gate` as a dict), quoted in the evidence."""
     ch = {"left": left, "right": right}
     other = {"left": "right", "right": "left"}
     lines = evidence_from_channels(left, right, criterion.lines) if lines is None else \
@@ -296,6 +297,7 @@ def decide(left, right, lag=None, criterion: Criterion = PAPER,
                "unit": criterion.unit, "in_range": bool(lo <= m <= hi)},
         "indicators": {c: {s: float(getattr(ch[s], c)) for s in SIDES} for c in criterion.compare},
         "lag": _lag_evidence(lag, criterion),
+        "gate": gate,
         "wheel": {s: {"envelope": list(getattr(ch[s], "wheel_env", ())),
                       "spectrum": list(getattr(ch[s], "wheel_spec", ()))} for s in SIDES},
     }

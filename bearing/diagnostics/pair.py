@@ -16,6 +16,7 @@ from axlebox._params import ParameterError
 from ..frequencies import FaultOrders
 from .channel import LINE_OPTIONS, LINES, ChannelResult, analyse, reguide, welch_segment
 from .coherence import line_timing
+from .gate import wheel_gate
 from .guided import band_scan
 from .criterion import PAPER, Criterion, decide, vf_difference
 from .envelope import _signal, check_fs
@@ -45,6 +46,7 @@ class PairResult:
     bearings: tuple[str, str] = ("", "")
     x_left: np.ndarray = field(default=None, repr=False, compare=False)
     x_right: np.ndarray = field(default=None, repr=False, compare=False)
+    gate: object | None = None
 
     @property
     def verdicts(self) -> dict[str, tuple[str, str]]:
@@ -60,7 +62,7 @@ class PairResult:
         """The verdict under another criterion, from the same indicators and evidence (each
         side's FC and VF taken again from its signal where the criterion's ``vf_band`` differs)."""
         p = self if criterion.vf_band == self.criterion.vf_band else self.in_vf_band(criterion.vf_band)
-        return decide(p.left, p.right, p.lag, criterion, list(p.evidence))
+        return decide(p.left, p.right, p.lag, criterion, list(p.evidence), gate=_gd(p.gate))
 
     def in_vf_band(self, band) -> "PairResult":
         """This pair with both sides' FC, VF and MSF over ``band`` (Hz, None: the whole), from
@@ -72,10 +74,11 @@ class PairResult:
                        for c, x in ((self.left, self.x_left), (self.right, self.x_right)))
         return replace(self, left=left, right=right, criterion=crit,
                        vf_diff=abs(left.VF - right.VF), m=vf_difference(left.VF, right.VF, crit),
-                       verdict=decide(left, right, self.lag, crit, list(self.evidence)))
+                       verdict=decide(left, right, self.lag, crit, list(self.evidence),
+                                      gate=_gd(self.gate)))
 
     def to_dict(self) -> dict:
-        return {"names": {"left": self.names[0], "right": self.names[1]},
+        return {"names": {"left": self.names[0], "right": self.names[1]}, "gate": _gd(self.gate),
                 "bearings": {"left": self.bearings[0], "right": self.bearings[1]},
                 "left": self.left.to_dict(), "right": self.right.to_dict(),
                 "lag": self.lag.to_dict(), "vf_diff_hz2": self.vf_diff,
@@ -175,10 +178,15 @@ def _pair_of(v, name: str) -> tuple:
     return v, v
 
 
+def _gd(g):
+    return None if g is None else g.to_dict()
+
+
 def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
                  criterion: Criterion = PAPER, band=None, *, names=("left", "right"),
                  max_lag_s: float | None = None, guided: bool = True,
-                 bearings: tuple[str, str] = ("", ""), **channel_kw) -> PairResult:
+                 bearings: tuple[str, str] = ("", ""), gate: bool = True,
+                 _wheel: dict | None = None, **channel_kw) -> PairResult:
     """Analyse both channels (same rate ``fs``; ``shaft_hz`` as in :func:`.channel.analyse`;
     fault ``orders`` and bore ``D`` in m, one for both sides or a (left, right) pair: each side
     has its own bearing, whose lines it owns, and the other side's distinct lines are searched
@@ -194,7 +202,10 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
     shares (:mod:`.own`).  The lag is read impulse by impulse (:func:`.lag.impulse_lag`),
     broadband, else in either side's band; only a record without impulses falls back to the
     envelopes' correlation within ``max_lag_s`` (default half a BPFO period: periodic impulses
-    make the lag ambiguous by whole periods)."""
+    make the lag ambiguous by whole periods).  ``gate``: where a wheel flat strikes both sides
+    once a turn (:func:`.gate.wheel_gate`), the strikes are blanked on both channels and
+    everything is read on what is left, the wheel's lines named from the record as it came
+    (``PairResult.gate`` holds the windows)."""
     fs = check_fs(fs)
     xs = []
     for side, x, n in (("left", x_left, names[0]), ("right", x_right, names[1])):
@@ -225,6 +236,18 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
                                 other=fo[1 - i], vf_band=criterion.vf_band, **channel_kw)
         except ParameterError as err:
             raise ParameterError(f"{side} channel {n!r}: {err}") from None
+    g = wheel_gate(xs[0], xs[1], fs, shaft_hz) if gate else None
+    if g is not None:               # a flat's strikes: read the bearings between them
+        keep = g.mask(xs[0].size, fs)
+        p = analyse_pair(xs[0] * keep, xs[1] * keep, fs, shaft_hz, orders, D, criterion, band,
+                         names=names, max_lag_s=max_lag_s, guided=guided, bearings=bearings,
+                         gate=False, lines=lines, keep=keep,
+                         _wheel={s: (r.wheel_env, r.wheel_spec) for s, r in res.items()},
+                         **channel_kw)
+        return replace(p, gate=g, verdict=decide(p.left, p.right, p.lag, criterion,
+                                                 list(p.evidence), gate=g.to_dict()))
+    if _wheel is not None:          # the wheel's lines as the record came, before the blanking
+        res = {s: replace(r, wheel_env=_wheel[s][0], wheel_spec=_wheel[s][1]) for s, r in res.items()}
     line_kw = {k: v for k, v in channel_kw.items() if k in LINE_OPTIONS}
     if band is None and guided:
         for name in criterion.lines:

@@ -72,11 +72,13 @@ def _segment_level(seg: np.ndarray, max_imf: int) -> float:
 
 
 def shock_value(x, fs: float, period_s: float | None = None, n_periods: float = 4.0,
-                n_segments: int = 16, max_imf: int = 4, seg_s: float = 0.25) -> float:
+                n_segments: int = 16, max_imf: int = 4, seg_s: float = 0.25, keep=None) -> float:
     """SV (units of ``x``, m/s^2 for acceleration): median over ``n_segments`` segments of
     ``n_periods * period_s`` s (or ``seg_s`` s without ``period_s``; at most 1 s) of the peak
     Hilbert envelope of the impulsive IMFs (module docstring).  Records shorter than the
-    segments get fewer of them, or one of the whole record."""
+    segments get fewer of them, or one of the whole record.  ``keep`` (bool, like ``x``): the
+    segments lie wholly where it is True (a record whose wheel strikes were blanked,
+    :mod:`.gate`: EMD has no extrema to follow in a run of zeros)."""
     x = _signal(x)
     fs = check_fs(fs)
     for name, v in (("period_s", period_s), ("n_periods", n_periods), ("seg_s", seg_s)):
@@ -90,6 +92,12 @@ def shock_value(x, fs: float, period_s: float | None = None, n_periods: float = 
     L = min(x.size, max(32, int(round(min(T, 1.0) * fs))))
     n = max(1, min(n_segments, x.size // L))
     starts = np.linspace(0, x.size - L, n).astype(int)
+    if keep is not None:
+        gaps = np.r_[0, np.cumsum(~np.asarray(keep, bool))]
+        whole = np.flatnonzero(gaps[L:] - gaps[:-L] == 0)       # starts of gap-free segments
+        if whole.size:
+            n = max(1, min(n_segments, int(np.count_nonzero(keep)) // L))
+            starts = whole[np.linspace(0, whole.size - 1, n).astype(int)]
     return float(np.median([_segment_level(x[i:i + L], max_imf) for i in starts]))
 
 

@@ -151,6 +151,12 @@ def sentence(v: Verdict, side: str) -> str:
     if wheel and (wheel["envelope"] or wheel["spectrum"]):
         parts.append("wheel: " + wheel_text(wheel["envelope"], wheel["spectrum"])
                      + " (the wheel's lines, not a bearing's)")
+    g = ev.get("gate")
+    if g:
+        ms = 1e3 * (g["before_s"] + g["after_s"])
+        parts.append(f"the wheel's strikes once a turn blanked first ({ms:.3g} ms of each "
+                     f"{1e3 * g['turn_s']:.3g} ms turn, {100 * g['kept']:.0f} % of the record kept; "
+                     f"fold ratio {g['ratio']:.3g})")
     st = ev.get("strength_db")
     if st:
         parts.append(f"own lines {st['left']:.3g} / {st['right']:.3g} dB over their floors in their "

@@ -15,10 +15,13 @@ window ``|f - k f_shaft| <= max(df, 0.005 k f_shaft)`` (the wheel turns at the s
 slip, only the record's speed drift), against the median floor of the ring beside it and the
 false-alarm threshold of :func:`.faultlines.window_threshold_db` at ``p_fa / K`` per window (so
 that noise alone names a wheel line in at most ``p_fa`` of records, over all ``K`` windows).
-The window's highest bin must be a peak (not the skirt of a line beside the window) and lie
+The window's highest bin must be a narrow peak, ``NARROW`` times the bins two away on either
+side (a steady line's Hann main lobe falls at least threefold there, whatever its offset from
+the bin; the crest of a structural resonance does not: the healthy car's spectra hold such crests
+at whole orders by chance), not the skirt of a line beside the window, and lie
 nearer ``k f_shaft`` than any harmonic of a bearing line detected in the same spectrum (BPFO's
 fourth harmonic, 34.88 orders, lies within a bin of 35 at 40 km/h): those keep their peaks.
-Orders closer than three bins apart cannot be told from their neighbours' skirts: then nothing
+Orders closer than five bins apart cannot be told from their neighbours' lobes: then nothing
 is searched.
 """
 from __future__ import annotations
@@ -32,6 +35,7 @@ from .faultlines import _window, welch_averages
 
 MAX_ORDER = 40          # a polygon's orders reach 30 (module docstring); a flat's comb, its first 40
 P_FA = 1e-3             # noise alone names a wheel line in one record of a thousand
+NARROW = 2.0            # a line's peak over the bins two away: a Hann main lobe's is 3 or more
 
 
 def wheel_orders(f, A, shaft_hz: float, n_avg: float = 1.0, max_order: int = MAX_ORDER,
@@ -44,7 +48,7 @@ def wheel_orders(f, A, shaft_hz: float, n_avg: float = 1.0, max_order: int = MAX
     f = np.asarray(f, float)
     A = np.asarray(A, float)
     df = f[1] - f[0]
-    if shaft_hz < 3 * df:
+    if shaft_hz < 5 * df:
         return ()
     K = min(int(max_order), int((f[-1] - shaft_hz) // shaft_hz))
     out = []
@@ -52,7 +56,8 @@ def wheel_orders(f, A, shaft_hz: float, n_avg: float = 1.0, max_order: int = MAX
         fk = k * shaft_hz
         win, floor, thr = _window(f, A, fk, max(df, 0.005 * fk), df, n_avg, p_fa / max(K, 1), None)
         i = int(win[np.argmax(A[win])])
-        peak = A[i] >= A[max(i - 1, 0)] and A[i] >= A[min(i + 1, A.size - 1)]
+        peak = A[i] >= A[max(i - 1, 0)] and A[i] >= A[min(i + 1, A.size - 1)] and \
+            A[i] >= NARROW * max(A[max(i - 2, 0)], A[min(i + 2, A.size - 1)])
         mine = all(abs(f[i] - fk) < abs(f[i] - g) for g in taken)
         if peak and mine and floor > 0 and 20 * math.log10(max(A[i], 1e-300) / floor) >= thr:
             out.append(k)
