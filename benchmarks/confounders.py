@@ -97,9 +97,11 @@ def main():
         ax.set_title(f"{speed:g} km/h, wheel: {wheel}\nR {w['right']}, L {w['left']}", fontsize=8)
         ax.tick_params(labelsize=7)
     for ax in axes[-1]:
-        ax.set_xlabel("envelope frequency / wheel rate (dashed: BPFO 8.72 and harmonics; "
-                      "dotted: wheel lines)", fontsize=7)
+        ax.set_xlabel("envelope frequency / wheel rate", fontsize=8)
     axes[0, 0].legend(fontsize=7)
+    fig.suptitle("with the bearing defect: the envelope spectra as read (a flat's strikes blanked "
+                 "first); dashed: BPFO (8.72) and its harmonics, dotted: the wheel's lines named",
+                 fontsize=9)
     fig.tight_layout()
     Path(a.figure).parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(a.figure, dpi=90)

@@ -80,7 +80,11 @@ def test_a_defect_on_one_side_keeps_real_and_pseudo(runs):
 def test_no_defect_is_healthy(runs):
     pair = _pair(runs, "v80_w0")
     assert pair.verdicts["left"][0] == pair.verdicts["right"][0] == "healthy"
-    assert pair.verdict.rule == "no fault line"
+    # the car without a defect shows a narrow line at a whole order in its spectrum at some
+    # speeds (README, "Wheel flats and polygons"): named as the wheel's, no bearing line
+    assert pair.verdict.rule in ("no fault line", "wheel lines only")
+    bearing = {"BPFO", "BPFI", "2BSF"}
+    assert not bearing & set(pair.left.detected) and not bearing & set(pair.right.detected)
 
 
 @pytest.mark.slow

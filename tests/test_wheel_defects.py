@@ -131,9 +131,11 @@ def test_a_polygon_shakes_its_wheel_at_its_order_times_the_wheel_rate(car_run):
 
 def test_the_criterion_names_the_flats_lines_and_calls_no_bearing_fault(car_run):
     """The car's axle boxes on wheelset 2, whose right wheel has the flat (its bearings healthy):
-    no bearing fault on either side, the rule ``wheel lines only`` (lines at whole multiples of
-    the wheel's rate, bearing/diagnostics/wheel.py), the wheel's lines named.  The
-    1 s record holds two periods of every line but the cage's, which is left out."""
+    no bearing line detected and no bearing fault on either side.  The 0.9 s record holds two
+    periods of every line but the cage's, which is left out; it resolves the wheel's orders
+    only four bins apart, too close to tell a line from its neighbours' lobes, so none is named
+    (bearing/diagnostics/wheel.py; the 2.8 s confounder cases name them, benchmarks/README.md)
+    and none is read as a bearing's."""
     from axlebox.bearing.diagnostics.pair import analyse_pair
     from axlebox.bearing.frequencies import orders, shaft_hz
     from axlebox.bearing.params import BearingParams
@@ -143,9 +145,9 @@ def test_the_criterion_names_the_flats_lines_and_calls_no_bearing_fault(car_run)
     k0 = int(0.1 * fs)
     p = analyse_pair(x["L"][k0:], x["R"][k0:], fs, shaft_hz(40.0, cfg["wheelset"]["r0"]),
                      orders(BearingParams()), 0.13, lines=("BPFO", "BPFI", "2BSF"))
+    assert not p.left.detected and not p.right.detected
     assert p.verdicts["left"][0] == p.verdicts["right"][0] == "healthy"
-    assert p.verdict.rule == "wheel lines only"
-    assert any("wheel: " in p.verdicts[s][1] for s in ("left", "right"))
+    assert p.verdict.rule == "no fault line"
 
 
 def test_a_sweep_takes_the_wheel_defects_by_name():
