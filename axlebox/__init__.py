@@ -12,18 +12,11 @@ The subpackages are the architecture, and data flows one way through them::
 * :mod:`axlebox.configs` the shipped configs
 
 In the repository each subpackage is a top-level folder; ``pyproject.toml`` maps them under this
-package when it is installed.
+package when it is installed (from a checkout: ``python3 -m pip install -e .``, which maps the
+same folders and nothing else: the checkout's tests, benchmarks or build folders never import as
+``axlebox.*``).
 """
-from pathlib import Path as _Path
-
 from ._params import ParameterError
 
 __version__ = "0.1.0"
 __all__ = ["ParameterError", "__version__"]
-
-# Run from a source checkout that is not installed (``python -m axlebox`` in the checkout), the
-# subpackages are the folders beside this one: let the import system find them there too.
-_top = _Path(__file__).resolve().parent.parent
-if (_top / "pyproject.toml").is_file() and (_top / "pipelines" / "cli.py").is_file():
-    __path__.append(str(_top))
-del _Path, _top

@@ -1,0 +1,34 @@
+"""What imports under ``axlebox``: its own modules, the five subpackages and the configs, and
+nothing else of the checkout (issue 35: the old ``__path__`` extension made ``axlebox.tests``,
+``axlebox.build...`` and ``axlebox.axlebox`` importable, the last with a second ParameterError)."""
+import importlib
+import pkgutil
+
+import pytest
+
+import axlebox
+
+SUBPACKAGES = ("geometry", "fem", "mbs", "bearing", "pipelines", "configs")
+
+
+@pytest.mark.parametrize("name", SUBPACKAGES)
+def test_the_subpackages_import_under_axlebox(name):
+    mod = importlib.import_module(f"axlebox.{name}")
+    assert mod.__name__ == f"axlebox.{name}"
+
+
+@pytest.mark.parametrize("name", ["tests", "benchmarks", "docs", "build", "axlebox"])
+def test_nothing_else_of_the_checkout_imports_under_axlebox(name):
+    with pytest.raises(ModuleNotFoundError):
+        importlib.import_module(f"axlebox.{name}")
+
+
+def test_the_package_folder_holds_only_its_own_modules():
+    """``axlebox.__path__`` is the package's own folder; what it lists is private modules and the
+    command line's entry, and ParameterError is one class wherever it is reached from."""
+    assert len(axlebox.__path__) == 1
+    names = {m.name for m in pkgutil.iter_modules(axlebox.__path__)}
+    assert names <= {"__main__", "_cache", "_files", "_numba", "_params"}, names
+    from axlebox._params import ParameterError
+    from axlebox.mbs.config import ParameterError as via_mbs
+    assert axlebox.ParameterError is ParameterError is via_mbs
