@@ -16,6 +16,7 @@ from axlebox.bearing.integrate import DT_MAX
 from axlebox.bearing.quasidynamic import DT_MAX as QD_DT_MAX
 from axlebox._params import ParameterError, from_table
 from axlebox.mbs.integrate import METHODS
+from axlebox.mbs.trackbed import MODELS as TRACK_MODELS
 
 BODY_NAMES = (["carbody", "frame1", "frame2"] + [f"ws{i}" for i in range(1, 5)]
               + [f"ab{i}{s}" for i in range(1, 5) for s in "LR"] + [f"gb{i}" for i in range(1, 5)])
@@ -42,7 +43,7 @@ SCHEMA: dict[str, dict[str, tuple]] = {
               "wheel_roughness": (S, "none", ("none", "cast-iron", "composite", "disc")),
               "contact_filter": (B, True), "roughness_lambda_min": (F, 0.003, 0.001, 0.1),
               # the track under each wheel (mbs/trackbed.py); per rail seat, SI
-              "model": (S, "rigid", ("rigid", "ballasted")),
+              "model": (S, "rigid", TRACK_MODELS),
               "rail_mass": (F, 60.64, 10.0, 200.0), "rail_EI": (F, 6.624e6, 1e5, 1e8),
               "sleeper_spacing": (F, 0.6, 0.3, 1.5), "pad_k": (F, 6.5e7, 1e6, 1e10),
               "pad_c": (F, 7.5e4, 0.0, 1e7), "sleeper_mass": (F, 125.5, 10.0, 2000.0),

@@ -58,12 +58,18 @@ class Lumped:
     L: float
 
 
+def _foundation(t: dict) -> tuple[float, float]:
+    """``(k_f, beta)``: the Winkler modulus of the seats (three springs in series over the
+    spacing, N/m^2) and the rail's wavenumber on it (1/m)."""
+    k_s = 1.0 / (1.0 / t["pad_k"] + 1.0 / t["ballast_k"] + 1.0 / t["subgrade_k"])
+    k_f = k_s / t["sleeper_spacing"]
+    return k_f, (k_f / (4.0 * t["rail_EI"])) ** 0.25
+
+
 def lumped(t: dict) -> Lumped:
     """The lumped track of the ``[track]`` table ``t`` (module docstring)."""
     a = t["sleeper_spacing"]
-    k_s = 1.0 / (1.0 / t["pad_k"] + 1.0 / t["ballast_k"] + 1.0 / t["subgrade_k"])
-    k_f = k_s / a
-    beta = (k_f / (4.0 * t["rail_EI"])) ** 0.25
+    k_f, beta = _foundation(t)
     L = 3.0 / (2.0 * beta)
     s = L / a
     return Lumped(m_rail=t["rail_mass"] * L, m_sleeper=t["sleeper_mass"] * s,
@@ -81,6 +87,5 @@ def static_stiffness(m: Lumped) -> float:
 
 def winkler_stiffness(t: dict) -> float:
     """Hetenyi's point stiffness ``2 k_f / beta`` of the continuous rail on its seats (N/m)."""
-    k_s = 1.0 / (1.0 / t["pad_k"] + 1.0 / t["ballast_k"] + 1.0 / t["subgrade_k"])
-    k_f = k_s / t["sleeper_spacing"]
-    return 2.0 * k_f / (k_f / (4.0 * t["rail_EI"])) ** 0.25
+    k_f, beta = _foundation(t)
+    return 2.0 * k_f / beta

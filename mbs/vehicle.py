@@ -92,27 +92,26 @@ def _track_under(s: System, cfg: dict, name: str, x: float, y: float, V: float) 
     are tied along, across and in rotation at :data:`TIE_HZ` (no load reaches those directions)."""
     m = trackbed.lumped(cfg["track"])
     w = 2 * np.pi * TIE_HZ
-    marks, weight = [], 0.0
-    for layer, mass, z in (("rail", m.m_rail, 0.0), ("sleeper", m.m_sleeper, -0.2),
-                           ("ballast", m.m_ballast, -0.5)):
+    # each layer (top down) and the spring under it
+    layers = (("rail", m.m_rail, 0.0, m.k_pad, m.c_pad),
+              ("sleeper", m.m_sleeper, -0.2, m.k_ballast, m.c_ballast),
+              ("ballast", m.m_ballast, -0.5, m.k_subgrade, m.c_subgrade))
+    marks = []
+    for layer, mass, z, _, _ in layers:
         body = f"{layer}_{name}"
         s.add_body(rigid(body, mass, [mass * 0.01] * 3), r=(x, y, z), v=(V, 0, 0))
         marks.append(s.marker(body))
     ground = s.marker(None, at=(x, y, -0.8))
-    below = {"rail": (marks[1], m.k_pad, m.c_pad), "sleeper": (marks[2], m.k_ballast, m.c_ballast),
-             "ballast": (ground, m.k_subgrade, m.c_subgrade)}
-    for (layer, mass), top in zip((("rail", m.m_rail), ("sleeper", m.m_sleeper),
-                                   ("ballast", m.m_ballast)), marks):
+    weight = 0.0
+    for (layer, mass, _, k, c), top, low in zip(layers, marks, marks[1:] + [ground]):
         weight += mass * G
-        low, k, c = below[layer]
         kt, ct = mass * w * w, 0.1 * mass * w            # ties: 300 Hz, 5 % damping
         kr, cr = 0.01 * kt, 0.01 * ct
         s.add(Bushing(f"{layer}_support_{name}", low, top,
                       k=(0.0 if low == ground else kt, kt, k, kr, kr, kr),
                       c=(0.0 if low == ground else ct, ct, c, cr, cr, cr),
                       preload=(0, 0, weight, 0, 0, 0)))
-    s.add(Bushing(f"rail_bending_{name}", s.marker(None, at=(x, y, -0.8)), marks[0],
-                  k=(0, 0, m.k_bend, 0, 0, 0)))
+    s.add(Bushing(f"rail_bending_{name}", ground, marks[0], k=(0, 0, m.k_bend, 0, 0, 0)))
     return marks[0]
 
 

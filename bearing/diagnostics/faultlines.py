@@ -117,6 +117,11 @@ def _snr(a, floor):
             np.where(np.asarray(a) > 0, np.inf, -np.inf)
 
 
+def is_peak(A, i: int) -> bool:
+    """Whether bin ``i`` of ``A`` is a local maximum (not lower than either neighbour)."""
+    return bool(A[i] >= A[max(i - 1, 0)] and A[i] >= A[min(i + 1, A.size - 1)])
+
+
 def _window(f, A, centre, hw, df, n_avg, p_fa, threshold_db):
     """``(indices, floor, threshold_db)`` of the window ``|f - centre| <= hw``."""
     dist = np.abs(f - centre)
@@ -206,7 +211,7 @@ def detect(f, A, lines: dict[str, float], n_harmonics: int = 3, slip: float = 0.
         searched, side = tuple(best[1]), tuple(best[2])
         # a line is a peak: the window's highest bin on the skirt of a line outside it (a shaft
         # harmonic next to the window, a wheel flat's comb) is not this line's fundamental
-        peak = bool(A[best[3]] >= A[max(best[3] - 1, 0)] and A[best[3]] >= A[min(best[3] + 1, A.size - 1)])
+        peak = is_peak(A, best[3])
         passing = tuple((k, fk, a, s) for k, fk, a, s, t in searched if s >= t and (k > 1 or peak))
         fund = bool(passing) and passing[0][0] == 1
         n_pass = sum(1 for h in passing if h[0] >= 2) + sum(1 for r in side if r[3] >= r[4])
@@ -229,7 +234,7 @@ def mask_sidebands(found: dict[str, LineResult], shaft_hz: float, df: float,
     expected frequency lies nearer the peak keeps it):
 
     * a line found within ``max(2 df, 0.3 %)`` of a shaft harmonic ``n f_shaft`` (the Hann window's
-  main lobe is two bins either side: nearer, the two cannot be told apart) that is either
+      main lobe is two bins either side: nearer, the two cannot be told apart) that is either
       expected within 1 % of it or found nearer it than its own expected frequency (``masked_by``
       "shaft"): unbalance, misalignment and the rotor's own orders put lines there in the
       envelope too, and a line there cannot be told from them (the CWRU fan end's 2 BSF, 3.9874

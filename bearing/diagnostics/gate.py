@@ -27,7 +27,8 @@ import math
 from dataclasses import asdict, dataclass
 
 import numpy as np
-from scipy.signal import hilbert
+
+from .envelope import envelope
 
 GATE_RATIO = 5.0        # fold peak over median from which the strikes are blanked (docstring)
 MIN_TURNS = 5           # turns the fold must average: fewer leave non-locked impulses standing
@@ -61,7 +62,7 @@ class Gate:
 
 def fold(x_left, x_right, fs: float, shaft_hz: float) -> np.ndarray:
     """The two channels' summed envelope folded over the wheel's turn (one bin a sample)."""
-    e = np.abs(hilbert(x_left - np.mean(x_left))) + np.abs(hilbert(x_right - np.mean(x_right)))
+    e = envelope(x_left, fs) + envelope(x_right, fs)
     T = fs / shaft_hz
     nb = int(T)
     ph = np.minimum((np.arange(e.size) % T).astype(int), nb - 1)

@@ -31,7 +31,7 @@ import math
 import numpy as np
 from scipy.signal import welch
 
-from .faultlines import _window, welch_averages
+from .faultlines import _window, is_peak, welch_averages
 
 MAX_ORDER = 40          # a polygon's orders reach 30 (module docstring); a flat's comb, its first 40
 P_FA = 1e-3             # noise alone names a wheel line in one record of a thousand
@@ -56,8 +56,7 @@ def wheel_orders(f, A, shaft_hz: float, n_avg: float = 1.0, max_order: int = MAX
         fk = k * shaft_hz
         win, floor, thr = _window(f, A, fk, max(df, 0.005 * fk), df, n_avg, p_fa / max(K, 1), None)
         i = int(win[np.argmax(A[win])])
-        peak = A[i] >= A[max(i - 1, 0)] and A[i] >= A[min(i + 1, A.size - 1)] and \
-            A[i] >= NARROW * max(A[max(i - 2, 0)], A[min(i + 2, A.size - 1)])
+        peak = is_peak(A, i) and A[i] >= NARROW * max(A[max(i - 2, 0)], A[min(i + 2, A.size - 1)])
         mine = all(abs(f[i] - fk) < abs(f[i] - g) for g in taken)
         if peak and mine and floor > 0 and 20 * math.log10(max(A[i], 1e-300) / floor) >= thr:
             out.append(k)
