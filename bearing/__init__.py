@@ -1,4 +1,7 @@
-"""Double-row tapered roller bearing (DTRB) of the axle-box (paper Eqs. 1-16).
+"""Double-row tapered roller bearing (DTRB) of the axle-box (the paper's Eqs. 1-16: W. Zhao,
+J. Ding, X. Liao, W. Liu, "Investigation on coaxial pseudo-fault characteristics induced by the
+outer ring defect in the single-sided axle-box bearing of wheelset in urban rail vehicles",
+Scientific Reports (2025), doi:10.1038/s41598-025-93857-x).
 
 * :mod:`.params` parameters; :mod:`.stiffness` contact stiffnesses (Eqs. 5-11);
   :mod:`.frequencies` fault frequencies; :mod:`.loaddist` Harris load integrals;

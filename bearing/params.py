@@ -1,9 +1,13 @@
 """Parameters of the double-row tapered roller axle-box bearing (DTRB).
 
-Table 1 of the paper is missing from its text; the defaults follow
-../shared/REFERENCE_DATA.md: Z = 20 rollers a row (derived from the paper's
-cage and BPFO frequencies) and an assumed 130 x 230 x 160 mm unit.  All values
-are SI; angles in radians (the defaults are written ``radians(deg)``).
+The bearing table (Table 1) of the paper, W. Zhao, J. Ding, X. Liao, W. Liu, "Investigation on
+coaxial pseudo-fault characteristics induced by the outer ring defect in the single-sided axle-box
+bearing of wheelset in urban rail vehicles", Scientific Reports (2025),
+doi:10.1038/s41598-025-93857-x, was not available to us; the defaults are Z = 20 rollers a row
+(derived from the paper's cage and BPFO frequencies at 48 km/h, 2.196 Hz and 43.93 Hz:
+BPFO / cage = 20.0) and an assumed 130 x 230 x 160 mm tapered-roller unit (typical values
+consistent with Z = 20, no published data sheet).  All values are SI; angles in radians (the
+defaults are written ``radians(deg)``).
 """
 from __future__ import annotations
 

@@ -255,7 +255,7 @@ def spin_step(x, P, h, dx, Gb, buf):
     ``(rho', phi', eta', theta_t', theta_s', omega_s)`` and the cage's ``(..., phi_c')``; the
     normal contacts add nothing to the spin and orbit rows, whose rates do not move a raceway
     contact's approach).  With the roller's orbit rate the cage's, a row's unknowns are its
-    spins ``omega_k`` and cage rate ``Omega``:
+    spins ``omega_k`` and cage rate ``Omega``::
 
         J_a  d(omega_k)/dt:  d/d omega_k = -G_k[5, 5],  d/d Omega = -(G_k[5, 1] + G_k[5, 11])
         J_orb d(Omega)/dt:   d/d omega_k = -(G_k[1, 5] + G_k[5, 11]),

@@ -48,7 +48,7 @@ class Equilibrium:
     residual: float          # |load - roller resultant| / |load|
 
     def loaded_zone(self, row: int) -> float:
-        """Half-angle of the loaded zone of ``row`` (0 or 1), rad: the largest |psi| carrying load."""
+        """Half-angle of the loaded zone of ``row`` (0 or 1), rad: the largest ``|psi|`` carrying load."""
         psi = np.angle(np.exp(1j * self.psi))
         loaded = self.Q[row] > 0
         return float(np.abs(psi[loaded]).max()) if loaded.any() else 0.0

@@ -1,9 +1,10 @@
 """The simulation result file (``format = "axlebox-result"``), shared by the bearing rig and,
 later, the vehicle: writing through a temporary name, reading with a version check.
 
-Layout (DESIGN.md): attrs ``format``, ``version``, ``config`` (TOML text, SI units), ``seed``;
-``time`` (t,) s; ``signals/<sensor>/acceleration`` (t, 3) m/s^2 with attr ``fs_hz``; further
-channels under ``signals/<sensor>/`` and model internals under other groups.
+Layout (as on the documentation's design page): attrs ``format``, ``version``, ``config`` (TOML
+text, SI units), ``seed``; ``time`` (t,) s; ``signals/<sensor>/acceleration`` (t, 3) m/s^2 with
+attr ``fs_hz``; further channels under ``signals/<sensor>/`` and model internals under other
+groups.
 """
 from __future__ import annotations
 

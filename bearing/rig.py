@@ -1,7 +1,7 @@
 """The standalone bearing rig: one DTRB, inner ring spinning at the speed of a 0.42 m wheel and
 held in place, outer ring = axle-box mass on a spring-damper to ground, constant radial and axial
 load; started from the quasi-static equilibrium; fixed-step RK4 or the leapfrog
-(:mod:`.integrate`).
+(:mod:`axlebox.bearing.integrate`).
 
 Python API::
 
@@ -49,8 +49,9 @@ class RigConfig:
 
     Defaults: the radial load is the motor car's carbody (37.4 t, rated load) and frame (3.42 t)
     on four axle boxes of a bogie, ``(37.4/2 + 3.42) t g / 4 = 54 kN``; spring rates are the
-    motor car's primary suspension per axle box (REFERENCE_DATA.md); the axle-box mass and the
-    dampers are assumed.
+    motor car's primary suspension per axle box (masses and springs: Hangzhou Metro Line 1 B-type
+    car, Math. Probl. Eng. 2020, article 1584624, Table 6); the axle-box mass and the dampers are
+    assumed.
     """
 
     speed_kmh: float = param(48.0, 0.0, 200.0, unit="km/h", doc="vehicle speed")

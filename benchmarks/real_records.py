@@ -3,10 +3,14 @@ with its own bearing) and scored against its ground truth.
 
     python3 benchmarks/real_records.py [MANIFEST]
 
-MANIFEST: a CSV as :mod:`axlebox.pipelines.records` reads it; default the CWRU records of the
-team's reference folder ($AXLEBOX_REFERENCE/cwru/manifest.csv, else ../shared/reference beside
-the checkout).  The CWRU rig's ends: drive end SKF 6205, fan end SKF 6203 (the catalogue's
-published orders), channels in g.  Prints one line a record and the confusion tables per fault
+MANIFEST: a CSV as :mod:`axlebox.pipelines.records` reads it; default
+``$AXLEBOX_REFERENCE/cwru/manifest.csv``.  The records are not shipped: they are two-sensor
+recordings of the Case Western Reserve University (CWRU) Bearing Data Center
+(https://engineering.case.edu/bearingdatacenter; described in W. A. Smith and R. B. Randall,
+"Rolling element bearing diagnostics using the Case Western Reserve University data: A benchmark
+study", Mech. Syst. Signal Process. 64-65 (2015) 100-131), one .mat file a row of the manifest.
+The CWRU rig's ends: drive end SKF 6205, fan end SKF 6203 (the catalogue's published orders),
+channels in g.  Prints one line a record and the confusion tables per fault
 kind (faulty end and healthy end: real fault / faults on both sides / pseudo-fault / healthy /
 undecided), and the wall time.
 """
@@ -23,14 +27,26 @@ CWRU_BEARINGS = {"DE": "6205", "FE": "6203"}
 G = 9.80665                       # the CWRU channels are in g
 
 
-def default_manifest() -> Path:
+MISSING = ("No manifest of CWRU records: give its path (python3 benchmarks/real_records.py "
+           "MANIFEST) or set AXLEBOX_REFERENCE to a folder holding cwru/manifest.csv.  The records "
+           "are those of the Case Western Reserve University Bearing Data Center "
+           "(https://engineering.case.edu/bearingdatacenter; Smith and Randall, Mech. Syst. Signal "
+           "Process. 64-65 (2015) 100-131); the manifest's columns are described in "
+           "axlebox.pipelines.records.")
+
+
+def default_manifest() -> Path | None:
+    """``$AXLEBOX_REFERENCE/cwru/manifest.csv``, or None when the variable is not set."""
     env = os.environ.get("AXLEBOX_REFERENCE")
-    root = Path(env) if env else Path(__file__).resolve().parents[2] / "shared" / "reference"
-    return root / "cwru" / "manifest.csv"
+    return Path(env) / "cwru" / "manifest.csv" if env else None
 
 
 def main(argv) -> int:
     manifest = Path(argv[0]) if argv else default_manifest()
+    if manifest is None or not manifest.is_file():
+        print((f"{manifest}: not found.  " if manifest is not None else "") + MISSING,
+              file=sys.stderr)
+        return 2
     t0 = time.perf_counter()
     s = score(manifest, CWRU_BEARINGS, scale=G)
     print()

@@ -1,25 +1,26 @@
-"""The reduced-body file: versioned HDF5, SI units (layout in DESIGN.md).
+"""The reduced-body file: versioned HDF5, SI units; the layout (as on the documentation's design
+page):
 
-=============================  =============================================
-``attrs format, version``      "axlebox-reduced-body", :data:`VERSION`
-``attrs name, method, ...``    body name, "guyan" | "craig-bampton", metadata
-``mass``                       kg
-``center_of_mass``             (3,) m
-``inertia``                    (3, 3) kg m^2 about the centre of mass
-``frequencies_hz``             (n,) free-free elastic frequencies, ascending
+==================================  =============================================
+``attrs format, version``           "axlebox-reduced-body", :data:`VERSION`
+``attrs name, method, ...``         body name, "guyan" | "craig-bampton", metadata
+``mass``                            kg
+``center_of_mass``                  (3,) m
+``inertia``                         (3, 3) kg m^2 about the centre of mass
+``frequencies_hz``                  (n,) free-free elastic frequencies, ascending
 ``reduced/mass|stiffness|damping``  (n, n) in the orthonormal elastic modal
-                               coordinates (mass = I, stiffness = diag w^2)
-``component/mass|stiffness``   Craig-Bampton / Guyan matrices in [eta; u_b]
+                                    coordinates (mass = I, stiffness = diag w^2)
+``component/mass|stiffness``        Craig-Bampton / Guyan matrices in [eta; u_b]
 ``component/fixed_frequencies_hz``  fixed-interface frequencies
-``component/modes``            (r, n) the elastic modes in [eta; u_b]
-``nodes/<name>/position``      (3,) master / output node, m
-``nodes/<name>/shapes``        (6, n) translations (m) and rotations (rad) per
-                               unit modal coordinate; attr ``coupling``
-``invariants/<name>``          FFRF invariants (see :mod:`axlebox.fem.invariants`)
-``mesh/points``, ``mesh/cells``  (p, 3) m, (c, 10) tet10 in VTK node order
-``modes/shapes``               (n, p, 3) full-field mode shapes
-``reference/frequencies_hz``   full FE free-free frequencies, when computed
-=============================  =============================================
+``component/modes``                 (r, n) the elastic modes in [eta; u_b]
+``nodes/<name>/position``           (3,) master / output node, m
+``nodes/<name>/shapes``             (6, n) translations (m) and rotations (rad) per
+                                    unit modal coordinate; attr ``coupling``
+``invariants/<name>``               FFRF invariants (see :mod:`axlebox.fem.invariants`)
+``mesh/points``, ``mesh/cells``     (p, 3) m, (c, 10) tet10 in VTK node order
+``modes/shapes``                    (n, p, 3) full-field mode shapes
+``reference/frequencies_hz``        full FE free-free frequencies, when computed
+==================================  =============================================
 """
 from __future__ import annotations
 

@@ -10,7 +10,7 @@ name       definition                                  SID / Shabana equivalent
 =========  ==========================================  =========================
 ``m``      int rho dV                                  I1, mass
 ``mc``     int rho x dV (3,)                           I2, first moment
-``J``      int rho (|x|^2 I - x x^T) dV (3, 3)         inertia about the origin
+``J``      int rho ((x.x) I - x x^T) dV (3, 3)         inertia about the origin
 ``Ct``     int rho Phi_k dV (3, n)                     SID Ct, Shabana I3
 ``Cr``     int rho x x Phi_k dV (3, n)                 SID Cr, Shabana I5
 ``Me``     int rho Phi_k . Phi_l dV (n, n)             modal mass

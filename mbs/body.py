@@ -12,12 +12,12 @@ invariants of :mod:`axlebox.fem.invariants`, Shabana ch. 5):
 
 A rigid body is the same with ``n = 0``; its frame origin is its centre of mass.
 
-**Spinning bodies** (the wheelset, DESIGN.md): the reference frame follows translation, roll and
-yaw but not the spin about the body ``y`` axis, which is a coordinate of its own.  The angular
-velocity slot ``omega[1]`` then holds the spin rate of the material; the frame itself turns with
-``(omega[0], 0, omega[2])``.  For an axisymmetric body this keeps the rigid inertia exact; the
-coupling of spin with the elastic coordinates (gyroscopic splitting of the bending modes, of order
-spin/bending frequency: 5 Hz / 90 Hz at 48 km/h) is left out.
+**Spinning bodies** (the wheelset; the documentation's design page): the reference frame follows
+translation, roll and yaw but not the spin about the body ``y`` axis, which is a coordinate of its
+own.  The angular velocity slot ``omega[1]`` then holds the spin rate of the material; the frame
+itself turns with ``(omega[0], 0, omega[2])``.  For an axisymmetric body this keeps the rigid
+inertia exact; the coupling of spin with the elastic coordinates (gyroscopic splitting of the
+bending modes, of order spin/bending frequency: 5 Hz / 90 Hz at 48 km/h) is left out.
 
 Nodes of a flexible body (the reduced body's master and output nodes) carry shape rows
 ``(6, n)``: the translation and small rotation of the node per unit modal coordinate.

@@ -36,7 +36,7 @@ SCHEMA: dict[str, dict[str, tuple]] = {
     # of integrator.dt, which is then the bearings' sub-step; 0: every step (single rate)
     "coupling": {"exchange_dt": (F, 0.0, 0.0, 1e-3), "body_substeps": (I, 1, 1, 1000),
                  "hold": (S, "zoh", ("zoh", "linear", "jacobian"))},
-    "track": {"fra_class": (I, 5, 1, 6), "lambda_min": (F, 1.0, 0.1, 100.0),
+    "track": {"fra_class": (I, 5, 1, 6), "lambda_min": (F, 1.0, 0.5, 100.0),
               "lambda_max": (F, 80.0, 1.0, 1000.0), "length": (F, 400.0, 10.0, 1e5),
               "irregularity": (B, True),
               "rail_roughness": (S, "none", ("none", "iso3095", "network")),

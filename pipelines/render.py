@@ -39,7 +39,7 @@ def surface(points: np.ndarray, cells: np.ndarray, shapes: np.ndarray):
 
 def render_modes(body: bodyfile.ReducedBody, out_dir: Path, *, modes=None,
                  amplitude: float = 0.06, size=(800, 600)) -> list[Path]:
-    """One PNG per mode: deformed surface coloured by |u| over the undeformed edges.
+    """One PNG per mode: deformed surface coloured by ``|u|`` over the undeformed edges.
 
     The shape is scaled so its peak displacement is ``amplitude`` times the
     body's largest dimension.

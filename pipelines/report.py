@@ -18,6 +18,7 @@ from __future__ import annotations
 import csv
 import html
 import json
+import re
 import shutil
 import tomllib
 from dataclasses import dataclass, field
@@ -73,6 +74,8 @@ class Case:
         for rc in self.ride:
             r.update({f"{rc.sensor}_{k}": getattr(rc, k) for k in ("W_z", "W_y", "N_MV")})
         return r
+
+_NUMBER = re.compile(r"[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?")
 
 
 def carbody_comfort(path) -> list[RideComfort]:
@@ -181,7 +184,8 @@ def write_tables(cases: list[Case], out: Path) -> tuple[Path, Path]:
 def _table_html(cases: list[Case]) -> str:
     head = ["case", "side", "sensor", "RMS m/s&sup2;", "peak m/s&sup2;", "kurtosis", "SPM dB",
             "FC Hz", "VF Hz&sup2;", "lines", "verdict", "lag ms", "&Delta;VF Hz&sup2;"]
-    out = ["<table><tr>" + "".join(f"<th>{h}</th>" for h in head) + "</tr>"]
+    # id: a stable handle on the verdict table for links and tests/test_report_browser.py
+    out = ["<table id='verdicts'><tr>" + "".join(f"<th>{h}</th>" for h in head) + "</tr>"]
     for c in cases:
         p = c.pair
         for i, side in enumerate(("left", "right")):
@@ -192,12 +196,19 @@ def _table_html(cases: list[Case]) -> str:
                      html.escape(" ".join(s.detected) or "none"),
                      f"<span title='{html.escape(why)}'>{html.escape(verdict)}</span>"]
             first = (f"<td rowspan=2>{html.escape(c.label)}</td>" if i == 0 else "")
-            tail = (f"<td rowspan=2>{1e3 * p.lag.lag_s:.2f}</td><td rowspan=2>{p.vf_diff:.3g}</td>"
+            tail = (f"<td rowspan=2 class=num>{1e3 * p.lag.lag_s:.2f}</td>"
+                    f"<td rowspan=2 class=num>{p.vf_diff:.3g}</td>"
                     if i == 0 else "")
             out.append(f"<tr>{first}<td>{side}</td><td>{html.escape(p.names[i])}</td>"
-                       + "".join(f"<td>{v}</td>" for v in cells) + tail + "</tr>")
+                       + "".join(_td(v) for v in cells) + tail + "</tr>")
     out.append("</table>")
     return "\n".join(out)
+
+
+def _td(v: str) -> str:
+    """A table cell, right-aligned where it holds a number (a trailing "(words)" allowed)."""
+    num = _NUMBER.fullmatch(v.split(" (")[0]) is not None
+    return f"<td class=num>{v}</td>" if num else f"<td>{v}</td>"
 
 
 def _comfort_html(cases: list[Case]) -> str:
@@ -209,7 +220,7 @@ def _comfort_html(cases: list[Case]) -> str:
                      f"{r.W_z:.2f} ({sperling_words(r.W_z)})", f"{r.W_y:.2f} ({sperling_words(r.W_y)})",
                      f"{r.N_MV:.2f} ({nmv_words(r.N_MV)})", ", ".join(f"{v:.3g}" for v in r.a_P95),
                      f"{r.duration_s:.3g} s, {r.windows} window(s)"]
-            out.append("<tr>" + "".join(f"<td>{v}</td>" for v in cells) + "</tr>")
+            out.append("<tr>" + "".join(_td(v) for v in cells) + "</tr>")
     out.append("</table>")
     return "\n".join(out)
 
@@ -228,7 +239,10 @@ def write_html(cases, figures: list[tuple[str, Path]], modes: list[Path], out: P
     parts = ["<!doctype html><html><head><meta charset='utf-8'><title>axlebox report</title>",
              "<style>body{font-family:sans-serif;margin:2em;max-width:1300px}"
              "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #ccc;"
-             "padding:3px 7px;text-align:right}img{max-width:100%}.modes img{width:380px}</style>",
+             "padding:3px 7px;text-align:left;vertical-align:top}"
+             # numbers line up on the right; words and sentences read from the left
+             "td.num{text-align:right;white-space:nowrap}"
+             "img{max-width:100%}.modes img{width:380px}</style>",
              "</head><body><h1>Coaxial pseudo-fault report</h1>",
              f"<p>{len(cases)} case(s), {len(diagnosed)} with axle-box diagnoses. {criterion}"
              "Tables: <a href='summary.csv'>summary.csv</a>, <a href='summary.json'>summary.json"

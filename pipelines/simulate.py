@@ -2,13 +2,13 @@
 
 Steps: validate the config; read (or build at the coarse mesh, cached) the reduced bodies the
 config makes flexible; wheel-rail tables; track irregularity; the vehicle; static equilibrium on
-the track as it lies under the wheels at t = 0 (no settling transient); the run; the result
-file (``format = "axlebox-result"``, DESIGN.md), written through a temporary name.  A run that
-diverges still writes what it computed, with ``status`` and ``message`` attributes, and the
-command exits with status 1.  The outputs stream to ``<out>.stream.h5`` while the run goes
-(:mod:`.stream`: memory flat in the run's length); every ``checkpoint_every`` simulated seconds
-the run's state goes to ``<out>.partial.h5`` (through a temporary name); the same command run
-again resumes from the two, to the same bits as a run never stopped.
+the track as it lies under the wheels at t = 0 (no settling transient); the run; the result file
+(``format = "axlebox-result"``, :mod:`axlebox.bearing.resultfile`), written through a temporary
+name.  A run that diverges still writes what it computed, with ``status`` and ``message``
+attributes, and the command exits with status 1.  The outputs stream to ``<out>.stream.h5`` while
+the run goes (:mod:`.stream`: memory flat in the run's length); every ``checkpoint_every``
+simulated seconds the run's state goes to ``<out>.partial.h5`` (through a temporary name); the same
+command run again resumes from the two, to the same bits as a run never stopped.
 """
 from __future__ import annotations
 

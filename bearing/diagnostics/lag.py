@@ -21,7 +21,7 @@ same cross-correlation between samples with its trigonometric (band-limited) int
 exact continuation of the zero-padded circular correlation, and maximising it within +-1 sample.
 A parabola through three samples fits the peak's curvature only; on the test signals of
 tests/test_diagnostics_pair.py (0.1 sample asked) the interpolant's error is at most 0.05
-sample, up to 3x below the parabola's.  What remains comes from the envelope itself: |analytic signal|
+sample, up to 3x below the parabola's.  What remains comes from the envelope itself: ``|analytic signal|``
 of a fractionally delayed record is not exactly the delayed samples of the envelope.
 """
 from __future__ import annotations

@@ -80,7 +80,7 @@ def relative_curvatures(k1x, k1y, k2x, k2y, omega=0.0):
         B - A = +-1/2 sqrt((k1x - k1y)^2 + (k2x - k2y)^2 + 2 (k1x - k1y)(k2x - k2y) cos 2 omega)
 
     A is the eigenvalue whose principal direction is nearer body 1's x axis (so for
-    ``omega = 0``: ``A = (k1x + k2x)/2``, ``B = (k1y + k2y)/2``) and ``psi`` (|psi| <= pi/4) is
+    ``omega = 0``: ``A = (k1x + k2x)/2``, ``B = (k1y + k2y)/2``) and ``psi`` (``|psi| <= pi/4``) is
     the angle from x to that direction.  Works on arrays.
     """
     k1x, k1y, k2x, k2y, omega = np.broadcast_arrays(*(np.asarray(v, dtype=float)

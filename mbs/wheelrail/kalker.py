@@ -5,8 +5,9 @@ Table E.3 of J.J. Kalker, *Three-Dimensional Elastic Bodies in Rolling Contact*,
 nu = 0, 1/4, 1/2 and a/b = 0.1 ... 1, b/a = 0.1 ... 1.  C11, C22, C23 as typed into the
 open-source CONTACT code (E.A.H. Vollebregt, Apache-2.0, ``src/m_hertz.f90``, ``linrol``);
 C33 (which CONTACT does not carry) from the same Table E.3.  The nu = 1/4 column of all four
-agrees with ``shared/REFERENCE_DATA.md`` at every row printed there; the C33 columns for
-nu = 0 and 1/2 have no second open copy to check them against.
+agrees at every row with a second, independent transcription of Table E.3 (nu = 1/4,
+a/b = 0.1 to 10, nine rows); the C33 columns for nu = 0 and 1/2 have no second open copy to
+check them against.
 
 Interpolation (:func:`creep_coefficients`):
 

@@ -10,10 +10,10 @@ millimetres and are converted once, at the end of each builder.
 - :func:`uic60`: the 60E1 (UIC 60) rail head, EN 13674-1:2011 Annex A drawing: R300 crown over a
   width of 20.456 mm, R80 to a width of 52.053 mm, R13 until the head side reaches its 1:20 slope.
 - :func:`chn60`: the Chinese 60 kg/m rail head, GB/T 2585-2007: R300 crown, R80, R13 gauge corners,
-  73 mm head width (REFERENCE_DATA.md). The widths over which the R300 and R80 arcs run are not in
-  any openly available source we found; they are taken equal to 60E1's (20.456 mm for the crown),
-  with the R13 corner meeting the 1:20 side at the 73 mm width. This assumption is stated in
-  :data:`CHN60_ASSUMED`.
+  73 mm head width (the standard's figures at second hand: it is not openly available). The widths
+  over which the R300 and R80 arcs run are not in any openly available source we found; they are
+  taken equal to 60E1's (20.456 mm for the crown), with the R13 corner meeting the 1:20 side at the
+  73 mm width. This assumption is stated in :data:`CHN60_ASSUMED`.
 
 The LM wheel (TB/T 449-2016) is defined in that standard by point coordinates (Appendix A) that
 are not openly available; read them with :func:`axlebox.mbs.wheelrail.profile.read_profile` (two-column
@@ -131,7 +131,7 @@ CHN60_ASSUMED = ("R300 crown width 20.456 mm (taken from 60E1; GB/T 2585 not ope
 
 def chn60(step: float = 1e-4) -> Profile:
     """The Chinese 60 kg/m rail head, uncanted: R300 crown, R80, R13 corners, 73 mm head width
-    (GB/T 2585-2007, via REFERENCE_DATA.md); see :data:`CHN60_ASSUMED` for the two assumed values."""
+    (GB/T 2585-2007, at second hand); see :data:`CHN60_ASSUMED` for the two assumed values."""
     y, z, _ = _three_arc_head(300.0, 80.0, 13.0, 20.456, 20.0, half_width=36.5, step=step)
     y, z = _symmetric(y, z)
     return Profile(y=y * 1e-3, z=z * 1e-3, kind="rail", name="CHN60",

@@ -120,7 +120,7 @@ def _grid(bound: str, update: str, nx, ny, flex: str = "separate"):
 
 
 def flexibilities(a, b, G, nu, xi=None, eta=None, phi=None):
-    """FASTSIM flexibilities ``(L1, L2, L3)`` (m/Pa), Kalker 1982 (REFERENCE_DATA)::
+    """FASTSIM flexibilities ``(L1, L2, L3)`` (m/Pa), Kalker 1982 (:mod:`.fastsim_kernel`)::
 
         L1 = 8a / (3 C11 G),  L2 = 8a / (3 C22 G),  L3 = pi a sqrt(a/b) / (4 C23 G)
 
