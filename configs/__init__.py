@@ -15,6 +15,8 @@
 """
 from __future__ import annotations
 
+import re
+
 from importlib import resources
 from pathlib import Path
 
@@ -65,4 +67,6 @@ def summary(name: str) -> str:
             break
         text.append(line.lstrip("# ").rstrip())
     head = " ".join(text)
-    return head.split(". ")[0].rstrip(".") + "." if head else ""
+    # a sentence ends at ". " before a capital, not after an abbreviation ("Fig. 1b", "Eq. 14")
+    first = re.split(r"(?<!\bFig)(?<!\bEq)(?<!\bEqs)(?<!\bet al)(?<!\bRef)\.\s+(?=[A-Z(])", head)[0]
+    return first.rstrip(".") + "." if head else ""

@@ -32,3 +32,14 @@ def test_the_package_folder_holds_only_its_own_modules():
     from axlebox._params import ParameterError
     from axlebox.mbs.config import ParameterError as via_mbs
     assert axlebox.ParameterError is ParameterError is via_mbs
+
+
+def test_each_shipped_config_is_summed_up_in_a_whole_sentence():
+    """`axlebox configs` lists each shipped config by the first sentence of its opening comment:
+    an abbreviation's full stop ("its Fig. 1b") does not end it."""
+    from axlebox import configs
+    for name in configs.names():
+        s = configs.summary(name)
+        assert s.endswith(".") and s.count("(") == s.count(")"), (name, s)
+    assert "Fig. 1b" in configs.summary("field_64kmh")
+    assert configs.summary("field_64kmh").endswith("64.5 km/h.")
