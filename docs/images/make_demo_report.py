@@ -8,7 +8,10 @@ from pathlib import Path
 from PIL import Image
 
 
-def main(report: Path, out: Path = Path(__file__).with_name("demo_report.png")) -> Path:
+OUT = Path(__file__).with_name("demo_report.png")
+
+
+def main(report: Path, out: Path = OUT) -> Path:
     parts = [Image.open(report / f"{name}_48kmh.png").convert("RGB")
              for name in ("fig09_time", "fig10_envelope")]
     width = max(p.width for p in parts)
