@@ -6,10 +6,16 @@ package working where MKL is not available (non-x86 machines).
 """
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import LinearOperator, splu
 
+# MKL's results otherwise depend on the alignment of the arrays it is handed, so two solves of one
+# system could differ in the last bits and two builds of one body in their modes; AUTO makes every
+# run on this machine give the same bits.  Read when MKL loads: set before pypardiso loads it.
+os.environ.setdefault("MKL_CBWR", "AUTO")
 try:  # pragma: no cover - depends on the platform
     import pypardiso
 except Exception:  # noqa: BLE001 - any import failure means "not available"

@@ -25,7 +25,9 @@ from scipy.sparse.linalg import eigsh
 
 from axlebox._params import ParameterError
 
+from . import modebasis
 from .assembly import FEModel
+from .eigen import DEGENERATE
 from .interfaces import Condensation
 from .linsolve import Factor
 
@@ -140,10 +142,13 @@ def _fixed_interface_modes(Kii: sp.csr_matrix, Mii: sp.csr_matrix, fac: Factor,
                            n_modes: int | None, fmax_hz: float | None):
     """Lowest fixed-interface modes (M-orthonormal), by count or up to ``fmax_hz``."""
     op = fac.operator()
+    # the same start and restarts every run: the same modes, bit for bit (fem/modebasis.py)
+    fixed = {"v0": modebasis.start_vector(Kii.shape[0]), "rng": np.random.default_rng(0)}
     if fmax_hz is None:
         if n_modes is None or n_modes < 1:
             raise ParameterError(f"modes = {n_modes!r} is not allowed: expected an integer >= 1")
-        lam, Phi = eigsh(Kii, k=n_modes, M=Mii, sigma=0.0, OPinv=op, which="LM", tol=1e-10)
+        lam, Phi = eigsh(Kii, k=n_modes, M=Mii, sigma=0.0, OPinv=op, which="LM", tol=1e-10,
+                         **fixed)
     else:
         if not fmax_hz > 0:
             raise ParameterError(f"fmax = {fmax_hz!r} is not allowed: expected a frequency > 0 Hz")
@@ -151,11 +156,13 @@ def _fixed_interface_modes(Kii: sp.csr_matrix, Mii: sp.csr_matrix, fac: Factor,
         k = 12
         while True:   # grow the request until the cutoff is passed
             lam, Phi = eigsh(Kii, k=min(k, Kii.shape[0] - 2), M=Mii, sigma=0.0, OPinv=op,
-                             which="LM", tol=1e-10)
+                             which="LM", tol=1e-10, **fixed)
             if lam.max() > lam_max or k >= Kii.shape[0] - 2:
                 keep = lam <= lam_max
                 lam, Phi = lam[keep], Phi[:, keep]
                 break
             k *= 2
-    order = np.argsort(lam)
-    return Phi[:, order], lam[order]
+    order = np.argsort(lam, kind="stable")
+    lam, Phi = lam[order], Phi[:, order]
+    # equal frequencies (an axisymmetric body's pairs): one basis of their span, every run
+    return modebasis.canonical(Phi, lam, Mii, DEGENERATE), lam

@@ -74,3 +74,17 @@ def test_interface_nodes_carry_shapes(reduced):
             assert abs(abs(pos[1]) - 1.0) < 0.05
         pos, _ = cb.node(f"tread_{side}")
         assert pos[2] == pytest.approx(-0.42)
+
+
+# Regression (issue 36): the default-mesh wheelset's 30 free-free frequencies (Hz) as the solver
+# gave them before it was made deterministic (7f63b63); they moved by under 1e-10 relative
+BEFORE_HZ = [93.57759387, 98.65270883, 98.8011943, 145.7373944, 146.2215575, 233.3112515,
+             241.0662676, 241.7079375, 318.8062359, 429.9077167, 429.9824202, 430.1241814,
+             430.1700615, 449.0094675, 506.9423046, 507.7593114, 825.8768404, 828.4851814,
+             1007.155468, 1056.298001, 1059.932744, 1164.79602, 1165.094506, 1165.204709,
+             1165.308553, 1268.298886, 1272.51431, 1467.302566, 1506.090729, 1531.175917]
+
+
+def test_the_wheelsets_frequencies_are_kept(wheelset_fe):
+    _, _, modes = wheelset_fe
+    np.testing.assert_allclose(modes.frequencies_hz, BEFORE_HZ, rtol=1e-6)
