@@ -92,8 +92,8 @@ def _eigenpairs(model: FEModel, k: int, shift_hz: float, ncv: int | None = None)
     fac = Factor((model.K - sigma * model.M).tocsr())
     try:
         lam, phi = eigsh(model.K, k=k, M=model.M, sigma=sigma, OPinv=fac.operator(), which="LM",
-                         tol=1e-10, v0=modebasis.start_vector(n), rng=np.random.default_rng(0),
-                         ncv=None if ncv is None else min(ncv, n - 1))
+                         tol=1e-10, ncv=None if ncv is None else min(ncv, n - 1),
+                         **modebasis.fixed_start(n))
     finally:
         fac.free()
     order = np.argsort(lam, kind="stable")

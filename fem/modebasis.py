@@ -15,8 +15,11 @@ square bar's), any rotation of the pair is as good an answer, so the solver's is
 """
 from __future__ import annotations
 
+import inspect
+
 import numpy as np
 import scipy.sparse as sp
+from scipy.sparse.linalg import eigsh
 
 GOLDEN = 0.6180339887498949          # (sqrt 5 - 1) / 2: the most irrational step
 
@@ -25,6 +28,20 @@ def start_vector(n: int, offset: int = 0) -> np.ndarray:
     """``n`` values of the centred Weyl sequence ``frac((k + offset) g) - 1/2``, k = 1..n."""
     k = np.arange(1, n + 1, dtype=np.float64) + offset
     return np.modf(k * GOLDEN)[0] - 0.5
+
+
+# ARPACK draws a new vector when a restart finds an invariant subspace (a cluster of equal
+# eigenvalues: the rigid modes): SciPy's own generator since it took ARPACK into C (the `rng`
+# argument), a per-process seed before
+_SEEDS_RESTARTS = "rng" in inspect.signature(eigsh).parameters
+
+
+def fixed_start(n: int) -> dict:
+    """``eigsh`` keywords for the same start and the same restarts in every call and run."""
+    kw = {"v0": start_vector(n)}
+    if _SEEDS_RESTARTS:
+        kw["rng"] = np.random.default_rng(0)
+    return kw
 
 
 def references(n: int, count: int) -> np.ndarray:

@@ -143,7 +143,7 @@ def _fixed_interface_modes(Kii: sp.csr_matrix, Mii: sp.csr_matrix, fac: Factor,
     """Lowest fixed-interface modes (M-orthonormal), by count or up to ``fmax_hz``."""
     op = fac.operator()
     # the same start and restarts every run: the same modes, bit for bit (fem/modebasis.py)
-    fixed = {"v0": modebasis.start_vector(Kii.shape[0]), "rng": np.random.default_rng(0)}
+    fixed = modebasis.fixed_start(Kii.shape[0])
     if fmax_hz is None:
         if n_modes is None or n_modes < 1:
             raise ParameterError(f"modes = {n_modes!r} is not allowed: expected an integer >= 1")
