@@ -20,6 +20,8 @@ from axlebox.mbs.trackbed import MODELS as TRACK_MODELS
 
 BODY_NAMES = (["carbody", "frame1", "frame2"] + [f"ws{i}" for i in range(1, 5)]
               + [f"ab{i}{s}" for i in range(1, 5) for s in "LR"] + [f"gb{i}" for i in range(1, 5)])
+# the bodies that have a reduced (FE) body to be flexible with: frames, wheelsets, axle-boxes
+FLEXIBLE_NAMES = [n for n in BODY_NAMES if not n.startswith(("carbody", "gb"))]
 
 BODY_KINDS = ("wheelset", "axlebox", "frame")
 F, I, S, B, L, N = "float", "int", "str", "bool", "list", "numbers"
@@ -61,7 +63,7 @@ SCHEMA: dict[str, dict[str, tuple]] = {
                "fmax_frame_hz": (F, 600.0, 1.0, 1e5),
                **{f"method_{k}": (S, "craig-bampton", ("craig-bampton", "guyan")) for k in BODY_KINDS},
                **{f"zeta_{k}": (F, 0.01, 0.0, 0.5) for k in BODY_KINDS},
-               "flexible": (L, ["frame1", "ws1", "ws2", "ab1L", "ab1R", "ab2L", "ab2R"], BODY_NAMES)},
+               "flexible": (L, ["frame1", "ws1", "ws2", "ab1L", "ab1R", "ab2L", "ab2R"], FLEXIBLE_NAMES)},
     "carbody": {"mass": (F, 37400.0, 1.0, 1e6), "inertia": (L, [35.3e3, 1447e3, 1435e3], (1e-3, 1e9)),
                 "cg_height": (F, 1.45, 0.3, 5.0)},
     "frame": {"mass": (F, 3420.0, 1.0, 1e5), "inertia": (L, [1430.0, 1850.0, 2950.0], (1e-3, 1e7)),
@@ -227,8 +229,9 @@ def _check(sec: str, key: str, value, spec) -> object:
         return sorted(value)
     for v in value:
         if v not in lim:
-            raise ParameterError(f"{name} = {value!r} is not allowed: {v!r} is not a body "
-                                 f"(bodies: {', '.join(lim)})")
+            what = ("has no FE body to be flexible with" if v in BODY_NAMES else "is not a body")
+            raise ParameterError(f"{name} = {value!r} is not allowed: {v!r} {what} "
+                                 f"(expected names from: {', '.join(lim)})")
     return list(value)
 
 

@@ -196,8 +196,8 @@ FIELDS: dict[str, dict[str, tuple[str, str]]] = {
                               "the file's)")
            for k in BODY_KINDS},
         "flexible": ("", "the bodies made flexible (default: the front bogie); the others are "
-                         "rigid with the same FE mass properties; only frames, wheelsets and "
-                         "axle-boxes can be (carbody and gearboxes stay rigid)"),
+                         "rigid with the same FE mass properties; frames, wheelsets and axle-boxes "
+                         "only (the carbody and gearboxes have no FE body)"),
     },
     "carbody": {
         "mass": ("kg", "carbody mass, rated load"),

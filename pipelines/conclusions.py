@@ -265,7 +265,7 @@ def _range_ms(lags) -> str:
 
 def table_html(items: list[Claim]) -> str:
     esc = html.escape
-    rows = ["<table class='claims'><tr><th>the paper</th><th>ours</th><th></th>"
+    rows = ["<table class='claims'><tr><th>the paper</th><th>ours</th><th>status</th>"
             "<th>where ours differs, why</th></tr>"]
     for c in items:
         rows.append(f"<tr><td>{esc(c.paper)}</td><td>{esc(c.ours)}</td><td>{esc(c.status)}</td>"

@@ -187,8 +187,9 @@ def vf(cases, path: Path) -> Path:
     """Fig. 14: VF of both sides against speed, a panel per defect width, the VF difference
     written over each pair of bars and the criterion's range quoted."""
     groups = _by_width(cases)
-    fig, ax = plt.subplots(1, len(groups), figsize=(4.2 * len(groups), 4.0), squeeze=False,
-                           constrained_layout=True)
+    # at least 8 in wide: one width's panel alone is too narrow for the figure's title
+    fig, ax = plt.subplots(1, len(groups), figsize=(max(4.2 * len(groups), 8.0), 4.0),
+                           squeeze=False, constrained_layout=True)
     for p, (w, cs) in enumerate(groups.items()):
         a = ax[0, p]
         x = np.arange(len(cs))
@@ -205,9 +206,8 @@ def vf(cases, path: Path) -> Path:
         a.title.set_fontsize(8)
         a.set_ylim(0, 1.25 * max(max(c.pair.left.VF, c.pair.right.VF) for c in cs))
         a.legend(fontsize=7, loc="upper center", ncol=2)
-    fig.suptitle(f"Frequency variance VF (Eq. 18) of both sides over "
-                 f"{crit.band_text}; numbers: "
-                 "the VF difference (cf. paper Fig. 14)", fontsize=10)
+    fig.suptitle(f"Frequency variance VF (Eq. 18) of both sides over {crit.band_text};\n"
+                 "numbers: the VF difference (cf. paper Fig. 14)", fontsize=10)
     return _save(fig, path)
 
 

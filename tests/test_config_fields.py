@@ -187,3 +187,28 @@ def test_sphinx_builds_the_page_with_warnings_as_errors(tmp_path, md):
     assert out.returncode == 0, out.stdout + out.stderr
     html = (tmp_path / "html" / "index.html").read_text()
     assert html.count("<table") == len(tables(md))
+
+
+def test_the_schemas_choices_are_the_codes():
+    """Choice lists the schema spells out itself must be the ones the code acts on."""
+    from axlebox.mbs import exchange, roughness
+    from axlebox.mbs.config import SCHEMA
+    from axlebox.mbs.wheelrail import element
+    assert set(SCHEMA["coupling"]["hold"][2]) == set(exchange.HOLDS)
+    assert set(SCHEMA["wheelrail"]["law"][2]) == set(element.LAWS)
+    assert set(SCHEMA["wheelrail"]["fastsim_update"][2]) == set(element.UPDATES)
+    assert set(SCHEMA["track"]["rail_roughness"][2]) == {"none", *roughness.RAIL_DB}
+    assert set(SCHEMA["track"]["wheel_roughness"][2]) == {"none", *roughness.WHEEL_DB}
+
+
+@pytest.mark.parametrize("name,words", [("carbody", "has no FE body"), ("gb2", "has no FE body"),
+                                        ("ws9", "is not a body")])
+def test_only_bodies_with_an_fe_body_can_be_flexible(name, words):
+    """The carbody and gearboxes are always rigid: naming them flexible was silently ignored."""
+    from axlebox._params import ParameterError
+    from axlebox.mbs.config import validate
+    with pytest.raises(ParameterError, match=rf"bodies.flexible = \['{name}'\] is not allowed: "
+                                             rf"'{name}' {words}"):
+        validate({"bodies": {"flexible": [name]}})
+    assert validate({"bodies": {"flexible": ["frame2", "ws4", "ab3L"]}})["bodies"]["flexible"] == \
+        ["frame2", "ws4", "ab3L"]
