@@ -178,11 +178,13 @@ def claims(cases) -> list[Claim]:
         up_d = _monotone(faulty, lambda c, g=get: g(sides(c)[0]), "width_mm")
         up_h = _monotone(faulty, lambda c, g=get: g(sides(c)[1]), "width_mm")
         n_ok, n = ok + up_d[0] + up_h[0], len(faulty) + up_d[1] + up_h[1]
+        rising = (f"rising with width at {up_d[0]} of {up_d[1]} speeds (defect side), "
+                  f"{up_h[0]} of {up_h[1]} (healthy side)" if up_d[1] + up_h[1] else
+                  "rising with width: not checked (no speed with two defect widths)")
         out.append(Claim("1c", f"(1) {name}: defect side above healthy side, and rising with "
                          "defect width on both.",
-                         f"defect side above in {_frac(ok, len(faulty))}; rising with width at "
-                         f"{up_d[0]} of {up_d[1]} speeds (defect side), {up_h[0]} of {up_h[1]} "
-                         "(healthy side).", _status(n_ok, n)))
+                         f"defect side above in {_frac(ok, len(faulty))}; {rising}.",
+                         _status(n_ok, n)))
 
     # (1d) healthy side SPM "normal" only at 1 mm
     rule = [(c, sides(c)[1].spm_class == "normal") for c in faulty]

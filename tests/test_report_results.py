@@ -148,6 +148,10 @@ def test_report_command_and_its_refusals(sweep, tmp_path, capsys):
     runs, _, _ = sweep
     assert cli.main(["report", str(runs / "v48_w3.h5"), "--out", str(tmp_path / "one")]) == 0
     assert (tmp_path / "one" / "index.html").exists()
+    # one case: the width trend of the (1) claims cannot be read, and the table says so
+    with open(tmp_path / "one" / "conclusions.csv", newline="") as fh:
+        rms = [r for r in csv.DictReader(fh) if r["claim"] == "1c" and "RMS" in r["paper"]]
+    assert len(rms) == 1 and "rising with width: not checked" in rms[0]["ours"], rms
     capsys.readouterr()
     for args, named in ((["report", str(tmp_path / "nothing"), "--out", str(tmp_path / "r")], "nothing"),
                         (["report", str(tmp_path / "one"), "--out", str(tmp_path / "r")], "axlebox-result"),
