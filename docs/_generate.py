@@ -15,7 +15,7 @@ def _write(path: Path, text: str) -> None:
 
 
 def config_page() -> str:
-    from axlebox.mbs.config_fields import reference_markdown
+    from axlebox.pipelines.config_reference import reference_markdown
     return reference_markdown()
 
 
@@ -66,8 +66,5 @@ def api_pages(folder: Path) -> None:
 def write_all(folder: Path) -> None:
     folder.mkdir(exist_ok=True)
     _write(folder / "cli.md", cli_page())
-    try:
-        _write(folder / "config.md", config_page())
-    except ImportError:        # the schema's field documentation is being written
-        pass
+    _write(folder / "config.md", config_page())
     api_pages(folder / "api")

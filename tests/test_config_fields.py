@@ -1,5 +1,5 @@
-"""The config reference (mbs/config_fields.py): every field of every config documented, nothing
-stale, the page's defaults and ranges the code's own, its tables well formed and a Sphinx build
+"""The config reference (pipelines/config_reference.py): every field of every config documented,
+nothing stale, the page's defaults and ranges the code's own, its tables well formed and a Sphinx build
 of it clean with warnings as errors."""
 import dataclasses
 import re
@@ -13,9 +13,10 @@ from axlebox._params import ParameterError
 from axlebox.bearing.defects import Defect
 from axlebox.bearing.params import BearingParams
 from axlebox.bearing.rig import RIG_SECTIONS, RigConfig
-from axlebox.mbs import config, config_fields
+from axlebox.mbs import config
+from axlebox.pipelines import config_reference
 from axlebox.mbs.config import DEFECT_PLACE, SCHEMA, WHEEL_DEFECT
-from axlebox.mbs.config_fields import FIELDS, HEADER, SECTION_NOTES, reference_markdown
+from axlebox.pipelines.config_reference import FIELDS, HEADER, SECTION_NOTES, reference_markdown
 from axlebox.pipelines.sweep import SWEEP_FIELDS
 
 # every unit the reference may give: a typo or a unit written another way fails here
@@ -87,13 +88,13 @@ def test_speed_kmh_says_it_is_in_kmh():
 
 
 @pytest.mark.parametrize("rows, expected", [
-    (config_fields.bearing_rows, [f.name for f in dataclasses.fields(BearingParams)]),
-    (config_fields.defect_rows, list(DEFECT_PLACE) + [f.name for f in dataclasses.fields(Defect)]
+    (config_reference.bearing_rows, [f.name for f in dataclasses.fields(BearingParams)]),
+    (config_reference.defect_rows, list(DEFECT_PLACE) + [f.name for f in dataclasses.fields(Defect)]
      + ["angle_deg"]),
-    (config_fields.wheel_defect_rows, list(WHEEL_DEFECT)),
-    (config_fields.rig_rows, [f.name for f in dataclasses.fields(RigConfig)
+    (config_reference.wheel_defect_rows, list(WHEEL_DEFECT)),
+    (config_reference.rig_rows, [f.name for f in dataclasses.fields(RigConfig)
                               if f.name not in RIG_SECTIONS]),
-    (config_fields.sweep_rows, list(SWEEP_FIELDS)),
+    (config_reference.sweep_rows, list(SWEEP_FIELDS)),
 ], ids=["bearing", "defects", "wheel_defects", "rig", "sweep"])
 def test_free_form_tables_document_every_field_the_code_takes(rows, expected):
     got = rows()

@@ -24,7 +24,11 @@ from axlebox.bearing.integrate import DT_MAX
 from axlebox.bearing.layout import KINDS
 from axlebox.bearing.quasidynamic import DT_MAX as QD_DT_MAX
 
-from .config import _WHEEL_FIELDS, B, BODY_KINDS, DEFECT_PLACE, F, I, L, N, S, SCHEMA, WHEEL_DEFECT
+from axlebox.bearing.rig import RIG_METHODS, RIG_SECTIONS, RigConfig
+from axlebox.mbs.config import (_WHEEL_FIELDS, B, BODY_KINDS, DEFECT_PLACE, F, I, L, N, S, SCHEMA,
+                                WHEEL_DEFECT)
+
+from .sweep import SIDES, SWEEP_FIELDS
 
 # ---- formatting --------------------------------------------------------------------------------
 
@@ -333,23 +337,21 @@ RIG_CONSTRAINTS: dict[str, str] = {
     "seed": "an integer >= 0",
 }
 
-def _sweep_docs() -> dict[str, tuple[str, str, str, str, str]]:
-    """``[sweep]`` field -> (type, unit, allowed, default, meaning): the allowed values are
-    pipelines/sweep.py's (``_numbers`` with ``zero_ok``, ``KINDS``, ``SIDES``)."""
-    from axlebox.pipelines.sweep import SIDES
-    return {
-        "speeds_kmh": ("list of float", "km/h", "numbers > 0", "the config's own speed_kmh",
-                       "the cases' speeds, in km/h by name"),
-        "widths_mm": ("list of float", "mm", "numbers >= 0", "the config's [[defects]] as they are",
-                      "defect widths in mm by name: 0 removes the [[defects]], > 0 sets their W"),
-        "kinds": ("list of str", "", _choices(tuple(KINDS)), "the defects' own kind",
-                  "sets every defect's kind"),
-        "sides": ("list of str", "", _choices(SIDES), "the defects' own side",
-                  "vehicle only: puts every defect on that side, 'LR' on both"),
-        "wheel_defects": ("list of str", "", "'none' or names of [[wheel_defects]] entries",
-                          "the config's [[wheel_defects]]",
-                          "vehicle only: keeps the entries of that name; 'none': none of them"),
-    }
+#: ``[sweep]`` field -> (type, default, unit, allowed, meaning); the allowed values are
+#: pipelines/sweep.py's (``_numbers`` with ``zero_ok``, ``KINDS``, ``SIDES``)
+SWEEP_DOCS: dict[str, tuple[str, str, str, str, str]] = {
+    "speeds_kmh": ("list of float", "the config's own speed_kmh", "km/h", "numbers > 0",
+                   "the cases' speeds, in km/h by name"),
+    "widths_mm": ("list of float", "the config's [[defects]] as they are", "mm", "numbers >= 0",
+                  "defect widths in mm by name: 0 removes the [[defects]], > 0 sets their W"),
+    "kinds": ("list of str", "the defects' own kind", "", _choices(tuple(KINDS)),
+              "sets every defect's kind"),
+    "sides": ("list of str", "the defects' own side", "", _choices(SIDES),
+              "vehicle only: puts every defect on that side, 'LR' on both"),
+    "wheel_defects": ("list of str", "the config's [[wheel_defects]]", "",
+                      "'none' or names of [[wheel_defects]] entries",
+                      "vehicle only: keeps the entries of that name; 'none': none of them"),
+}
 
 
 _TYPES = {F: "float", I: "int", S: "str", B: "bool", N: "list of float"}
@@ -437,7 +439,6 @@ def wheel_defect_rows() -> list[tuple]:
 
 def rig_rows() -> list[tuple]:
     """``[rig]``: the :class:`~axlebox.bearing.rig.RigConfig` fields that are not sections."""
-    from axlebox.bearing.rig import RIG_METHODS, RIG_SECTIONS, RigConfig
     method = next(f for f in dataclasses.fields(RigConfig) if f.name == "method")
     choices = {"method": (RIG_METHODS, method.metadata["doc"])}
     rows = _dataclass_rows(RigConfig, choices, skip=RIG_SECTIONS, constraints=RIG_CONSTRAINTS)
@@ -447,9 +448,7 @@ def rig_rows() -> list[tuple]:
 
 def sweep_rows() -> list[tuple]:
     """``[sweep]``: pipelines/sweep.py's SWEEP_FIELDS."""
-    from axlebox.pipelines.sweep import SWEEP_FIELDS
-    docs = _sweep_docs()
-    return [(k, docs[k][0], docs[k][3], docs[k][1], docs[k][2], docs[k][4]) for k in SWEEP_FIELDS]
+    return [(k, *SWEEP_DOCS[k]) for k in SWEEP_FIELDS]
 
 
 def sections() -> list[tuple[str, str, list[tuple]]]:
