@@ -31,7 +31,6 @@ class RigidModeError(RuntimeError):
 
 PROBE_HZ = 10.0       # the first probe's shift; moved to the body's own scale when far from it
 GAP_MIN = 10.0        # the rigid cluster's top and the first elastic frequency: at least this ratio
-DEGENERATE = 1e-6     # eigenvalues this close (relative) form one subspace, returned canonically
 
 
 def free_free_modes(model: FEModel, n_elastic: int = 20, *, shift_hz: float | None = None,
@@ -134,7 +133,7 @@ def _solve(model: FEModel, n_elastic: int, shift_hz: float, rigid_tol: float) ->
                              f"(residual {residual:.2e} > {rigid_tol:g})")
     f_el, P = f[6:6 + n_elastic], phi[:, 6:6 + n_elastic]
     # pairs of equal frequencies (axisymmetric or square bodies): one basis of their span
-    P = modebasis.canonical(P, f_el, model.M, DEGENERATE)
+    P = modebasis.canonical(P, f_el, model.M)
     R = model.rigid_modes(model.points.mean(axis=0))
     rigid = modebasis.canonical(phi[:, :6], np.zeros(6), model.M, W=R)
     lam = (2 * np.pi * f_el) ** 2

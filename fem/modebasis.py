@@ -22,6 +22,7 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import eigsh
 
 GOLDEN = 0.6180339887498949          # (sqrt 5 - 1) / 2: the most irrational step
+DEGENERATE = 1e-6     # eigenvalues this close (relative) form one subspace, returned canonically
 
 
 def start_vector(n: int, offset: int = 0) -> np.ndarray:
@@ -61,7 +62,7 @@ def clusters(values: np.ndarray, rel_tol: float) -> list[np.ndarray]:
     return groups
 
 
-def canonical(phi: np.ndarray, values: np.ndarray, M: sp.spmatrix, rel_tol: float = 1e-6,
+def canonical(phi: np.ndarray, values: np.ndarray, M: sp.spmatrix, rel_tol: float = DEGENERATE,
               W: np.ndarray | None = None) -> np.ndarray:
     """``phi`` (M-orthonormal columns, ``values`` ascending) with every cluster of values within
     ``rel_tol`` replaced by the basis of its span closest to the references ``W`` (default

@@ -27,7 +27,6 @@ from axlebox._params import ParameterError
 
 from . import modebasis
 from .assembly import FEModel
-from .eigen import DEGENERATE
 from .interfaces import Condensation
 from .linsolve import Factor
 
@@ -165,4 +164,4 @@ def _fixed_interface_modes(Kii: sp.csr_matrix, Mii: sp.csr_matrix, fac: Factor,
     order = np.argsort(lam, kind="stable")
     lam, Phi = lam[order], Phi[:, order]
     # equal frequencies (an axisymmetric body's pairs): one basis of their span, every run
-    return modebasis.canonical(Phi, lam, Mii, DEGENERATE), lam
+    return modebasis.canonical(Phi, lam, Mii), lam
