@@ -51,6 +51,15 @@ def full_size() -> bool:
     return os.environ.get("AXLEBOX_FULL") == "1"
 
 
+def h5_arrays(path) -> dict:
+    """Every dataset of an HDF5 file, by its path in the file, read into memory."""
+    import h5py
+    out = {}
+    with h5py.File(path, "r") as f:
+        f.visititems(lambda n, o: out.__setitem__(n, o[()]) if isinstance(o, h5py.Dataset) else None)
+    return out
+
+
 @pytest.fixture(scope="session")
 def wheelset_fe():
     """The default-mesh wheelset: FE model and its full free-free modes (built once)."""

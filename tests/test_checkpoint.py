@@ -23,16 +23,10 @@ from axlebox.mbs import comfort, integrate
 from axlebox.pipelines import cli, sensor
 from axlebox.pipelines import simulate as psim
 from axlebox.pipelines.stream import stream_path
+from conftest import h5_arrays
 
 ROOT = Path(__file__).resolve().parents[1]
 ARGS = ["validation_48kmh", "--duration", "0.35", "--checkpoint-every", "0.25"]
-
-
-def arrays(path) -> dict:
-    out = {}
-    with h5py.File(path, "r") as f:
-        f.visititems(lambda n, o: out.__setitem__(n, o[()]) if isinstance(o, h5py.Dataset) else None)
-    return out
 
 
 @pytest.mark.slow
@@ -50,7 +44,7 @@ def test_a_killed_run_resumes_to_the_same_arrays(tmp_path, capsys):
                                cfg["sensors"])
     psim.write(tmp_path / "kept.h5", kept, model, text, cfg["run"]["seed"],
                comfort.floor_comfort(kept.time, kept.sensors, model.system.track_ramp))
-    a, b = arrays(ref), arrays(tmp_path / "kept.h5")
+    a, b = h5_arrays(ref), h5_arrays(tmp_path / "kept.h5")
     assert a.keys() == b.keys()
     for k in a:
         assert np.array_equal(a[k], b[k]), k
@@ -86,7 +80,7 @@ def test_a_killed_run_resumes_to_the_same_arrays(tmp_path, capsys):
     assert cli.main(["simulate", *ARGS, "--out", str(out)]) == 0
     assert "resuming at 0.25 s" in capsys.readouterr().out
     assert not partial.exists() and not stream_path(out).exists()
-    a, b = arrays(ref), arrays(out)
+    a, b = h5_arrays(ref), h5_arrays(out)
     assert a.keys() == b.keys()
     for k in a:
         assert np.array_equal(a[k], b[k]), k

@@ -17,7 +17,7 @@ import scipy.linalg as sla
 
 from axlebox.fem import assembly, eigen, modebasis
 from axlebox.geometry import beam, mesh
-from conftest import full_size
+from conftest import full_size, h5_arrays
 
 # (length, width, height, mesh size): the issue's plate, and a stubby steel block
 PLATE = (2.0, 2.0, 0.002, 0.1)
@@ -139,15 +139,6 @@ def test_the_start_vector_is_fixed_and_has_no_symmetry():
         (np.modf(np.arange(1, 1001) * modebasis.GOLDEN)[0] - 0.5).tobytes()).hexdigest()
 
 
-def _arrays(path):
-    import h5py
-    out = {}
-    with h5py.File(path, "r") as f:
-        f.visititems(lambda name, obj: out.__setitem__(name, obj[()]) if isinstance(obj, h5py.Dataset)
-                     else None)
-    return out
-
-
 def test_building_a_body_twice_gives_byte_identical_arrays(tmp_path):
     """`axlebox bodies build` in two fresh processes: its full-model reference modes, its
     fixed-interface modes and everything reduced from them are the same bits."""
@@ -159,7 +150,7 @@ def test_building_a_body_twice_gives_byte_identical_arrays(tmp_path):
                               capture_output=True, text=True, timeout=900)
         assert proc.returncode == 0, proc.stderr[-3000:]
         files.append(out / "axlebox.h5")
-    a, b = _arrays(files[0]), _arrays(files[1])
+    a, b = h5_arrays(files[0]), h5_arrays(files[1])
     assert a.keys() == b.keys() and "reference/frequencies_hz" in a and "component/modes" in a
     differ = [k for k in a if np.asarray(a[k]).tobytes() != np.asarray(b[k]).tobytes()]
     assert not differ, differ

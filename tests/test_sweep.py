@@ -15,7 +15,7 @@ from axlebox.pipelines import cli
 from axlebox.pipelines.sweep import is_finished, load_config, matrix, run_case, run_cases, sweep
 from axlebox._params import ParameterError
 
-from conftest import full_size
+from conftest import full_size, h5_arrays
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -212,15 +212,10 @@ def test_two_local_workers_run_four_cases_and_each_finishes(tmp_path):
         assert all(is_finished(c.path(out), c.toml) for c in cases)
         files[n] = {c.name: c.path(out) for c in cases}
     for name in files[1]:
-        a, b = _datasets(files[1][name]), _datasets(files[2][name])
+        a, b = h5_arrays(files[1][name]), h5_arrays(files[2][name])
         assert a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a), name
 
 
-def _datasets(path) -> dict:
-    out = {}
-    with h5py.File(path, "r") as f:
-        f.visititems(lambda n, o: out.__setitem__(n, o[()]) if isinstance(o, h5py.Dataset) else None)
-    return out
 
 
 def test_a_car_config_in_memory_is_validated_as_a_file_is():
