@@ -77,3 +77,16 @@ def configure() -> None:
 
 
 configure()
+
+
+def kernel(fn=None, **options):
+    """``numba.njit`` as the kernels use it: cached, IEEE arithmetic (no ``fastmath``: a
+    kernel compiled in this process and the same one loaded from the cache must give the same
+    bits, bearing/evaluate.py), and numpy's error model (a division by zero gives inf or NaN,
+    which the integrators' finite checks catch, instead of a branch to raise at every
+    division).  Parts are plain functions, not ``inline="always"``: LLVM inlines what is small
+    (numba's own inlining copies and retypes the callee's IR at every call, which made the
+    compile of the old 335-line right-hand side take minutes)."""
+    from numba import njit
+    options = {"cache": True, "error_model": "numpy", **options}
+    return njit(**options) if fn is None else njit(**options)(fn)

@@ -43,24 +43,25 @@ slope break at the middle from ``W / (2 r_b)`` to ``(W / 2 - r_e) / rho`` (no pu
 radius for a spall was found: the radius is a sensitivity parameter, 0 a sharp edge).  Ring
 defects only.
 
-The table row is ``kind, row, theta, tau, A, s1, s2, roller, rho, r_e, R`` (the roller's index
-from 0 for kind 2; rho = 0 for Eq. (14)'s half-sine, else rho = r_b + r_e and R the raceway
-radius that turns the angle into arc length), :data:`WIDTH` columns.
+The table's columns are :mod:`.layout`'s ``D_*`` (one row a defect); :func:`depth_under` and
+:func:`roller_depths` read it in the kernels.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
-from math import asin, pi, sqrt
+from math import asin, pi, sin, sqrt
 
 import numpy as np
 
+from axlebox._numba import kernel
 from axlebox._params import ParameterError, check_ranges, param, require
 
-from .layout import KINDS
-from .params import BearingParams
+from .layout import (D_DEPTH, D_EDGE, D_KIND, D_RADIUS, D_RHO, D_ROLLER, D_ROW, D_S1, D_S2,
+                     D_START, D_TAU, D_WIDTH, KINDS, ROLLER_SURFACE)
 
-WIDTH = 11                                 # columns of the kernel's defect table
+WIDTH = D_WIDTH                            # columns of the kernel's defect table
 PROFILES = ("half-sine", "edges")
+TWO_PI = 2.0 * pi
 
 
 @dataclass(frozen=True)
@@ -102,24 +103,26 @@ class Defect:
             require(self.edge_radius == 0.0, self, "edge_radius", "an edge radius needs "
                     "profile = 'edges'; expected 0 with the half-sine")
 
-    def depth(self, p: BearingParams) -> float:
+    def depth(self, p) -> float:
         """The deepest drop (m), capped by H: A of Eq. (14), or with rounded edges the drop at
         the middle, ``rho - sqrt(rho^2 - (W/2 - r_e)^2)``."""
         r = p.r_b + self.edge_radius
         return min(self.H, r - sqrt(r * r - (0.5 * self.W - self.edge_radius) ** 2))
 
-    def raceway(self, p: BearingParams) -> float:
+    def raceway(self, p) -> float:
         """Diameter of the surface the defect is on (m): ``D_o`` (cup), ``D_i`` (cone) or ``D_b``
         (roller)."""
         return {"outer": p.D_o, "inner": p.D_i, "roller": p.D_b}[self.kind]
 
-    def tau(self, p: BearingParams) -> float:
+    def tau(self, p) -> float:
         """tau_o of Eq. (14) (rad), on the defect's own raceway."""
         return 2 * asin(self.W / self.raceway(p))
 
 
-def table(defects, p: BearingParams) -> np.ndarray:
-    """The kernel's defect table for ``defects``; refuses defects the model cannot represent."""
+def table(defects, p) -> np.ndarray:
+    """The kernel's defect table for ``defects`` in a bearing of parameters ``p`` (any model's:
+    ``Z``, ``D_b``, ``r_b``, ``D_o``, ``D_i`` and the contact line's length ``L_e``); refuses
+    defects the model cannot represent."""
     rows = []
     spans = []
     for d in defects:
@@ -142,11 +145,14 @@ def table(defects, p: BearingParams) -> np.ndarray:
                 raise ParameterError(f"Defect.angle = {d.angle!r} is not allowed: the defect overlaps "
                                      f"another one on the same surface ({d.kind}, row {d.row})")
         spans.append((start, tau, surface))
-        edges = d.profile == "edges"
-        rows.append([KINDS[d.kind], d.row - 1, start, tau, d.depth(p), s1, s2,
-                     d.roller - 1 if d.kind == "roller" else 0.0,
-                     p.r_b + d.edge_radius if edges else 0.0, d.edge_radius, 0.5 * d.raceway(p)])
-    return np.array(rows, dtype=float).reshape(-1, WIDTH)
+        row = np.zeros(D_WIDTH)
+        row[D_KIND], row[D_ROW], row[D_START], row[D_TAU] = KINDS[d.kind], d.row - 1, start, tau
+        row[D_DEPTH], row[D_S1], row[D_S2] = d.depth(p), s1, s2
+        row[D_ROLLER] = d.roller - 1 if d.kind == "roller" else 0.0
+        row[D_RHO] = p.r_b + d.edge_radius if d.profile == "edges" else 0.0
+        row[D_EDGE], row[D_RADIUS] = d.edge_radius, 0.5 * d.raceway(p)
+        rows.append(row)
+    return np.array(rows, dtype=float).reshape(-1, D_WIDTH)
 
 
 def phase_clear_of(D: np.ndarray, Z: int, phase: float = 0.0) -> float:
@@ -157,7 +163,64 @@ def phase_clear_of(D: np.ndarray, Z: int, phase: float = 0.0) -> float:
     pitch = 2 * pi / Z
     for k in range(8):
         phi = pitch * np.arange(Z) + phase + k * pitch / 8
-        if not any(np.any(np.mod(phi - start, 2 * pi) < tau) for kind, _, start, tau, *_ in D
-                   if kind != KINDS["roller"]):      # a roller's defect is not at an azimuth
+        if not any(np.any(np.mod(phi - d[D_START], 2 * pi) < d[D_TAU]) for d in D
+                   if d[D_KIND] != ROLLER_SURFACE):   # a roller's defect is not at an azimuth
             return phase + k * pitch / 8
     return phase + 0.5 * pitch
+
+
+# --- the kernels' lookups ------------------------------------------------------------------------
+@kernel
+def depth_under(D, kind, j, phi, theta):
+    """Depth ``h`` of a ring defect of ``kind`` (:data:`.layout.OUTER_RING` or ``INNER_RING``)
+    under a roller of row j at azimuth phi, Eq. (14), and the stretch ``[s1, s2]`` of the
+    contact line it covers.  Defects turn with their ring, whose rotation about the axle is
+    ``theta``."""
+    for d in range(D.shape[0]):
+        if D[d, D_KIND] != kind or D[d, D_ROW] != j:
+            continue
+        x = (phi - theta - D[d, D_START]) % TWO_PI
+        tau = D[d, D_TAU]
+        if x < tau:
+            return _depth(D, d, x, tau), D[d, D_S1], D[d, D_S2]
+    return 0.0, 0.0, 0.0
+
+
+@kernel
+def _depth(D, d, x, tau):
+    """Depth of ring defect d at ``x`` rad into its window: Eq. (14)'s half-sine, or (``rho``
+    > 0) the roller's centre path over the two rounded edges (module docstring)."""
+    rho = D[d, D_RHO]
+    if rho == 0.0:
+        return D[d, D_DEPTH] * sin(pi * x / tau)
+    e = min(x, tau - x) * D[d, D_RADIUS] - D[d, D_EDGE]     # past the nearer edge's pivot (m)
+    if e <= 0.0:
+        return 0.0
+    return min(D[d, D_DEPTH], e * e / (rho + sqrt(rho * rho - e * e)))  # rho - sqrt(..), exact
+
+
+@kernel
+def roller_depths(D, j, k, psi):
+    """Depths ``(h_outer, h_inner)`` of a defect on roller k of row j at its spin angle psi,
+    Eq. (14) on the roller's surface: under the outer raceway within ``tau / 2`` of the defect's
+    angle, under the inner one half a turn on; and its stretch ``[s1, s2]`` of the line."""
+    for d in range(D.shape[0]):
+        if D[d, D_KIND] != ROLLER_SURFACE or D[d, D_ROW] != j or D[d, D_ROLLER] != k:
+            continue
+        tau = D[d, D_TAU]
+        x = (psi - D[d, D_START]) % TWO_PI
+        h_o = D[d, D_DEPTH] * sin(pi * x / tau) if x < tau else 0.0
+        x = (psi + pi - D[d, D_START]) % TWO_PI
+        h_i = D[d, D_DEPTH] * sin(pi * x / tau) if x < tau else 0.0
+        return h_o, h_i, D[d, D_S1], D[d, D_S2]
+    return 0.0, 0.0, 0.0, 0.0
+
+
+@kernel
+def count(D, kind):
+    """How many defects of ``kind`` the table holds."""
+    n = 0
+    for d in range(D.shape[0]):
+        if D[d, D_KIND] == kind:
+            n += 1
+    return n

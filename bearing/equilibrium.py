@@ -3,10 +3,11 @@
 Unknowns: the outer ring's displacement relative to the inner ring (3) and, for every roller,
 its radial and axial displacement and tilt (3 each).  Equations: the ring carries the applied
 load, and every roller's radial, axial and tilt accelerations vanish, all taken from the same
-kernel that integrates the dynamics (:func:`.kernel.dtrb_rhs`), with the rollers rolling at the
-epicyclic speeds so that centrifugal forces and rib sliding are included.  Solved by Newton's
-method nested in two levels (the rollers, each a 3 x 3 block with backtracking, for given rings;
-the ring's 3 unknowns outside), started from the series-spring solution of :mod:`.quasistatic`.
+kernel that integrates the dynamics (:func:`.evaluate.evaluate`, any model), with the rollers
+rolling at the epicyclic speeds so that centrifugal forces and rib sliding are included.  Solved
+by Newton's method nested in two levels (the rollers, each a 3 x 3 block with backtracking, for
+given rings; the ring's 3 unknowns outside), started from the model's own guess (the DTRB's:
+the series-spring solution of :mod:`.quasistatic`).
 What is left (the rollers' orbital and spin balance against rib friction, which the cage takes)
 settles in the first milliseconds and hardly moves the ring.
 """
@@ -14,18 +15,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import quasistatic
-from .kernel import dtrb_rhs
-from .layout import CPHI, ETA, PHI, RHO, TH_T, nominal_state, n_state, views
+from . import models
+from .evaluate import rates
+from .layout import CPHI, ETA, F_X, F_Z, OUTER, PHI, Q_I, Q_O, RATE, RHO, TH_T, ring_motion, views
 
-
-def ring_motion(omega_w: float, uo=(0.0, 0.0, 0.0), t: float = 0.0) -> np.ndarray:
-    """The kernel's ring array: inner ring at the origin spinning at omega_w, outer ring at uo."""
-    ring = np.zeros((2, 12))
-    ring[0, 4] = omega_w * t
-    ring[0, 10] = omega_w
-    ring[1, :3] = uo
-    return ring
+__all__ = ["ring_motion", "static_state"]
 
 
 def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol: float = 1e-7,
@@ -38,34 +32,32 @@ def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol
     converge."""
     F_outer = np.asarray(F_outer, float)
     Fn = float(np.linalg.norm(F_outer))
-    y = nominal_state(p, omega_w)
+    y = models.nominal_state(p, omega_w)
     rol, cag = views(y, p.Z)
     rol[:, :, PHI] += phase
     cag[:, CPHI] += phase
-    n = n_state(p.Z)
-    yd, F, Q = np.zeros(n), np.zeros((2, 6)), np.zeros((2, p.Z, 6))
+    model = models.tag(p).model
 
-    # start: series springs (quasistatic.solve takes the load on the inner ring)
-    e = quasistatic.solve(p, -F_outer, (0.0, 0.0))
-    uo0 = -e.q[:3]
-    for j, s in enumerate((1.0, -1.0)):
-        d = np.clip(e.delta[j], 0.0, None)
-        rol[j, :, RHO] = -0.5 * d * np.cos(p.alpha_o)
-        rol[j, :, ETA] = -0.5 * d * s * np.sin(p.alpha_o)
+    # start: the model's guess
+    uo0, rol[:, :, RHO], rol[:, :, ETA] = models.module(p).guess(p, F_outer)
     cols = (RHO, ETA, TH_T)
     steps = np.array([1e-12, 1e-12, 1e-10])              # m, m, rad: below barely-touching rollers
     weights = np.array([p.M_r, p.M_r, p.J_r[1]])         # accelerations -> forces, moment
     Fs = max(Fn, 1.0)
 
+    out = {}
+
     def roller_residual(uo):
-        dtrb_rhs(0.0, y, ring_motion(omega_w, uo), P, D, yd, F, Q)
+        yd, F, Q, _ = rates(model, 0.0, y, ring_motion(omega_w, uo), P, D)
+        out["Q"] = Q
         acc = views(yd, p.Z)[0]
-        return np.stack([acc[:, :, 6 + c] for c in cols], axis=-1) * weights, F[1, :3].copy()
+        return (np.stack([acc[:, :, RATE + c] for c in cols], axis=-1) * weights,
+                F[OUTER, F_X:F_Z + 1].copy())
 
     def norm(r):
         return np.sqrt(r[..., 0] ** 2 + r[..., 1] ** 2 + (r[..., 2] / p.L_b) ** 2)
 
-    nominal = views(nominal_state(p, omega_w), p.Z)[0]
+    nominal = views(models.nominal_state(p, omega_w), p.Z)[0]
     nominal[:, :, PHI] += phase
 
     def solve_rollers(uo):
@@ -75,7 +67,7 @@ def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol
         place (touching cone and rib without load) and left there."""
         for _ in range(100):
             r, Fo = roller_residual(uo)
-            free = Q[:, :, 0] + Q[:, :, 1] == 0.0
+            free = out["Q"][:, :, Q_O] + out["Q"][:, :, Q_I] == 0.0
             rol[free] = nominal[free]
             r, Fo = roller_residual(uo)
             r0 = norm(r)

@@ -1,97 +1,126 @@
-"""Plain-array layout of the DTRB model: the parameter vector, the state vector, the defect table.
+"""The plain arrays every bearing model shares, slot by slot: the one place that says what each
+slot holds (a model's own parameter slots are declared in its module: :mod:`.dtrb`, :mod:`.dcrb`).
 
-The numba kernel (:mod:`.kernel`) sees only float arrays; this module is the one place that
-says what each slot holds, and packs a :class:`BearingParams` into them.
+The numba kernels see only these arrays and read every slot by name; nothing outside this
+module and the models' own layouts indexes a slot by number (tests/test_layout_names.py).
 
-State, one bearing (``n_state(Z) = 24 Z + 24``):
+**State**, one bearing of two rows (``n_state(Z) = 24 Z + 24``), rollers then cages:
 
-* rollers ``(2, Z, 12)``: ``rho, phi, eta, theta_t, theta_s, psi`` and their rates.  ``rho`` and
-  ``eta`` are the radial and axial displacement of the roller centre from its nominal place on
-  the pitch circle, ``phi`` its azimuth (from +z towards +x, paper Eq. 2), ``theta_t`` its tilt
-  about the tangent ``e_t``, ``theta_s`` its skew about ``b`` (normal to the roller axis in the
-  axial plane), ``psi`` its spin about its own axis relative to the orbiting frame.  The rate
-  slot of ``psi`` holds the spin speed ``omega_s``.
-* cages ``(2, 12)``: ``x, y, z, theta_x, theta_z, phi_c`` and their rates.
+* rollers ``(2, Z, N_ROLLER)``: ``RHO, PHI, ETA, TH_T, TH_S, PSI`` and their rates at ``RATE +``
+  the slot.  ``RHO`` and ``ETA`` are the radial and axial displacement of the roller centre
+  from its nominal place on the pitch circle, ``PHI`` its azimuth (from +z towards +x, paper
+  Eq. 2), ``TH_T`` its tilt about the tangent ``e_t``, ``TH_S`` its skew about ``b`` (normal to
+  the roller axis in the axial plane), ``PSI`` its spin about its own axis relative to the
+  orbiting frame; the rate slot of ``PSI`` holds the spin speed ``omega_s``.
+* cages ``(2, N_CAGE)``: ``CX, CY, CZ, CTX, CTZ, CPHI`` (translation, tilt about x and z,
+  rotation) and their rates at ``RATE +`` the slot.
 
-Ring motion, one ring a row of ``ring (2, 12)`` (0 inner, 1 outer):
-``u_x, u_y, u_z, theta_x, theta_y, theta_z, v_x, v_y, v_z, omega_x, omega_y, omega_z``;
-``theta_y`` is the ring's angle about the bearing axis (the wheelset spin for the inner ring)
-and ``omega_y`` its spin speed.
+**Ring motion** ``(2, RING)``, row ``INNER`` or ``OUTER``: displacement ``U_X, U_Y, U_Z``, small
+rotation ``TH_X, TH_Y, TH_Z``, velocity ``V_X ..`` and angular velocity ``W_X ..``, in the
+bearing's frame (x forward, y along the axle, z up; origin at the inner ring's centre).
+``TH_Y`` is the ring's angle about the bearing axis (the wheelset's spin for the inner ring)
+and ``W_Y`` its spin speed.  **Ring loads** ``(2, LOAD)``: force ``F_X, F_Y, F_Z`` and moment
+``M_X, M_Y, M_Z`` about the ring's centre (paper Eq. 16 with moments).
 
-Defect table ``(n, 8)``: ``kind, row, start, tau, A, s1, s2, spare`` (see :mod:`.defects`).
+**Contact forces** ``(2, Z, N_Q)``: the normal loads of a roller's contacts, ``Q_O`` (outer
+raceway), ``Q_I`` (inner raceway), ``Q_A`` (rib), ``Q_CR1``, ``Q_CR2`` (pocket walls),
+``Q_SIDE`` (the cage's side beams).  **Cage outputs** ``(CAGES)``: each row's cage angle at
+``CAGE_ANGLE + row`` and its rate at ``CAGE_RATE + row``.
+
+**Defect table** ``(n, D_WIDTH)``, one defect a row (:mod:`.defects`): ``D_KIND`` (a value of
+:data:`KINDS`), ``D_ROW`` (0 or 1), ``D_START`` and ``D_TAU`` (the window, rad), ``D_DEPTH``
+(A of Eq. 14), ``D_S1, D_S2`` (the stretch of the contact line it covers), ``D_ROLLER`` (the
+roller's index for a roller defect), ``D_RHO, D_EDGE, D_RADIUS`` (the edges' path: ``rho =
+r_b + r_e`` or 0 for the half-sine, ``r_e``, the raceway radius).
+
+**Roller records** ``(2 Z, REC)`` (:mod:`.evaluate`): what one roller's contacts do.  ``REC_F``
+and ``REC_M`` (three slots each): the force on the roller (its weight first, then each contact's
+in order) and the moment about its centre; then for each contact slot ``C_*`` the load it puts
+on its other body (``REC_LOAD + C_LOAD * c``: force, then moment about that body's centre):
+``C_OUTER`` the outer raceway and ``C_OUTER_RIB`` a rib of the outer ring (on the outer ring),
+``C_INNER`` the inner raceway and ``C_INNER_RIB`` a rib of the inner ring (on the inner ring),
+``C_WALL_1``, ``C_WALL_2`` the pocket walls and ``C_SIDE_1``, ``C_SIDE_2`` the side beams (on
+the cage).  The sums add the slots roller by roller in this order (:data:`OUTER_SLOTS` ...),
+the order of the paper's Eq. (16) as the kernel has always summed it, so that the loads do not
+depend on how a model's parts are grouped.  ``REC_ORBIT``: the roller's pull on a
+quasi-dynamic cage's rotation; ``REC_SPIN``: its pockets' damping of the cage's rotation (the
+cage's block entry, for the quasi-dynamic spin step).
+
+**Implicit blocks** ``(2 Z, 6, BLK)`` (:mod:`.blocks`): a roller's contact damping (and
+stiffness, friction) in its own rates (columns ``BLK_ROLLER +`` the rate slot), coupled to its
+cage's rates (``BLK_CAGE +`` the cage slot) and in the cage's own (``BLK_CAGE_CAGE +``, the
+roller's share; the row's whole cage block ``(2, 6, 6)`` is summed as the contacts come); rows
+by the roller's rate slot.  ``BLK_NONE``, ``BLK_OWN``, ``BLK_COUPLED``: which of them a
+roller's flag says it filled.
+
+**Parameter vector**: the slots every model fills, ``Z .. N_COMMON - 1`` (the parts a model
+shares: roller and cage dynamics, pockets, contact laws, :mod:`.roller`, :mod:`.pocket`,
+:mod:`.contact`); a model's own slots follow from ``N_COMMON`` (its module).
 """
 from __future__ import annotations
 
-from math import cos, pi, sin
+# --- state ------------------------------------------------------------------------------------
+RHO, PHI, ETA, TH_T, TH_S, PSI = range(6)            # roller positions
+CX, CY, CZ, CTX, CTZ, CPHI = range(6)                # cage positions
+RATE = 6                                             # a position's rate: RATE + its slot
+N_ROLLER = N_CAGE = 12
+ROWS = 2
 
-import numpy as np
+# --- ring motion and ring loads ------------------------------------------------------------------
+INNER, OUTER = 0, 1
+U_X, U_Y, U_Z, TH_X, TH_Y, TH_Z, V_X, V_Y, V_Z, W_X, W_Y, W_Z, RING = range(13)
+F_X, F_Y, F_Z, M_X, M_Y, M_Z, LOAD = range(7)
 
-from .params import DAMPING_LAWS
-from .stiffness import contacts
-
-# --- parameter vector slots ---------------------------------------------------------------
-(Z, R_M, R_B, L_E, L_B, CAO, SAO, CAI, SAI, CAF, SAF, CAM, SAM, CAC, SAC, ROW, C_O, H_R,
- K_O, K_I, K_A, K_CR, S_P, S_PA, M_R, J_RA, J_RD, M_C, J_CP, J_CD, MU_R, MU_A, MU_C, V_S,
- LAW, ZETA, C_RULE, BETA, KINEMATIC, RATIO, GX, GY, GZ, QUASI, N_P) = range(45)
-
-# --- state slots ------------------------------------------------------------------------------
-RHO, PHI, ETA, TH_T, TH_S, PSI = range(6)           # roller positions; +6 for the rates
-CX, CY, CZ, CTX, CTZ, CPHI = range(6)               # cage positions; +6 for the rates
-N_ROLLER, N_CAGE = 12, 12
-
-# --- contact-force output slots (2, Z, N_Q) ------------------------------------------------
+# --- contact forces and cage outputs --------------------------------------------------------------
 Q_O, Q_I, Q_A, Q_CR1, Q_CR2, Q_SIDE, N_Q = range(7)
+Q_NAMES = ("outer_raceway", "inner_raceway", "rib", "pocket_1", "pocket_2", "side_beams")
+CAGE_ANGLE, CAGE_RATE, CAGES = 0, 2, 4
 
-KINDS = {"outer": 0, "inner": 1, "roller": 2}   # defect kinds: the table's first column
+# --- defect table ------------------------------------------------------------------------------
+(D_KIND, D_ROW, D_START, D_TAU, D_DEPTH, D_S1, D_S2, D_ROLLER, D_RHO, D_EDGE, D_RADIUS,
+ D_WIDTH) = range(12)
+OUTER_RING, INNER_RING, ROLLER_SURFACE = 0.0, 1.0, 2.0
+KINDS = {"outer": OUTER_RING, "inner": INNER_RING, "roller": ROLLER_SURFACE}
+
+# --- roller records and implicit blocks --------------------------------------------------------
+C_OUTER, C_OUTER_RIB, C_INNER, C_INNER_RIB, C_WALL_1, C_WALL_2, C_SIDE_1, C_SIDE_2, N_C = range(9)
+OUTER_SLOTS, INNER_SLOTS = (C_OUTER, C_OUTER_RIB), (C_INNER, C_INNER_RIB)
+CAGE_SLOTS = (C_WALL_1, C_WALL_2, C_SIDE_1, C_SIDE_2)
+C_FORCE, C_MOMENT, C_LOAD = 0, 3, 6                     # a contact's load: force, moment
+REC_F, REC_M, REC_LOAD = 0, 3, 6
+REC_ORBIT = REC_LOAD + C_LOAD * N_C
+REC_SPIN, REC = REC_ORBIT + 1, REC_ORBIT + 2
+BLK_ROLLER, BLK_CAGE, BLK_CAGE_CAGE, BLK = 0, 6, 12, 18
+BLK_NONE, BLK_OWN, BLK_COUPLED = 0, 1, 2
+
+# --- the parameter slots every model fills ----------------------------------------------------------
+# Z rollers a row; R_M pitch radius; R_B roller radius; L_B roller length; CAM, SAM the roller
+# axis's angle from the bearing axis; ROW each row's axial offset; masses and inertias; the
+# pockets (CAC, SAC slope, S_P, S_PA half clearances, K_CR their line stiffness), friction;
+# the damping law; gravity; the cage's mode (KINEMATIC: 0 free, 1 Eq. 2, 2 the quasi-dynamic
+# bearing's) and Eq. 2's ratio (RATIO)
+(Z, R_M, R_B, L_B, CAM, SAM, ROW, M_R, J_RA, J_RD, M_C, J_CP, J_CD, CAC, SAC, S_P, S_PA, K_CR,
+ MU_C, V_S, LAW, ZETA, C_RULE, BETA, G_X, G_Y, G_Z, KINEMATIC, RATIO, N_COMMON) = range(30)
+FREE_CAGE, EQ2_CAGE, POCKET_CAGE = 0.0, 1.0, 2.0         # KINEMATIC's values
+DAMPING_LAWS = ("ratio", "paper", "stiffness")           # LAW's values, by index
 
 
 def n_state(Z_: int) -> int:
-    return 2 * Z_ * N_ROLLER + 2 * N_CAGE
+    return ROWS * Z_ * N_ROLLER + ROWS * N_CAGE
 
 
-def pack(p, gravity=(0.0, 0.0, -9.81)) -> np.ndarray:
-    """The parameter vector of ``p`` (a :class:`BearingParams`) for the kernel."""
-    k = contacts(p)
-    J_ra, J_rd = p.J_r
-    J_cp, J_cd = p.J_c
-    v = np.zeros(N_P)
-    v[[Z, R_M, R_B, L_E, L_B]] = p.Z, 0.5 * p.D_m, p.r_b, p.L_e, p.L_b
-    v[[CAO, SAO, CAI, SAI]] = cos(p.alpha_o), sin(p.alpha_o), cos(p.alpha_i), sin(p.alpha_i)
-    v[[CAF, SAF, CAM, SAM]] = cos(p.alpha_f), sin(p.alpha_f), cos(p.alpha_m), sin(p.alpha_m)
-    v[[CAC, SAC, ROW, C_O, H_R]] = cos(p.alpha_c), sin(p.alpha_c), p.row_offset, p.clearance_n, p.h_r
-    v[[K_O, K_I, K_A, K_CR]] = k["K_ro"], k["K_ri"], k["K_a"], k["K_cr"]
-    v[[S_P, S_PA]] = 0.5 * p.s_p, 0.5 * p.s_pa
-    v[[M_R, J_RA, J_RD, M_C, J_CP, J_CD]] = p.M_r, J_ra, J_rd, p.M_c, J_cp, J_cd
-    v[[MU_R, MU_A, MU_C, V_S]] = p.mu_race, p.mu_rib, p.mu_cage, p.v_s
-    v[[LAW, ZETA, C_RULE, BETA]] = DAMPING_LAWS.index(p.damping), p.zeta, p.c_rule, p.beta
-    quasi = p.model == "quasi-dynamic"
-    # KINEMATIC: 0 a free cage, 1 Eq. 2's, 2 the quasi-dynamic bearing's (rollers centred in their
-    # pockets, the cage's rotation a state carrying their orbital inertia: bearing/quasidynamic.py)
-    v[KINEMATIC] = 1.0 if p.cage == "kinematic" else (2.0 if quasi else 0.0)
-    v[QUASI] = quasi
-    v[RATIO] = 0.5 * (1.0 - p.gamma)         # paper Eq. (2): omega_c = (1 - D_b/D_m) omega_w / 2
-    v[[GX, GY, GZ]] = gravity
-    return v
+def views(y, Z_: int):
+    """``(rollers (2, Z, N_ROLLER), cages (2, N_CAGE))`` views into a state vector."""
+    nr = ROWS * Z_ * N_ROLLER
+    return y[:nr].reshape(ROWS, Z_, N_ROLLER), y[nr:nr + ROWS * N_CAGE].reshape(ROWS, N_CAGE)
 
 
-def views(y: np.ndarray, Z_: int):
-    """``(rollers (2, Z, 12), cages (2, 12))`` views into a state vector."""
-    nr = 2 * Z_ * N_ROLLER
-    return y[:nr].reshape(2, Z_, N_ROLLER), y[nr:nr + 2 * N_CAGE].reshape(2, N_CAGE)
-
-
-def nominal_state(p, omega_w: float = 0.0) -> np.ndarray:
-    """Rollers centred in their pockets on the pitch circle, rolling without slip at the
-    inner-ring speed ``omega_w`` (rad/s) with the outer ring at rest; cages concentric."""
-    y = np.zeros(n_state(p.Z))
-    rol, cag = views(y, p.Z)
-    R, r = 0.5 * p.D_m, p.r_b
-    R_i, R_o = R - r * cos(p.alpha_i), R + r * cos(p.alpha_o)
-    w_c = omega_w * R_i / (R_i + R_o)                 # epicyclic cage speed of this geometry
-    k_cos = cos(p.alpha_o - p.alpha_m)
-    for j, s in enumerate((1.0, -1.0)):
-        rol[j, :, PHI] = 2 * pi * np.arange(p.Z) / p.Z
-        rol[j, :, 6 + PHI] = w_c
-        rol[j, :, 6 + PSI] = -s * w_c * R_o / (r * k_cos)     # no slip at the cup
-        cag[j, 6 + CPHI] = w_c
-    return y
+def ring_motion(omega_w: float, uo=(0.0, 0.0, 0.0), t: float = 0.0):
+    """A ring motion: the inner ring at the origin turning at ``omega_w`` (its angle at ``t``),
+    the outer ring at rest displaced by ``uo``."""
+    import numpy as np
+    ring = np.zeros((ROWS, RING))
+    ring[INNER, TH_Y] = omega_w * t
+    ring[INNER, W_Y] = omega_w
+    ring[OUTER, U_X:U_Z + 1] = uo
+    return ring

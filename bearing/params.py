@@ -16,7 +16,7 @@ from math import cos, pi, radians, sin
 
 from axlebox._params import ParameterError, check_ranges, param, require
 
-DAMPING_LAWS = ("ratio", "paper", "stiffness")
+from .layout import DAMPING_LAWS
 CAGE_MODES = ("dynamic", "kinematic")
 MODELS = ("dynamic", "quasi-dynamic")
 

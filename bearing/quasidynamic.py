@@ -23,18 +23,19 @@ A step of ``h`` (:func:`equilibrium`, then :func:`spin_step`):
    then sees the roller follow the rings: implicit Euler on a massless, damped roller), so that
    the centrifugal and gyroscopic loads stay and the inertia of those DOFs goes.  Newton's
    method, each roller's 3 x 3 block the kernel's exact contact stiffness and damping,
-   ``K + C / h`` (the rows :func:`.kernel.dtrb_rhs_damped` makes for the "imex2" kick, at
-   ``h_k = h``), so an evaluation gives the residual and the next Jacobian at once; a roller
-   touches only the rings and its own pocket, so the blocks do not couple and each roller
-   iterates on its own: an evaluation takes only the rollers that moved
-   (:func:`.kernel.dtrb_rhs_part`; the others keep their loads).  A roller whose residual
+   ``K + C / h`` (the rows bearing/blocks.py makes for the "imex2" kick, at ``h_k = h``), so an
+   evaluation gives the residual and the next Jacobian at once; a roller touches only the
+   rings and its own pocket, so the blocks do not couple and each roller iterates on its own:
+   an evaluation takes only the rollers that moved (:func:`.evaluate.roller`, the same part the
+   dynamic model's evaluation calls; the others keep their records), and the sums are made from
+   the records once Newton is done.  A roller whose residual
    grows takes half its step back (a line search per roller).  The step of an
    iteration is capped (a roller out of contact has no stiffness to divide by) and a block with
    no stiffness in a direction gets a floor there (:data:`J_FLOOR`).
 2. **Spins and cage.**  The rollers sit centred in their pockets (roller k at the cage's
    ``phi_c + 2 pi k / Z``) and the cage's rotation carries their orbital inertia,
    ``(J_cp + Z M_r R^2) phi_c'' = sum_k F_t,k (R + rho_k)`` plus the pockets' and side beams'
-   moment (bearing/layout.py ``KINEMATIC`` 2).  The traction drives the spins ``omega_s`` and
+   moment (bearing/layout.py ``POCKET_CAGE``).  The traction drives the spins ``omega_s`` and
    the cage rate stiffly (the friction's secant damping ``mu Q / v_s`` on a roller's axial
    inertia is a rate of about 4e4 /s), so they take a linearly implicit Euler step, their
    Jacobian the friction's secant damping from the same blocks (:func:`spin_step`).  A row's
@@ -50,12 +51,18 @@ limits the step, only accuracy (:data:`DT_MAX`).
 """
 from __future__ import annotations
 
-import numpy as np
-from numba import njit
+from math import pi
 
-from .kernel import N_PART, dtrb_rhs_part
-from .layout import (ETA, J_CP, J_RA, J_RD, KINEMATIC, L_B, M_R, N_CAGE, N_ROLLER, PHI, PSI, R_M,
-                     RHO, TH_S, TH_T, Z)
+from axlebox._numba import kernel
+
+from .blocks import BLK_NONE
+from .defects import count
+from .evaluate import ring_loads, roller
+from .layout import (BLK_CAGE, BLK_CAGE_CAGE, BLK_COUPLED, BLK_ROLLER, CPHI, CTZ, ETA,
+                     INNER_RING, J_RA, J_RD, KINEMATIC, L_B, M_R, N_CAGE, N_ROLLER, PHI,
+                     POCKET_CAGE, PSI, RATE, REC_ORBIT, RHO, ROLLER_SURFACE, ROWS, TH_S, TH_T, Z)
+from .roller import cage_frame, cage_rates, orbital_inertia, pocket_angles, ring_frame
+from .step import cage_outputs
 
 DT_MAX = 1e-4           # s: the step is held by accuracy (the defect's passage), not stability
 MAX_IT = 8              # Newton iterations at most a step
@@ -69,236 +76,263 @@ F_TOL = 30.0            # N: or every roller's residual force is below this (a r
 CAP = (5e-6, 5e-6, 5e-4)                 # an iteration moves a roller at most this far
 J_FLOOR = 1e6           # 1/s^2: the least stiffness a direction is given (over mass), far below
                         # a loaded contact's (about 1e9 N/m over 0.135 kg)
-TWO_PI = 2.0 * np.pi
+TWO_PI = 2.0 * pi
+
+# each roller's scratch (:data:`.evaluate.Work` ``qd``, one row a roller): its solved positions
+# at the step's start (three slots), its last Newton update (three), the line search's step
+# and the merit before it, its updates and halvings so far, whether its last update was below
+# TOL, whether it is still iterating; the spin step's arrowhead entries
+(QD_Q0, QD_DQ, QD_LAM, QD_M0, QD_NIT, QD_NH, QD_DONE, QD_ACTIVE, QD_P, QD_B, QD_WIDTH) = (
+    0, 3, 6, 7, 8, 9, 10, 11, 12, 13, 14)
 
 
-def n_buffer(nz: int, n_state: int) -> int:
-    """Floats of scratch :func:`equilibrium` and :func:`spin_step` need (bearing/advance.py's
-    ``G`` holds them)."""
-    return _B_END * nz
-
-
-# where equilibrium's and spin_step's scratch lie in ``buf``, in units of Z floats (the first
-# six hold one roller's 3 x 3 block, residual and step, 15 floats: Z is at least 3)
-_B_W, _B_DQ, _B_LAM, _B_M0, _B_ARROW, _B_Q0, _B_ACT, _B_NIT, _B_NH, _B_DONE, _B_PARTS = (
-    0, 6, 12, 14, 16, 20, 26, 28, 30, 32, 34)
-_B_END = _B_PARTS + 2 * N_PART
-
-
-@njit(cache=True)
-def _hold(x, nz):
+@kernel
+def hold(x, nz):
     """The held DOFs: rollers centred in their pockets (azimuth, orbit rate), no skew; the cages
     centred on the inner ring.  (The solved positions' rates are :func:`equilibrium`'s.)"""
-    nr = 2 * nz * N_ROLLER
-    for j in range(2):
-        cb = nr + j * N_CAGE
-        for q in range(5):
+    for j in range(ROWS):
+        cb = ROWS * nz * N_ROLLER + j * N_CAGE
+        for q in range(CTZ + 1):                 # every cage position but its angle, CPHI
             x[cb + q] = 0.0
-            x[cb + 6 + q] = 0.0
+            x[cb + RATE + q] = 0.0
         for k in range(nz):
             b0 = (j * nz + k) * N_ROLLER
-            x[b0 + PHI] = x[cb + 5] + TWO_PI * k / nz
+            x[b0 + PHI] = x[cb + CPHI] + TWO_PI * k / nz
             x[b0 + TH_S] = 0.0
-            x[b0 + 6 + PHI] = x[cb + 11]
-            x[b0 + 6 + TH_S] = 0.0
+            x[b0 + RATE + PHI] = x[cb + RATE + CPHI]
+            x[b0 + RATE + TH_S] = 0.0
 
 
-@njit(cache=True)
-def _solve3(J, r, dq):
-    """``dq = -J^-1 r`` for a 3 x 3 block (Cramer; the floor keeps it regular)."""
-    a, b, c = J[0], J[1], J[2]
-    d, e, f = J[3], J[4], J[5]
-    g, h, i = J[6], J[7], J[8]
-    A = e * i - f * h
-    B = -(d * i - f * g)
-    C = d * h - e * g
-    det = a * A + b * B + c * C
-    if not abs(det) > 1e-300:                        # degenerate: the diagonal alone (floored)
-        dq[0], dq[1], dq[2] = -r[0] / a, -r[1] / e, -r[2] / i
-        return
-    inv = -1.0 / det
-    dq[0] = inv * (A * r[0] + (c * h - b * i) * r[1] + (b * f - c * e) * r[2])
-    dq[1] = inv * (B * r[0] + (a * i - c * g) * r[1] + (c * d - a * f) * r[2])
-    dq[2] = inv * (C * r[0] + (b * g - a * h) * r[1] + (a * e - b * d) * r[2])
-
-
-@njit(cache=True)
+@kernel
 def _merit(dx, b0, w_t):
     """A roller's squared residual, its tilt row turned into a force at the roller's end."""
-    a, b, c = dx[b0 + 6 + RHO], dx[b0 + 6 + ETA], dx[b0 + 6 + TH_T] * w_t
+    a, b, c = dx[b0 + RATE + RHO], dx[b0 + RATE + ETA], dx[b0 + RATE + TH_T] * w_t
     return a * a + b * b + c * c
 
 
-@njit(cache=True)
-def _block(Gb, P, h, J, j, kk):
-    """Roller kk of row j's 3 x 3 block of d(a_rho, a_eta, a_theta_t) / d(rho, eta, theta_t),
-    the rates the backward differences ``(q - q_0) / h``, from the kernel's rows
-    ``Gb = C + h K``: ``-(K + C / h) / m`` with m the DOF's mass or inertia, floored."""
-    m = (P[M_R], P[M_R], P[J_RD])
-    rows = (0, 2, 3)                       # rho, eta, theta_t among a roller's six rates
-    for q in range(3):
-        for c in range(3):
-            J[3 * q + c] = -Gb[j, kk, rows[q], rows[c]] / (m[q] * h)
-        if J[4 * q] > -J_FLOOR:
-            J[4 * q] = -J_FLOOR
+@kernel
+def _entry(blk, flag, jk, a, b, m, h):
+    """Entry ``(a, b)`` of roller ``jk``'s Newton block, ``-(K + C / h) / m`` from the kernel's
+    rows ``C + h K`` (none where the roller touched nothing)."""
+    return 0.0 if flag[jk] == BLK_NONE else -blk[jk, a, BLK_ROLLER + b] / (m * h)
 
 
-@njit(inline="always")
+@kernel
+def _step(blk, flag, jk, dx, b0, P, h):
+    """Roller ``jk``'s Newton update of ``(rho, eta, theta_t)``: ``-J^-1 r`` with ``J`` its
+    block of ``d(a_rho, a_eta, a_theta_t) / d(rho, eta, theta_t)`` (the rates the backward
+    differences), each diagonal entry floored at ``-J_FLOOR``; Cramer's rule."""
+    m_r, m_e, m_t = P[M_R], P[M_R], P[J_RD]
+    a = min(_entry(blk, flag, jk, RHO, RHO, m_r, h), -J_FLOOR)
+    b = _entry(blk, flag, jk, RHO, ETA, m_r, h)
+    c = _entry(blk, flag, jk, RHO, TH_T, m_r, h)
+    d = _entry(blk, flag, jk, ETA, RHO, m_e, h)
+    e = min(_entry(blk, flag, jk, ETA, ETA, m_e, h), -J_FLOOR)
+    f = _entry(blk, flag, jk, ETA, TH_T, m_e, h)
+    g = _entry(blk, flag, jk, TH_T, RHO, m_t, h)
+    k = _entry(blk, flag, jk, TH_T, ETA, m_t, h)
+    i = min(_entry(blk, flag, jk, TH_T, TH_T, m_t, h), -J_FLOOR)
+    r0, r1, r2 = dx[b0 + RATE + RHO], dx[b0 + RATE + ETA], dx[b0 + RATE + TH_T]
+    A = e * i - f * k
+    B = -(d * i - f * g)
+    C = d * k - e * g
+    det = a * A + b * B + c * C
+    if not abs(det) > 1e-300:                        # degenerate: the diagonal alone (floored)
+        return -r0 / a, -r1 / e, -r2 / i
+    inv = -1.0 / det
+    return (inv * (A * r0 + (c * k - b * i) * r1 + (b * f - c * e) * r2),
+            inv * (B * r0 + (a * i - c * g) * r1 + (c * d - a * f) * r2),
+            inv * (C * r0 + (b * g - a * k) * r1 + (a * e - b * d) * r2))
+
+
+@kernel
 def _balanced(m, P):
     """Whether a roller of residual ``m`` (:func:`_merit`, in accelerations) is balanced: its
     residual force below :data:`F_TOL` (then Newton leaves it where it is)."""
     return m * P[M_R] * P[M_R] < F_TOL * F_TOL
 
 
-@njit(cache=True)
-def equilibrium(t, x, ring, P, D, h, dx, F, Qc, Gb, buf):
+@kernel
+def equilibrium(model, t, x, ring, P, D, h, w):
     """Step 1 (module docstring): every roller's ``rho, eta, theta_t`` in contact equilibrium
-    with the rings ``ring`` (2, 12) at the end ``t`` of a step of ``h``, their rates the
-    step's backward differences (implicit Euler: the contacts' damping sees the roller move with
-    the rings; with the rates held at zero it saw the rings' whole velocity, and a flexible axle
-    box's vibration stalled Newton on the damping's kinks); ``dx`` left with the state's
-    derivative there (the spins' and cages' accelerations), ``F`` (2, 6) the ring loads, ``Qc``
-    (2, Z, 6) the contact forces, ``Gb`` the kernel's blocks (:func:`spin_step` takes its
-    friction rows).  ``buf``: :func:`n_buffer` floats.
+    with the rings ``ring`` at the end ``t`` of a step of ``h`` of the bearing ``model``, their
+    rates the step's backward differences (implicit Euler: the contacts' damping sees the roller
+    move with the rings; with the rates held at zero it saw the rings' whole velocity, and a
+    flexible axle box's vibration stalled Newton on the damping's kinks); ``w`` (its
+    :class:`.evaluate.Work`) left with the state's derivative ``dx`` (the spins' and cages'
+    accelerations), the ring loads ``F``, the contact forces ``Qs`` and the blocks
+    (:func:`spin_step` takes their friction rows).
 
-    Newton's method roller by roller: the rollers do not couple (each touches the rings and its
-    own pocket), so each iterates on its own, and an evaluation of the right-hand side takes
-    only the rollers that moved (:func:`.kernel.dtrb_rhs_part`; the others keep their loads):
-    a roller balanced at the step's first evaluation costs nothing more, and a roller that
-    stalls at a contact's kink costs only itself.  A roller whose residual grew takes half its
-    step back, up to :data:`MAX_HALVE` times (a roller off a raceway has only the floor's
-    stiffness, and its full step would carry it deep into the raceway); it stops when it is
-    :func:`_balanced`, when its update was below :data:`TOL` (once evaluated there) or after
-    :data:`MAX_IT` updates.  Returns the evaluations taken, counted in whole bearings (the
-    rollers evaluated over 2 Z)."""
+    Newton's method roller by roller (:func:`_newton`).  Returns the evaluations taken,
+    counted in whole bearings (the rollers evaluated over 2 Z)."""
     nz = int(P[Z])
-    nr = 2 * nz
-    dq = buf[_B_DQ * nz:(_B_DQ + 6) * nz]
-    lam = buf[_B_LAM * nz:(_B_LAM + 2) * nz]
-    m0 = buf[_B_M0 * nz:(_B_M0 + 2) * nz]
-    q0 = buf[_B_Q0 * nz:(_B_Q0 + 6) * nz]        # the positions at the step's start
-    active = buf[_B_ACT * nz:(_B_ACT + 2) * nz]
-    n_it = buf[_B_NIT * nz:(_B_NIT + 2) * nz]    # Newton updates a roller has taken
-    n_h = buf[_B_NH * nz:(_B_NH + 2) * nz]       # its halvings in this line search
-    done = buf[_B_DONE * nz:(_B_DONE + 2) * nz]  # its last update was below TOL
-    parts = buf[_B_PARTS * nz:(_B_PARTS + 2 * N_PART) * nz].reshape(2, nz, N_PART)
-    J = buf[_B_W * nz:_B_W * nz + 9]               # scratch in buf: no allocation a step
-    r = buf[_B_W * nz + 9:_B_W * nz + 12]
-    d = buf[_B_W * nz + 12:_B_W * nz + 15]
-    w_t = 2.0 * P[J_RD] / (P[M_R] * P[L_B])
-    _hold(x, nz)
-    for k in range(nr):
+    hold(x, nz)
+    rings = ring_frame(ring)
+    n_inner, n_roller = count(D, INNER_RING), count(D, ROLLER_SURFACE)
+    J_orb = orbital_inertia(P)
+    c0 = cage_frame(x, ROWS * nz * N_ROLLER, P, rings.omega)
+    c1 = cage_frame(x, ROWS * nz * N_ROLLER + N_CAGE, P, rings.omega)
+    pocket_angles(c0.phi, nz, w.sin_p[0], w.cos_p[0])
+    pocket_angles(c1.phi, nz, w.sin_p[1], w.cos_p[1])
+    for jk in range(ROWS * nz):
+        s = w.qd[jk]
+        b0 = jk * N_ROLLER
         for q in range(3):
-            q0[3 * k + q] = x[k * N_ROLLER + SLOTS[q]]
-            x[k * N_ROLLER + 6 + SLOTS[q]] = 0.0
-        active[k] = 1.0
-        lam[k] = 0.0
-        n_it[k] = 0.0
-        n_h[k] = 0.0
-        done[k] = 0.0
-    # each evaluation gives the residual and the evaluated rollers' exact contact stiffness and
-    # damping (the "imex2" rows at h_k = h: C + h K)
-    dtrb_rhs_part(t, x, ring, P, D, dx, F, Qc, Gb, h, None, parts)
-    evaluated = nr
-    for _pass in range(MAX_IT * (MAX_HALVE + 1)):
-        n_active = 0
-        for k in range(nr):
-            if active[k] == 0.0:
-                continue
-            b0 = k * N_ROLLER
-            m = _merit(dx, b0, w_t)
-            if lam[k] > 0.0:                            # its last update's line search
-                if m > m0[k] and n_h[k] < MAX_HALVE:
-                    lam[k] *= 0.5
-                    n_h[k] += 1.0
-                    for q in range(3):
-                        x[b0 + SLOTS[q]] -= lam[k] * dq[3 * k + q]
-                        x[b0 + 6 + SLOTS[q]] = (x[b0 + SLOTS[q]] - q0[3 * k + q]) / h
-                    n_active += 1
-                    continue
-                lam[k] = 0.0                            # accepted
-            if done[k] != 0.0 or _balanced(m, P) or n_it[k] >= MAX_IT:
-                active[k] = 0.0
-                continue
-            for q in range(3):
-                r[q] = dx[b0 + 6 + SLOTS[q]]
-            _block(Gb, P, h, J, k // nz, k % nz)
-            _solve3(J, r, d)
-            small = True
-            for q in range(3):
-                dq[3 * k + q] = min(max(d[q], -CAP[q]), CAP[q])
-                x[b0 + SLOTS[q]] += dq[3 * k + q]
-                x[b0 + 6 + SLOTS[q]] = (x[b0 + SLOTS[q]] - q0[3 * k + q]) / h
-                if abs(dq[3 * k + q]) > TOL[q]:
-                    small = False
-            done[k] = 1.0 if small else 0.0
-            m0[k] = m
-            lam[k] = 1.0
-            n_h[k] = 0.0
-            n_it[k] += 1.0
-            n_active += 1
-        if n_active == 0:
+            s[QD_Q0 + q] = x[b0 + SLOTS[q]]
+            s[QD_DQ + q] = 0.0
+            x[b0 + RATE + SLOTS[q]] = 0.0
+        s[QD_ACTIVE] = 1.0
+        s[QD_LAM] = s[QD_NIT] = s[QD_NH] = s[QD_DONE] = 0.0
+    evaluated = 0
+    passes = MAX_IT * (MAX_HALVE + 1)
+    for it in range(passes + 1):
+        n = 0
+        for jk in range(ROWS * nz):
+            if w.qd[jk, QD_ACTIVE] != 0.0:
+                j, k = jk // nz, jk % nz
+                roller(model, x, w.dx, j, k, rings, c0 if j == 0 else c1, P, D, n_inner, n_roller,
+                       w.Qs, w, True, h, J_orb)
+                n += 1
+        evaluated += n
+        if n == 0 or it == passes or _newton(x, w, P, h, nz) == 0:
             break
-        dtrb_rhs_part(t, x, ring, P, D, dx, F, Qc, Gb, h, active, parts)
-        evaluated += n_active
-    return evaluated / nr
+    ring_loads(w.rec, w.F)
+    for j in range(ROWS):
+        orbit = 0.0
+        for k in range(nz):
+            orbit += w.rec[j * nz + k, REC_ORBIT]
+        cage_rates(x, w.dx, ROWS * nz * N_ROLLER + j * N_CAGE, P, w.rec[j * nz:(j + 1) * nz], nz,
+                   c0 if j == 0 else c1, orbit, J_orb)
+    return evaluated / (ROWS * nz)
 
 
-@njit(cache=True)
-def spin_step(x, P, h, dx, Gb, buf):
+@kernel
+def _newton(x, w, P, h, nz):
+    """One pass over the rollers still iterating, each evaluated at its last move: a roller whose
+    residual grew takes half its step back, up to :data:`MAX_HALVE` times (a roller off a
+    raceway has only the floor's stiffness, and its full step would carry it deep into the
+    raceway); it stops when it is :func:`_balanced`, when its update was below :data:`TOL`
+    (once evaluated there) or after :data:`MAX_IT` updates; else it takes its next update
+    (capped at :data:`CAP`).  Returns how many rollers moved (to be evaluated again)."""
+    w_t = 2.0 * P[J_RD] / (P[M_R] * P[L_B])
+    moved = 0
+    for jk in range(ROWS * nz):
+        s = w.qd[jk]
+        if s[QD_ACTIVE] == 0.0:
+            continue
+        b0 = jk * N_ROLLER
+        m = _merit(w.dx, b0, w_t)
+        if s[QD_LAM] > 0.0:                             # its last update's line search
+            if m > s[QD_M0] and s[QD_NH] < MAX_HALVE:
+                s[QD_LAM] *= 0.5
+                s[QD_NH] += 1.0
+                for q in range(3):
+                    x[b0 + SLOTS[q]] -= s[QD_LAM] * s[QD_DQ + q]
+                    x[b0 + RATE + SLOTS[q]] = (x[b0 + SLOTS[q]] - s[QD_Q0 + q]) / h
+                moved += 1
+                continue
+            s[QD_LAM] = 0.0                             # accepted
+        if s[QD_DONE] != 0.0 or _balanced(m, P) or s[QD_NIT] >= MAX_IT:
+            s[QD_ACTIVE] = 0.0
+            continue
+        d = _step(w.blk, w.flag, jk, w.dx, b0, P, h)
+        small = True
+        for q in range(3):
+            dq = min(max(d[q], -CAP[q]), CAP[q])
+            s[QD_DQ + q] = dq
+            x[b0 + SLOTS[q]] += dq
+            x[b0 + RATE + SLOTS[q]] = (x[b0 + SLOTS[q]] - s[QD_Q0 + q]) / h
+            if abs(dq) > TOL[q]:
+                small = False
+        s[QD_DONE] = 1.0 if small else 0.0
+        s[QD_M0] = m
+        s[QD_LAM] = 1.0
+        s[QD_NH] = 0.0
+        s[QD_NIT] += 1.0
+        moved += 1
+    return moved
+
+
+@kernel
+def _friction_entry(blk, flag, jk, a, col):
+    """Entry ``(a, col)`` of roller ``jk``'s block (0 where it holds none; the cage's columns 0
+    where it touched no pocket)."""
+    if flag[jk] == BLK_NONE or (col >= BLK_CAGE and flag[jk] != BLK_COUPLED):
+        return 0.0
+    return blk[jk, a, col]
+
+
+@kernel
+def spin_step(x, P, h, w):
     """Steps 2 and 3 (module docstring): the spins and cage rates by a linearly implicit Euler
-    step of ``h`` from the accelerations ``dx`` and the blocks ``Gb`` :func:`equilibrium` left,
-    then the spin angles and cage azimuths.
+    step of ``h`` from the accelerations ``w.dx`` and the blocks :func:`equilibrium` left, then
+    the spin angles and cage azimuths.
 
-    The step's Jacobian is the friction's secant damping the kernel put in ``Gb`` (the rows
-    of the implicit kick, bearing/implicit.py: a contact's ``c J^T J`` over a roller's rates
+    The step's Jacobian is the friction's secant damping the kernel put in the blocks (the rows
+    of the implicit kick, bearing/blocks.py: a contact's ``c J^T J`` over a roller's rates
     ``(rho', phi', eta', theta_t', theta_s', omega_s)`` and the cage's ``(..., phi_c')``; the
     normal contacts add nothing to the spin and orbit rows, whose rates do not move a raceway
     contact's approach).  With the roller's orbit rate the cage's, a row's unknowns are its
     spins ``omega_k`` and cage rate ``Omega``::
 
-        J_a  d(omega_k)/dt:  d/d omega_k = -G_k[5, 5],  d/d Omega = -(G_k[5, 1] + G_k[5, 11])
-        J_orb d(Omega)/dt:   d/d omega_k = -(G_k[1, 5] + G_k[5, 11]),
-                             d/d Omega = -(sum_k G_k[1, 1] + 2 G_k[1, 11]) - G_cage[5, 5]
+        J_a  d(omega_k)/dt:  d/d omega_k = -G_k[psi, psi],  d/d Omega = -(G_k[psi, phi] + G_k[psi, phi_c])
+        J_orb d(Omega)/dt:   d/d omega_k = -(G_k[phi, psi] + G_k[psi, phi_c]),
+                             d/d Omega = -(sum_k G_k[phi, phi] + 2 G_k[phi, phi_c]) - G_cage[phi_c, phi_c]
 
     (``J_orb = J_cp + Z M_r R^2``): the secant, not the tangent, of the regularised Coulomb law,
     as the dynamic model's "imex2" kick takes it: at least as damped, so the step stays stable
     at any slip.  A row's system is an arrowhead (a spin couples only to its own cage), solved in
     O(Z); no further evaluation of the right-hand side."""
     nz = int(P[Z])
-    nr = 2 * nz * N_ROLLER
-    free = P[KINEMATIC] == 2.0                       # the cage's rotation a state (else Eq. 2's)
-    arrow = buf[_B_ARROW * nz:(_B_ARROW + 4) * nz]   # per roller: 1 - h d_k, b_k
+    free = P[KINEMATIC] == POCKET_CAGE             # the cage's rotation a state (else Eq. 2's)
     Ja = P[J_RA]
-    J_orb = P[J_CP] + nz * P[M_R] * P[R_M] * P[R_M]
-    for j in range(2):
-        cb = nr + j * N_CAGE
-        e = -Gb[j, nz, 5, 5]
+    J_orb = orbital_inertia(P)
+    blk, flag, dx = w.blk, w.flag, w.dx
+    ps, ph, pc = BLK_ROLLER + PSI, BLK_ROLLER + PHI, BLK_CAGE + CPHI
+    for j in range(ROWS):
+        cb = ROWS * nz * N_ROLLER + j * N_CAGE
+        e = 0.0
         for k in range(nz):
-            e -= Gb[j, k, 1, 1] + 2.0 * Gb[j, k, 1, 11]
+            e -= _friction_entry(blk, flag, j * nz + k, CPHI, BLK_CAGE_CAGE + CPHI)
+        for k in range(nz):
+            jk = j * nz + k
+            e -= _friction_entry(blk, flag, jk, PHI, ph) + 2.0 * _friction_entry(blk, flag, jk, PHI, pc)
         e = e / J_orb if free else 0.0
         lhs = 1.0 - h * e
-        rhs = h * dx[cb + 11] if free else 0.0
+        rhs = h * dx[cb + RATE + CPHI] if free else 0.0
         for k in range(nz):
-            b0 = (j * nz + k) * N_ROLLER
-            w = b0 + 6 + PSI
-            d = -Gb[j, k, 5, 5] / Ja
-            b = -(Gb[j, k, 5, 1] + Gb[j, k, 5, 11]) / Ja
-            c = -(Gb[j, k, 1, 5] + Gb[j, k, 5, 11]) / J_orb if free else 0.0
+            jk = j * nz + k
+            wr = jk * N_ROLLER + RATE + PSI
+            d = -_friction_entry(blk, flag, jk, PSI, ps) / Ja
+            b = -(_friction_entry(blk, flag, jk, PSI, ph) + _friction_entry(blk, flag, jk, PSI, pc)) / Ja
+            c = (-(_friction_entry(blk, flag, jk, PHI, ps) + _friction_entry(blk, flag, jk, PSI, pc))
+                 / J_orb if free else 0.0)
             p = 1.0 - h * d
-            arrow[2 * (j * nz + k)] = p
-            arrow[2 * (j * nz + k) + 1] = b
+            w.qd[jk, QD_P] = p
+            w.qd[jk, QD_B] = b
             lhs -= h * h * c * b / p
-            rhs += h * h * c * dx[w] / p
+            rhs += h * h * c * dx[wr] / p
         dc = rhs / lhs if free else 0.0
-        x[cb + 11] += dc
+        x[cb + RATE + CPHI] += dc
         for k in range(nz):
-            b0 = (j * nz + k) * N_ROLLER
-            w = b0 + 6 + PSI
-            p, b = arrow[2 * (j * nz + k)], arrow[2 * (j * nz + k) + 1]
-            x[w] += (h * dx[w] + h * b * dc) / p
-            x[b0 + PSI] += h * x[w]
+            jk = j * nz + k
+            wr = jk * N_ROLLER + RATE + PSI
+            x[wr] += (h * dx[wr] + h * w.qd[jk, QD_B] * dc) / w.qd[jk, QD_P]
+            x[jk * N_ROLLER + PSI] += h * x[wr]
         if free:
-            x[cb + 5] += h * x[cb + 11]
+            x[cb + CPHI] += h * x[cb + RATE + CPHI]
         else:
-            x[cb + 5] += h * dx[cb + 5]              # Eq. 2's rate, as the kernel gave it
+            x[cb + CPHI] += h * dx[cb + CPHI]           # Eq. 2's rate, as the kernel gave it
+
+
+@kernel
+def substep(model, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages):
+    """One step of ``h`` of the quasi-dynamic bearing ``model`` (bearing/step.py's contract;
+    ``hk``, ``mode``, ``theta`` and ``K`` are the dynamic step's and unused here): the contact
+    equilibrium at the step's end, its loads to ``w.F`` (and with ``out`` its contact forces
+    and cages), then the spins and cage."""
+    equilibrium(model, t, x, ring, P, D, h, w)
+    if out:
+        Qc[:, :, :] = w.Qs
+        cage_outputs(x, w.dx, cages)
+    spin_step(x, P, h, w)

@@ -30,17 +30,20 @@ from scipy.signal import resample_poly
 from axlebox._params import ParameterError, check_ranges, from_table, param, require
 
 from . import defects as _defects
-from . import resultfile
+from . import models, resultfile
 from .equilibrium import static_state
-from .frequencies import orders, shaft_hz
-from .quasidynamic import DT_MAX as QD_DT_MAX
-from .integrate import DT_MAX, R_CX, R_FX, R_KX, R_MASS, R_N, R_OMEGA, R_UX, run_leapfrog, run_rk4
-from .layout import N_Q, pack
+from .evaluate import work
+from .frequencies import shaft_hz
+from .implicit import scratch
+from .integrate import (ANGLE, CAGE_OUT, R_CX, R_FX, R_KX, R_MASS, R_N, R_OMEGA, R_UX, RIG, RIG_U,
+                        run_leapfrog, run_rk4)
+from .layout import LOAD, N_Q, OUTER, Q_A, Q_NAMES, Q_O, ROWS
 from .params import BearingParams
+from .quasidynamic import QD_WIDTH
+from .step import MODES
 
 SENSOR = "outer_ring"
 RIG_METHODS = ("rk4", "leapfrog", "imex", "imex2")
-Q_NAMES = ["cup", "cone", "rib", "pocket_1", "pocket_2", "side_beams"]
 
 
 @dataclass(frozen=True)
@@ -71,10 +74,12 @@ class RigConfig:
                                                     "(5x faster at 1e-5 s, about 1 % off RK4 in the "
                                                     "outer ring's RMS, unstable from 1.25e-5 s); "
                                                     "'imex' or 'imex2' (bearing/integrate.py, "
-                                                    "benchmarks/README.md)"})
+                                                    "benchmarks/README.md); each bearing model "
+                                                    "says which it accepts and up to which dt"})
     fs_out: float = param(10e3, 100.0, 1e6, unit="Hz", doc="output rate")
     seed: int = 0
-    bearing: BearingParams = field(default_factory=BearingParams)
+    bearing: object = field(default_factory=BearingParams,
+                            metadata={"doc": "the bearing: any model's parameters (bearing/models.py)"})
     defects: tuple = ()
 
     def __post_init__(self):
@@ -90,15 +95,7 @@ class RigConfig:
         require(every >= 1 and abs(every * self.dt * self.fs_out - 1) < 1e-9, self, "dt",
                 f"the output period 1/fs_out = {1 / self.fs_out:g} s must be a whole number of steps")
         require(self.duration * self.fs_out >= 1, self, "duration", "shorter than one output sample")
-        if self.bearing.model == "quasi-dynamic":
-            require(self.method != "rk4", self, "method", "'rk4' steps the dynamic bearing only: "
-                    "expected 'leapfrog', 'imex' or 'imex2' with bearing.model = 'quasi-dynamic'")
-            require(self.dt <= QD_DT_MAX, self, "dt", f"expected at most {QD_DT_MAX:g} s with the "
-                    "quasi-dynamic bearing (its accuracy)")
-        else:
-            require(self.dt <= DT_MAX[self.method], self, "dt",
-                    f"expected at most {DT_MAX[self.method]:g} s with method {self.method!r} (the "
-                    "rollers' contacts)")
+        models.check_step(self.bearing, self.method, self.dt, "RigConfig.method", "RigConfig.dt")
         for d in self.defects:
             if not isinstance(d, _defects.Defect):
                 raise ParameterError(f"RigConfig.defects: {d!r} is not allowed: expected Defect objects")
@@ -113,12 +110,12 @@ class RigConfig:
         return 2 * np.pi * shaft_hz(self.speed_kmh, self.r_wheel)
 
     def to_toml(self) -> str:
-        d = dataclasses.asdict(self)
-        d["defects"] = [dataclasses.asdict(x) for x in self.defects]
-        rig = {k: v for k, v in d.items() if k not in ("bearing", "defects")}
-        out = {"rig": rig, "bearing": d["bearing"]}
-        if d["defects"]:
-            out["defects"] = d["defects"]
+        rig = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)
+               if f.name not in ("bearing", "defects")}
+        out = {"rig": rig, "bearing": models.to_table(self.bearing)}
+        defects = [dataclasses.asdict(x) for x in self.defects]
+        if defects:
+            out["defects"] = defects
         return tomli_w.dumps(out)
 
 
@@ -142,7 +139,7 @@ class RigResult:
     def cage_hz(self, t_from: float = 0.0) -> float:
         """Mean cage rotation frequency from ``t_from`` on (both rows; slope of the angle)."""
         m = self.time >= t_from
-        slope = [np.polyfit(self.time[m], self.cage[m, j, 0], 1)[0] for j in range(2)]
+        slope = [np.polyfit(self.time[m], self.cage[m, j, ANGLE], 1)[0] for j in range(ROWS)]
         return float(np.mean(slope) / (2 * np.pi))
 
     def save(self, path) -> Path:
@@ -168,7 +165,7 @@ class RigResult:
         m = self.time >= min(t_from, 0.5 * self.time[-1])
         t, a = self.time[m], self.acceleration[m, 2]
         f_s = shaft_hz(self.config.speed_kmh, self.config.r_wheel)
-        o = orders(self.config.bearing).at(f_s)
+        o = models.orders(self.config.bearing).at(f_s)
         fig, ax = plt.subplots(3, 1, figsize=(9, 9), constrained_layout=True)
         ax[0].plot(t, a, lw=0.5)
         ax[0].set(xlabel="time (s)", ylabel="outer ring a_z (m/s²)", title=f"{self.config.speed_kmh:g} km/h, "
@@ -180,8 +177,9 @@ class RigResult:
             ax[1].axvline(h * o["BPFO"], color="r", lw=0.5, ls="--")
         ax[1].set(xlabel="frequency (Hz)", ylabel="envelope amplitude (m/s²)",
                   title=f"envelope spectrum, BPFO = {o['BPFO']:.2f} Hz (dashed)")
-        ax[2].plot(self.time, self.Q[:, 1, 0, 0], lw=0.6, label="roller 1, row 2, cup")
-        ax[2].plot(self.time, self.Q[:, 1, 0, 2], lw=0.6, label="rib")
+        first = 0                                      # roller 1 of row 2
+        ax[2].plot(self.time, self.Q[:, OUTER, first, Q_O], lw=0.6, label="roller 1, row 2, outer raceway")
+        ax[2].plot(self.time, self.Q[:, OUTER, first, Q_A], lw=0.6, label="rib")
         ax[2].set(xlabel="time (s)", ylabel="contact force (N)")
         ax[2].legend()
         if path is not None:
@@ -204,7 +202,7 @@ def config_from_dict(d: dict) -> RigConfig:
     if not isinstance(defects, list):
         raise ParameterError(f"defects = {defects!r} is not allowed: expected [[defects]] tables")
     return from_table(RigConfig, d.get("rig", {}), "rig",
-                      bearing=from_table(BearingParams, d.get("bearing", {}), "bearing"),
+                      bearing=models.from_table(d.get("bearing", {}), "bearing"),
                       defects=tuple(from_table(_defects.Defect, e, "defects") for e in defects))
 
 
@@ -237,12 +235,31 @@ def initial_state(c: RigConfig):
     moved on until no roller sits in a defect; the equilibrium is the healthy bearing's there
     (a roller inside a defect has none)."""
     p = c.bearing
-    P, D = pack(p), _defects.table(c.defects, p)
+    P, D = models.pack(p), _defects.table(c.defects, p)
     shift = np.random.default_rng(c.seed).uniform(0, 2 * np.pi / p.Z) if c.seed else 0.0
     y, uo = static_state(p, P, np.zeros((0, _defects.WIDTH)), (0.0, c.F_a, -c.F_r), c.omega_w,
                          phase=_defects.phase_clear_of(D, p.Z, shift))
-    Y = np.concatenate([y, uo, np.zeros(3)])
+    Y = np.concatenate([y, np.zeros(RIG)])
+    Y[y.size + RIG_U:y.size + RIG_U + 3] = uo
     return Y, P, D, _rig_vector(c, uo)
+
+
+def stepper(c: RigConfig, P, D, rig):
+    """``step(Y, t0, n_steps, outs, start) -> ok``: the rig's integrator for ``c`` (its method,
+    its bearing's tag and scratch), advancing ``Y`` in place and writing ``outs`` (acceleration,
+    ring loads, contact forces, cages: :func:`.integrate.run_rk4`)."""
+    p = c.bearing
+    tag = models.tag(p)
+    n = models.n_state(p)
+    w = work(p.Z, n, QD_WIDTH)
+    every = c.fs_out_every
+    if c.method == "rk4":
+        return lambda Y, t0, n_steps, outs, start: run_rk4(tag, Y, t0, c.dt, n_steps, every, P, D, rig,
+                                                          w, *outs)
+    K = scratch(p.Z)
+    mode = MODES[c.method]
+    return lambda Y, t0, n_steps, outs, start: run_leapfrog(tag, Y, t0, c.dt, n_steps, every, P, D,
+                                                           rig, w, K, *outs, mode, start)
 
 
 def simulate(c: RigConfig, out=None, progress=None, chunk_s: float = 0.05,
@@ -255,10 +272,11 @@ def simulate(c: RigConfig, out=None, progress=None, chunk_s: float = 0.05,
     partial = Path(str(out) + ".partial.h5") if out is not None else None
     toml = c.to_toml()
     Y, P, D, rig = initial_state(c)
+    step = stepper(c, P, D, rig)
     acc = np.zeros((n_steps, 3))
-    Fout = np.zeros((n_out, 2, 6))
-    Qout = np.zeros((n_out, 2, p.Z, N_Q))
-    cage = np.zeros((n_out, 2, 2))
+    Fout = np.zeros((n_out, ROWS, LOAD))
+    Qout = np.zeros((n_out, ROWS, p.Z, N_Q))
+    cage = np.zeros((n_out, ROWS, CAGE_OUT))
     done = 0
     if partial is not None and partial.is_file():
         with h5py.File(partial, "r") as f:
@@ -274,11 +292,8 @@ def simulate(c: RigConfig, out=None, progress=None, chunk_s: float = 0.05,
         m = min(chunk, n_out - done)
         outs = (acc[done * every:(done + m) * every], Fout[done:done + m], Qout[done:done + m],
                 cage[done:done + m])
-        if c.method == "rk4":
-            ok = run_rk4(Y, done / c.fs_out, c.dt, m * every, every, P, D, rig, *outs)
-        else:       # a checkpoint's Y holds the leapfrog's half-step velocities: no half kick then
-            ok = run_leapfrog(Y, done / c.fs_out, c.dt, m * every, every, P, D, rig, *outs,
-                              RIG_METHODS.index(c.method) - 1, done == 0)
+        # a checkpoint's Y holds the leapfrog's half-step velocities: no half kick then
+        ok = step(Y, done / c.fs_out, m * every, outs, done == 0)
         if not ok:
             t_end = (done + m) / c.fs_out
             raise FloatingPointError(f"the rig state stopped being finite near t = {t_end:.4f} s: "

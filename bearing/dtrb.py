@@ -1,0 +1,250 @@
+"""The double-row tapered roller bearing (DTRB) of the paper: its parameter vector, and its
+rollers' contacts with the rings (numba): cup and cone raceways (Eqs. 1, 3a-b, 4a, 14, 15) and
+the cone's rib on the roller's large end (Eqs. 3c, 4b, 8).  The pockets (:mod:`.pocket`), the
+rollers' and cages' dynamics (:mod:`.roller`) and everything else are the shared parts; the
+model is declared to the rest of the package in :mod:`.models`.
+
+What the paper's equations become here (one vector form for both rows and both raceways):
+
+* Eqs. (1), (3), (15): the normal approach of each contact is the relative displacement of the
+  two bodies at the contact point along the contact normal ``n_o = cos a_o e_r + s sin a_o e_y``
+  (cup), ``n_i`` (cone, same form), ``n_a = -sin a_f e_r + s cos a_f e_y`` (rib), less the
+  clearance (on the cup contact) and a defect's depth ``h`` (Eq. 14: on the cup for an
+  outer-ring defect, on the cone for an inner-ring one, each turning with its ring; on both,
+  half a roller turn apart, for a defect on a roller, turning with its spin).  Row j sits at
+  ``y = -s row_offset``: the back-to-back (O) arrangement, contact lines crossing the axis
+  outside the bearing.
+* Eq. (4a): raceway line contacts ``q(sigma) = (K / L_e) delta(sigma)^(10/9)`` integrated in
+  closed form along the contact line, ``delta(sigma) = delta_0 + kappa sigma`` with the
+  roller's tilt relative to the ring in kappa: the same law as Eq. (4a) for an untilted
+  roller, and the tilt restoring moment the paper's Eq. (12d) lacks (slicing, done exactly).
+* Eq. (4b), (8): rib point contact ``K_a delta^(3/2)`` at height h_r on the large end.
+* Friction (the paper's "conventional friction model", f = mu Q): regularised Coulomb
+  (:func:`.contact.friction`); damping by :func:`.contact.normal`.
+
+Parameter vector: the shared slots (:mod:`.layout`, ``Z .. N_COMMON - 1``), then ``L_E`` the
+effective contact length (Eq. 6), the cosines and sines of the cup, cone and rib angles,
+``C_O`` the clearance along the cup normal, ``H_R`` the rib contact's height, the stiffnesses
+``K_O, K_I, K_A`` and the friction coefficients ``MU_R`` (raceways) and ``MU_A`` (rib).
+"""
+from __future__ import annotations
+
+from math import cos, pi, sin, sqrt
+
+import numpy as np
+
+from axlebox._numba import kernel
+
+from . import layout as lo
+from .blocks import friction_rows, roller_grad, rows, tilt_grad, tilt_rows
+from .contact import (N_LINE, N_POINT, friction, line_integrals, line_load, line_stiffness, load, normal,
+                      slip_damping)
+from .defects import depth_under, roller_depths
+from .layout import (C_INNER, C_INNER_RIB, C_OUTER, INNER_RING, L_B, M_R, N_COMMON, OUTER_RING, Q_A,
+                     Q_I, Q_O, R_B, V_S)
+from .params import BearingParams
+from .stiffness import contacts as stiffnesses
+from .vec import ZERO, ZERO6, EY, add, cross, dot, lin, mul, sub
+
+NAME = "dtrb"
+Params = BearingParams
+BORE = 0.130            # m: the assumed 130 x 230 x 160 mm unit (bearing/params.py)
+# s: the explicit steps' limits on the rollers' tilt mode between the raceways (22.6 kHz,
+# damping ratio 0.12): RK4's w h <= 2.8; the leapfrog's 2 (sqrt(1 + z^2) - z) = 1.77 less a
+# margin for the loads; "imex" (contact damping implicit) keeps the undamped limit of the
+# leapfrog on the tilt mode (benchmarks/README.md); "imex2" (stiffness and friction implicit too)
+# runs the bearing alone at 2.5e-5 s, but the car's defect side is not yet right there: held to
+# imex's limit until it is (benchmarks/README.md, "imex2")
+DT_MAX = {"rk4": 2.8e-5, "leapfrog": 1.2e-5, "imex": 1.2e-5, "imex2": 1.2e-5}
+
+# --- the DTRB's own parameter slots -------------------------------------------------------------
+(L_E, CAO, SAO, CAI, SAI, CAF, SAF, C_O, H_R, K_O, K_I, K_A, MU_R, MU_A, N_P) = range(N_COMMON,
+                                                                                  N_COMMON + 15)
+
+
+def pack(p, gravity=(0.0, 0.0, -9.81)) -> np.ndarray:
+    """The parameter vector of ``p`` (a :class:`.params.BearingParams`) for the kernels."""
+    k = stiffnesses(p)
+    v = np.zeros(N_P)
+    common(v, p, gravity, cos(p.alpha_m), sin(p.alpha_m))
+    v[L_E] = p.L_e
+    v[[CAO, SAO, CAI, SAI]] = cos(p.alpha_o), sin(p.alpha_o), cos(p.alpha_i), sin(p.alpha_i)
+    v[[CAF, SAF, C_O, H_R]] = cos(p.alpha_f), sin(p.alpha_f), p.clearance_n, p.h_r
+    v[[K_O, K_I, K_A]] = k["K_ro"], k["K_ri"], k["K_a"]
+    v[[MU_R, MU_A]] = p.mu_race, p.mu_rib
+    return v
+
+
+def common(v, p, gravity, cam, sam) -> None:
+    """Fill the shared slots (:mod:`.layout`) of ``v`` from ``p`` (any model's parameters with
+    the shared fields: rollers, pitch, cage, pockets, masses, damping, friction); ``cam, sam``
+    the cosine and sine of the roller axis's angle from the bearing axis."""
+    from .stiffness import e_prime, k_line
+    J_ra, J_rd = p.J_r
+    J_cp, J_cd = p.J_c
+    v[[lo.Z, lo.R_M, lo.R_B, lo.L_B, lo.CAM, lo.SAM, lo.ROW]] = (p.Z, 0.5 * p.D_m, p.r_b, p.L_b,
+                                                               cam, sam, p.row_offset)
+    v[[lo.M_R, lo.J_RA, lo.J_RD, lo.M_C, lo.J_CP, lo.J_CD]] = p.M_r, J_ra, J_rd, p.M_c, J_cp, J_cd
+    v[[lo.CAC, lo.SAC, lo.S_P, lo.S_PA]] = cos(p.alpha_c), sin(p.alpha_c), 0.5 * p.s_p, 0.5 * p.s_pa
+    v[lo.K_CR] = k_line(e_prime(p.E_r, p.nu_r, p.E_c, p.nu_c), p.L_b)
+    v[[lo.MU_C, lo.V_S]] = p.mu_cage, p.v_s
+    v[[lo.LAW, lo.ZETA, lo.C_RULE, lo.BETA]] = lo.DAMPING_LAWS.index(p.damping), p.zeta, p.c_rule, p.beta
+    v[[lo.G_X, lo.G_Y, lo.G_Z]] = gravity
+    quasi = p.model == "quasi-dynamic"
+    v[lo.KINEMATIC] = lo.EQ2_CAGE if p.cage == "kinematic" else (lo.POCKET_CAGE if quasi else lo.FREE_CAGE)
+    v[lo.RATIO] = 0.5 * (1.0 - p.gamma)      # paper Eq. (2): omega_c = (1 - D_b/D_m) omega_w / 2
+
+
+def orders(p):
+    """Fault orders at the cup's contact angle (bearing/frequencies.py)."""
+    from .frequencies import orders as at_angle
+    return at_angle(p, p.alpha_o)
+
+
+def guess(p, F_outer):
+    """A first guess of the static state under the load ``F_outer`` on the outer ring: the
+    series-spring solution (bearing/quasistatic.py): the outer ring's displacement (3) and each
+    roller's radial and axial displacement (2, Z) x 2, half the cup normal's approach each."""
+    from . import quasistatic
+    e = quasistatic.solve(p, -np.asarray(F_outer, float), (0.0, 0.0))
+    d = np.clip(e.delta, 0.0, None)
+    s = np.array([1.0, -1.0])[:, None]
+    return -e.q[:3], -0.5 * d * cos(p.alpha_o), -0.5 * d * s * sin(p.alpha_o)
+
+
+def ring_stiffness(p, F):
+    """Tangent stiffness (3,) along x, y (axial), z (N/m) at the load ``F`` on the outer ring,
+    from the quasi-static model (bearing/quasistatic.py): the load moved by 1 % of its size
+    along each axis over the displacement that follows."""
+    from . import quasistatic
+    F = np.asarray(F, float)[:3]
+    q0 = quasistatic.solve(p, F).q
+    dF = 0.01 * np.linalg.norm(F)
+    out = np.zeros(3)
+    for a in range(3):
+        F1 = F.copy()
+        F1[a] += dF
+        out[a] = dF / (quasistatic.solve(p, F1).q[a] - q0[a])
+    return out
+
+
+def nominal_state(p, omega_w: float = 0.0) -> np.ndarray:
+    """Rollers centred in their pockets on the pitch circle, rolling without slip at the
+    inner-ring speed ``omega_w`` (rad/s) with the outer ring at rest; cages concentric."""
+    y = np.zeros(lo.n_state(p.Z))
+    rol, cag = lo.views(y, p.Z)
+    R, r = 0.5 * p.D_m, p.r_b
+    R_i, R_o = R - r * cos(p.alpha_i), R + r * cos(p.alpha_o)
+    w_c = omega_w * R_i / (R_i + R_o)                 # epicyclic cage speed of this geometry
+    k_cos = cos(p.alpha_o - p.alpha_m)
+    for j, s in enumerate((1.0, -1.0)):
+        rol[j, :, lo.PHI] = 2 * pi * np.arange(p.Z) / p.Z
+        rol[j, :, lo.RATE + lo.PHI] = w_c
+        rol[j, :, lo.RATE + lo.PSI] = -s * w_c * R_o / (r * k_cos)     # no slip at the cup
+        cag[j, lo.RATE + lo.CPHI] = w_c
+    return y
+
+
+# --- the rollers' contacts with the rings (numba) -------------------------------------------------
+@kernel
+def contacts(rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n_roller, want, h_k):
+    """Roller k of row j (:class:`.roller.Frame` ``fr``; ``psi`` its spin angle) against the cup,
+    the cone and the cone's rib (``rings``: :class:`.roller.Rings`): their loads into the
+    roller's record ``rec``, their normal loads into its outputs ``Q`` and, with ``want``, their
+    rows into its block (bearing/blocks.py).  ``n_inner``, ``n_roller``: the defect table's
+    inner-ring and roller defects (none: not looked up)."""
+    s = fr.s
+    h, s1, s2 = depth_under(D, OUTER_RING, j, fr.phi, rings.angle_o)
+    hr_o, hr_i, r1, r2 = roller_depths(D, j, k, psi) if n_roller > 0 else (0.0, 0.0, 0.0, 0.0)
+    if hr_o > h:
+        h, s1, s2 = hr_o, r1, r2
+    n_o = lin(P[CAO], fr.er, s * P[SAO], EY)
+    Q[Q_O] = _raceway(rec, blk, cblk, flag, jk, fr, n_o, 1.0, P[C_O], P[K_O], rings.uo, rings.tho,
+                      rings.vo, rings.wo, C_OUTER, h, s1, s2, P, want, h_k)
+    h, s1, s2 = depth_under(D, INNER_RING, j, fr.phi, rings.angle_i) if n_inner > 0 else (0.0, 0.0, 0.0)
+    if hr_i > h:
+        h, s1, s2 = hr_i, r1, r2
+    n_i = lin(-P[CAI], fr.er, -s * P[SAI], EY)
+    Q[Q_I] = _raceway(rec, blk, cblk, flag, jk, fr, n_i, -1.0, 0.0, P[K_I], rings.ui, rings.thi,
+                      rings.vi, rings.wi, C_INNER, h, s1, s2, P, want, h_k)
+    Q[Q_A] = _rib(rec, blk, cblk, flag, jk, fr, rings, P, want, h_k)
+
+
+@kernel
+def _raceway(rec, blk, cblk, flag, jk, fr, n, sigma, clearance, K, u, th, v_r, w_r, slot, h, s1, s2,
+             P, want, h_k):
+    """A raceway's line contact along roller ``fr``, normal ``n`` from the roller to the ring
+    (``sigma`` +1 the cup, -1 the cone, whose tilts enter ``kap`` with opposite signs), the ring's
+    motion ``u, th, v_r, w_r`` and its record slot ``slot``; a defect of depth ``h`` over
+    ``[s1, s2]`` of the line.  Returns the normal load."""
+    Le = P[L_E]
+    r = mul(P[R_B], n)
+    p = add(fr.c, r)
+    rel = sub(p, u)
+    d0 = dot(sub(fr.disp, add(u, cross(th, rel))), n) - clearance
+    kap = sigma * fr.s * (fr.tht - dot(th, fr.et))
+    stiff = want and h_k > 0.0
+    i0, i1, kdd, kdk, kkk = line_with_defect(d0, kap, h, s1, s2, Le, stiff)
+    if not i0 > 0.0:
+        return 0.0
+    v = sub(add(fr.V, cross(fr.w, r)), add(v_r, cross(w_r, rel)))
+    KL = K / Le
+    Q, m1, c = line_load(i0, i1, K, Le, d0, kap, dot(v, n), P[M_R], P, KL * kdd, h_k)
+    f = friction(v, n, P[MU_R] * Q, P[V_S])
+    fr_ = lin(-Q, n, 1.0, f)
+    couple = mul(-sigma * fr.s * m1, fr.et)          # the tilted line's restoring moment
+    load(rec, slot, fr_, add(couple, cross(r, f)), mul(-1.0, add(cross(rel, fr_), couple)))
+    if want and c > 0.0:
+        J = roller_grad(n, r, fr)
+        rows(blk, cblk, flag, jk, c, J, ZERO6, False)
+        if stiff:
+            tilt_rows(blk, cblk, flag, jk, h_k * KL * kdk, h_k * KL * kkk, J, tilt_grad(sigma * fr.s),
+                      ZERO6, ZERO6, False)
+            friction_rows(blk, cblk, flag, jk, slip_damping(v, n, P[MU_R] * Q, P[V_S]), fr.et, n, r, fr,
+                          ZERO, False)
+    return Q
+
+
+@kernel
+def _rib(rec, blk, cblk, flag, jk, fr, rings, P, want, h_k):
+    """The cone's rib on the roller's large end: a point contact at height ``h_r`` above the
+    roller's axis (Eqs. 3c, 4b, 8).  Returns the normal load."""
+    ra = lin(-0.5 * P[L_B], fr.ax, -P[H_R], fr.bx)
+    p = add(fr.c, ra)
+    n = lin(P[SAF], fr.er, -fr.s * P[CAF], EY)          # from the roller to the rib
+    d0 = dot(sub(add(fr.disp, cross(fr.theta, ra)), add(rings.ui, cross(rings.thi, p))), n)
+    if not d0 > 0.0:
+        return 0.0
+    rel = sub(p, rings.ui)
+    v = sub(add(fr.V, cross(fr.w, ra)), add(rings.vi, cross(rings.wi, rel)))
+    Q, c = normal(P[K_A] * d0 * sqrt(d0), P[K_A], N_POINT, dot(v, n), P[M_R], P, d0, 0.0, h_k)
+    fr_ = lin(-Q, n, 1.0, friction(v, n, P[MU_A] * Q, P[V_S]))
+    load(rec, C_INNER_RIB, fr_, cross(ra, fr_), mul(-1.0, cross(rel, fr_)))
+    if want and c > 0.0:
+        rows(blk, cblk, flag, jk, c, roller_grad(n, ra, fr), ZERO6, False)
+        if h_k > 0.0:
+            friction_rows(blk, cblk, flag, jk, slip_damping(v, n, P[MU_A] * Q, P[V_S]), fr.et, n, ra, fr,
+                          ZERO, False)
+    return Q
+
+
+@kernel
+def line_with_defect(d0, kap, h, s1, s2, Le, stiff):
+    """A raceway line contact's integrals (and, when ``stiff``, its tangent stiffness over
+    ``K / L``, :func:`.contact.line_stiffness`), with a defect of depth h over ``[s1, s2]`` of
+    the line where ``h > 0`` (Eq. 14)."""
+    kdd, kdk, kkk = 0.0, 0.0, 0.0
+    if not h > 0.0:
+        i0, i1 = line_integrals(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
+        if stiff and i0 > 0.0:
+            kdd, kdk, kkk = line_stiffness(d0, kap, -0.5 * Le, 0.5 * Le, N_LINE)
+        return i0, i1, kdd, kdk, kkk
+    a0, a1 = line_integrals(d0, kap, -0.5 * Le, s1, N_LINE)
+    b0, b1 = line_integrals(d0 - h, kap, s1, s2, N_LINE)
+    c0, c1 = line_integrals(d0, kap, s2, 0.5 * Le, N_LINE)
+    i0, i1 = a0 + b0 + c0, a1 + b1 + c1
+    if stiff and i0 > 0.0:
+        for d_, sa, sb in ((d0, -0.5 * Le, s1), (d0 - h, s1, s2), (d0, s2, 0.5 * Le)):
+            e0, e1, e2 = line_stiffness(d_, kap, sa, sb, N_LINE)
+            kdd, kdk, kkk = kdd + e0, kdk + e1, kkk + e2
+    return i0, i1, kdd, kdk, kkk

@@ -1,0 +1,62 @@
+"""Small vector algebra on 3-tuples for the kernels: nothing is allocated (LLVM keeps the
+tuples in registers)."""
+from __future__ import annotations
+
+from axlebox._numba import kernel
+
+ZERO = (0.0, 0.0, 0.0)
+EY = (0.0, 1.0, 0.0)
+ZERO6 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
+
+@kernel
+def add(a, b):
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+@kernel
+def sub(a, b):
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+@kernel
+def mul(k, a):
+    return (k * a[0], k * a[1], k * a[2])
+
+
+@kernel
+def dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+@kernel
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+@kernel
+def lin(ka, a, kb, b):
+    """``ka a + kb b``."""
+    return (ka * a[0] + kb * b[0], ka * a[1] + kb * b[1], ka * a[2] + kb * b[2])
+
+
+@kernel
+def get(v, o):
+    """The 3-vector at ``v[o], v[o + 1], v[o + 2]``."""
+    return (v[o], v[o + 1], v[o + 2])
+
+
+@kernel
+def put(v, o, a):
+    """``v[o:o + 3] = a``."""
+    v[o] = a[0]
+    v[o + 1] = a[1]
+    v[o + 2] = a[2]
+
+
+@kernel
+def acc(v, o, a):
+    """``v[o:o + 3] += a``."""
+    v[o] += a[0]
+    v[o + 1] += a[1]
+    v[o + 2] += a[2]
