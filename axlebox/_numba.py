@@ -18,6 +18,7 @@ and ``axlebox.mbs`` import this first).
 """
 from __future__ import annotations
 
+import hashlib
 import os
 from pathlib import Path
 
@@ -26,13 +27,18 @@ from numba import config
 from ._cache import cache_dir, package_dir, source_hash
 
 KERNEL_PACKAGES = ("bearing", "mbs")
+# what marks a file whose code numba compiles: its own decorator, the kernels' (:func:`kernel`),
+# and an overload (bearing/models.py's dispatch)
+KERNEL_MARKS = (b"@njit", b"@kernel", b"@overload")
 
 
 def kernel_hash(top: Path | None = None) -> str:
-    """Hash of the kernel sources (the files with ``@njit``) of ``bearing`` and ``mbs``: those of
-    this installation, or the folders of those names under ``top``."""
+    """Hash of the kernel sources (the files marked by :data:`KERNEL_MARKS`) of ``bearing`` and
+    ``mbs``: those of this installation, or the folders of those names under ``top``."""
     folders = [package_dir(p) if top is None else Path(top) / p for p in KERNEL_PACKAGES]
-    return source_hash(folders, only_with=b"@njit")
+    # and this file: :func:`kernel`'s options are every kernel's
+    own = hashlib.sha1(Path(__file__).read_bytes()).hexdigest()
+    return hashlib.sha1((source_hash(folders, only_with=KERNEL_MARKS) + own).encode()).hexdigest()[:12]
 
 
 def _serialise_cache_saves() -> None:

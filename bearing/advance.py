@@ -36,24 +36,24 @@ from axlebox._numba import kernel
 
 from . import quasidynamic, step
 from .layout import LOAD, RING, ROWS
-from .models import Dynamic, QuasiDynamic
+from .models import scheme_of
 from .step import EXPLICIT, IMEX, IMEX2, MODES  # noqa: F401  (the modes, by name, for callers)
 
-_SCHEMES = {Dynamic: step.substep, QuasiDynamic: quasidynamic.substep}
+_SCHEMES = {"dynamic": step.substep, "quasi-dynamic": quasidynamic.substep}
 
 
-def substep(scheme, model, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages):
-    """One sub-step of the bearing ``model`` by ``scheme`` (tags of bearing/models.py; numba
-    only): bearing/step.py's or bearing/quasidynamic.py's ``substep``."""
+def substep(tag, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages):
+    """One sub-step of the bearing of tag ``tag`` (bearing/models.py; numba only) by its
+    scheme: bearing/step.py's or bearing/quasidynamic.py's ``substep``."""
     raise NotImplementedError("bearing.advance.substep runs in numba only")
 
 
 @overload(substep, jit_options={"cache": True, "error_model": "numpy"})
-def _substep(scheme, model, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages):
-    f = _SCHEMES[scheme.instance_class]
+def _substep(tag, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages):
+    f = _SCHEMES[scheme_of(tag.instance_class)]
 
-    def impl(scheme, model, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages):
-        f(model, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages)
+    def impl(tag, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages):
+        f(tag, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages)
     return impl
 
 
@@ -80,8 +80,8 @@ def advance(tag, x, ring_a, ring_b, P, D, w, K, t_b, h, n, first, mode, theta, F
                 # (1 - s) a + s b: at s = 1 exactly b (a + s (b - a) is not, in floating point)
                 w.ring[r, c] = ring_b[r, c] if first else (1.0 - s) * ring_a[r, c] + s * ring_b[r, c]
         hk = 0.5 * h if (first and j == j0) else h
-        substep(tag.scheme, tag.model, x, w.ring, P, D, w, K, t_b + (j - c0) * h, h, hk, mode, theta,
-                j == j_out, Qc, cages)
+        substep(tag, x, w.ring, P, D, w, K, t_b + (j - c0) * h, h, hk, mode, theta, j == j_out, Qc,
+                cages)
         for r in range(ROWS):
             for c in range(LOAD):
                 F_mean[r, c] += w.F[r, c]

@@ -36,7 +36,7 @@ def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol
     rol, cag = views(y, p.Z)
     rol[:, :, PHI] += phase
     cag[:, CPHI] += phase
-    model = models.tag(p).model
+    model = models.tag(p)
 
     # start: the model's guess
     uo0, rol[:, :, RHO], rol[:, :, ETA] = models.module(p).guess(p, F_outer)

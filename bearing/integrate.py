@@ -57,7 +57,7 @@ def _outer_ring(F, Y, nb, rig, q):
 
 
 @kernel
-def _rig_rhs(model, t, Y, P, D, rig, ring, dY, F, Qc, w):
+def _rig_rhs(tag, t, Y, P, D, rig, ring, dY, F, Qc, w):
     nb = Y.shape[0] - RIG
     _rings(t, Y, nb, rig, ring)
     evaluate(model, t, Y[:nb], ring, P, D, dY[:nb], F, Qc, w, False, 0.0)
@@ -84,20 +84,19 @@ def run_rk4(tag, Y, t0, dt, n_steps, every, P, D, rig, w, acc, Fout, Qout, cage)
     ring = np.zeros((ROWS, RING))
     F = np.zeros((ROWS, LOAD))
     Qc = np.zeros(Qout.shape[1:])
-    model = tag.model
     for i in range(n_steps):
         t = t0 + i * dt
-        _rig_rhs(model, t, Y, P, D, rig, ring, k1, F, Qc, w)
+        _rig_rhs(tag, t, Y, P, D, rig, ring, k1, F, Qc, w)
         _record(i, every, Y, k1, F, Qc, acc, Fout, Qout, cage)
         for q in range(n):
             tmp[q] = Y[q] + 0.5 * dt * k1[q]
-        _rig_rhs(model, t + 0.5 * dt, tmp, P, D, rig, ring, k2, F, Qc, w)
+        _rig_rhs(tag, t + 0.5 * dt, tmp, P, D, rig, ring, k2, F, Qc, w)
         for q in range(n):
             tmp[q] = Y[q] + 0.5 * dt * k2[q]
-        _rig_rhs(model, t + 0.5 * dt, tmp, P, D, rig, ring, k3, F, Qc, w)
+        _rig_rhs(tag, t + 0.5 * dt, tmp, P, D, rig, ring, k3, F, Qc, w)
         for q in range(n):
             tmp[q] = Y[q] + dt * k3[q]
-        _rig_rhs(model, t + dt, tmp, P, D, rig, ring, k4, F, Qc, w)
+        _rig_rhs(tag, t + dt, tmp, P, D, rig, ring, k4, F, Qc, w)
         ok = True
         for q in range(n):
             Y[q] += dt / 6.0 * (k1[q] + 2.0 * k2[q] + 2.0 * k3[q] + k4[q])

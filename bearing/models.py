@@ -10,11 +10,11 @@ scheme accepts by method (``DT_MAX``); and its rings' tangent stiffness (``ring_
 Everything else is shared: the pockets, the rollers' and cages' dynamics, the implicit kick,
 the quasi-dynamic scheme, the exchange window, the static start, the rig and the car.
 
-Inside numba a bearing is named by a *tag* (:func:`tag`): ``Kernel(model, scheme)``, each an
-empty named tuple of its own class (:data:`TAGS`, :class:`Dynamic`, :class:`QuasiDynamic`).
-:func:`contacts` (here) and bearing/advance.py's ``substep`` are compiled for the tags' classes
-alone, so a run compiles the model and scheme it uses and no other, and numba's cache keeps
-each apart.
+Inside numba a bearing is named by a *tag* (:func:`tag`): an empty named tuple of a class of
+its own for each model and scheme (:data:`TAGS`; flat and empty, so that numba's parallel
+loops take it as they take a number).  :func:`contacts` (here) and bearing/advance.py's
+``substep`` (by :func:`scheme_of`) are compiled for the tags' classes alone, so a run compiles
+the model and scheme it uses and no other, and numba's cache keeps each apart.
 """
 from __future__ import annotations
 
@@ -33,13 +33,12 @@ MODELS = {"dtrb": dtrb}
 DEFAULT = "dtrb"
 SCHEMES = ("dynamic", "quasi-dynamic")      # a model's ``model`` field
 
-# the tags' classes (module attributes, so numba's cache can pickle them)
-Dtrb = namedtuple("Dtrb", [])
-Dynamic = namedtuple("Dynamic", [])
-QuasiDynamic = namedtuple("QuasiDynamic", [])
-Kernel = namedtuple("Kernel", ["model", "scheme"])
-TAGS = {"dtrb": Dtrb}
-_BY_TAG = {TAGS[name]: module for name, module in MODELS.items()}
+# the tags' classes, one a model and scheme (module attributes, so numba's cache can pickle them)
+DtrbDynamic = namedtuple("DtrbDynamic", [])
+DtrbQuasiDynamic = namedtuple("DtrbQuasiDynamic", [])
+TAGS = {("dtrb", "dynamic"): DtrbDynamic, ("dtrb", "quasi-dynamic"): DtrbQuasiDynamic}
+_MODEL_OF = {cls: MODELS[key[0]] for key, cls in TAGS.items()}
+_SCHEME_OF = {cls: key[1] for key, cls in TAGS.items()}
 _QD_METHODS = ("leapfrog", "imex", "imex2")       # the quasi-dynamic step whatever the method
 
 
@@ -56,10 +55,14 @@ def name(p) -> str:
     return module(p).NAME
 
 
-def tag(p) -> Kernel:
-    """The kernels' tag of parameters ``p``: the model's and its scheme's."""
-    scheme = QuasiDynamic() if p.model == "quasi-dynamic" else Dynamic()
-    return Kernel(TAGS[name(p)](), scheme)
+def tag(p):
+    """The kernels' tag of parameters ``p``: its model's and scheme's."""
+    return TAGS[(name(p), p.model)]()
+
+
+def scheme_of(tag_class) -> str:
+    """The scheme (``"dynamic"`` or ``"quasi-dynamic"``) of a tag's class."""
+    return _SCHEME_OF[tag_class]
 
 
 def from_table(fields, where: str = "bearing"):
@@ -142,7 +145,7 @@ def contacts(model, rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_i
 @overload(contacts, jit_options={"cache": True, "error_model": "numpy"})
 def _contacts(model, rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n_roller, want,
               h_k):
-    f = _BY_TAG[model.instance_class].contacts
+    f = _MODEL_OF[model.instance_class].contacts
 
     def impl(model, rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n_roller, want,
              h_k):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from axlebox._numba import kernel
 
+AX, AY, AZ = 0, 1, 2            # the axes of a 3-vector's or a 3 x 3 matrix's index
 ZERO = (0.0, 0.0, 0.0)
 EY = (0.0, 1.0, 0.0)
 ZERO6 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)

@@ -5,6 +5,6 @@
   integrators; the numba kernels in the ``kernel_*`` modules
 - :mod:`axlebox.mbs.wheelrail` wheel-rail contact: profiles, contact geometry, Hertz, Kalker, FASTSIM
 - :mod:`axlebox.mbs.track` track irregularities (FRA spectra, rail roughness)
-- :mod:`axlebox.mbs.vehicle` the B-type metro car; :mod:`axlebox.mbs.dtrb` its axle-box DTRBs
+- :mod:`axlebox.mbs.vehicle` the B-type metro car; :mod:`axlebox.mbs.bearings` its axle-box bearings
 """
 from axlebox import _numba  # noqa: F401  (before any kernel compiles or loads)

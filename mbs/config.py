@@ -12,9 +12,7 @@ import math
 import tomllib
 from pathlib import Path
 
-from axlebox.bearing.integrate import DT_MAX
-from axlebox.bearing.quasidynamic import DT_MAX as QD_DT_MAX
-from axlebox._params import ParameterError, from_table
+from axlebox._params import ParameterError
 from axlebox.mbs.integrate import METHODS
 from axlebox.mbs.trackbed import MODELS as TRACK_MODELS
 
@@ -86,7 +84,9 @@ SCHEMA: dict[str, dict[str, tuple]] = {
                   "cz": (F, 3e4, 0.0, 1e8), "cy": (F, 4e4, 0.0, 1e8), "anti_roll": (F, 1e6, 0.0, 1e9),
                   "traction_k": (F, 5e6, 0.0, 1e10), "bumpstop_clearance": (F, 0.03, 0.0, 0.2),
                   "bumpstop_k": (F, 2e6, 0.0, 1e10)},
-    "joint": {"model": (S, "bushing", ("bushing", "dtrb")),
+    # "bearing": the rolling bearing of [bearing] (any model of bearing/models.py); "dtrb" its
+    # old name, read the same
+    "joint": {"model": (S, "bushing", ("bushing", "bearing", "dtrb")),
               "wheelsets": (L, [1, 2, 3, 4], (1, 2, 3, 4)),
               "k_radial": (F, 1e9, 1e3, 1e12), "k_axial": (F, 5e8, 1e3, 1e12), "c": (F, 2e4, 0.0, 1e8)},
     "sensors": {"node": (S, "sensor_pad", None), "model": (S, "ideal", ("ideal", "accelerometer")),
@@ -147,9 +147,22 @@ def _wheel_defects(items) -> list[dict]:
 
 
 def _bearing(fields) -> dict:
-    from axlebox.bearing.params import BearingParams
-    from_table(BearingParams, fields, "bearing")     # names the field and what is allowed
+    """``[bearing]``: ``type`` (the model, bearing/models.py) and that model's fields, checked
+    by its parameters' class (which names the field and what is allowed)."""
+    from axlebox.bearing import models
+    models.from_table(fields, "bearing")
     return dict(fields)
+
+
+def bearing_params(cfg: dict):
+    """The parameters of a validated config's ``[bearing]`` (its model's ``Params``)."""
+    from axlebox.bearing import models
+    return models.from_table(cfg["bearing"], "bearing")
+
+
+def has_bearings(cfg: dict) -> bool:
+    """Whether the axle-boxes sit on rolling bearings (``joint.model`` not ``"bushing"``)."""
+    return cfg["joint"]["model"] != "bushing"
 
 
 def _defects(items) -> list[dict]:
@@ -277,26 +290,18 @@ def validate(user: dict) -> dict:
     if t["irregularity"] and t["length"] < need:
         raise ParameterError(f"track.length = {t['length']:g} is not allowed: the car runs "
                              f"{need:.0f} m (distance plus its length); expected at least that")
-    if cfg["joint"]["model"] == "dtrb":
+    if has_bearings(cfg):
+        from axlebox.bearing import models
         ig = cfg["integrator"]
-        quasi = cfg["bearing"].get("model") == "quasi-dynamic"
-        methods = ("leapfrog", "imex", "imex2") if quasi else tuple(DT_MAX)
-        if ig["method"] not in methods:
-            raise ParameterError(f"integrator.method = {ig['method']!r} is not allowed with "
-                                 f"joint.model = 'dtrb'{' and the quasi-dynamic bearing' if quasi else ''}: "
-                                 f"expected one of {methods}")
-        dt_max = QD_DT_MAX if quasi else DT_MAX[ig["method"]]
-        if ig["dt"] > dt_max:
-            why = "the quasi-dynamic bearing's accuracy" if quasi else "the roller contacts"
-            raise ParameterError(f"integrator.dt = {ig['dt']:g} is not allowed with joint.model = "
-                                 f"'dtrb' and method {ig['method']!r}: expected at most {dt_max:g} s ({why})")
+        models.check_step(bearing_params(cfg), ig["method"], ig["dt"], "integrator.method",
+                          "integrator.dt")
         for d in cfg["defects"]:
             if d["wheelset"] not in cfg["joint"]["wheelsets"]:
                 raise ParameterError(f"defects: wheelset = {d['wheelset']} is not allowed: its "
                                      f"axle-boxes sit on row bushings (joint.wheelsets = "
                                      f"{cfg['joint']['wheelsets']}); expected one of those")
     elif cfg["defects"]:
-        raise ParameterError("defects need joint.model = 'dtrb': with the bushing joint there is "
+        raise ParameterError("defects need joint.model = 'bearing': with the bushing joint there is "
                              "no bearing to hold them")
     ig = cfg["integrator"]
     H = cfg["coupling"]["exchange_dt"]

@@ -25,7 +25,7 @@ hold, as a co-simulation interface holds its inputs between communication points
 on the line through the last two exchanges' ("linear", first-order extrapolation), or held
 with the interface Jacobian ("jacobian": the held loads plus ``-K`` times the outer ring's
 displacement from the inner since the exchange, ``K`` each bearing's tangent stiffness at its
-static load along x, y, z, :func:`axlebox.mbs.dtrb.stiffness`; the remedy of Kuebler and
+static load along x, y, z, :func:`axlebox.mbs.bearings.stiffness`; the remedy of Kuebler and
 Schiehlen, "Two methods of simulator coupling", Math. Comput. Model. Dyn. Syst. 6 (2000)
 93-113: the stiff linear part follows the bodies at their own step, only the rest is held).  The held
 loads come from a window centred on the exchange and act over the step after it, so a zero-order
@@ -37,11 +37,10 @@ damping ratio near ``w H / 4`` (11 % for the axle box on its bearing, 700 Hz, at
 (n_bearings, 2, 12), ``flags[0]`` 1 before the run's first exchange, ``flags[1]`` 1 once
 ``held`` (2, n_bearings, 2, 6: this exchange's and the last one's ring loads in the track
 frame, inner and outer ring, force and moment) holds an exchange, ``m`` and ``hold`` the
-co-simulation's body steps and hold, ``h`` and ``n`` the
-bearings' sub-step and sub-steps an exchange, ``mode`` (bearing/advance.py ``MODES``), ``G``
-the implicit kick's blocks (n_bearings, 2, Z + 1, 6, 12), or the quasi-dynamic bearings' blocks
-and scratch (n_bearings, 4, ...);
-empty for the explicit leapfrog's dynamic bearings.
+co-simulation's body steps and hold, ``h`` and ``n`` the bearings' sub-step and sub-steps an
+exchange, ``mode`` (bearing/step.py ``MODES``), ``K`` and ``r0`` the "jacobian" hold's
+stiffness and outer-ring places.  The bearings' own scratch is theirs
+(mbs/kernel_bearings.py ``Bearings``).
 """
 from __future__ import annotations
 
@@ -49,11 +48,14 @@ from collections import namedtuple
 
 import numpy as np
 
-from axlebox.bearing.advance import MODES, block_rows
+from axlebox.bearing.layout import LOAD, RING, ROWS
+from axlebox.bearing.step import MODES
 
-Exchange = namedtuple("Exchange", ["ring", "flags", "h", "n", "mode", "G", "held", "m", "hold", "K",
-                                   "r0"])
-HOLDS = {"zoh": 0, "linear": 1, "jacobian": 2}
+Exchange = namedtuple("Exchange", ["ring", "flags", "h", "n", "mode", "held", "m", "hold", "K", "r0"])
+ZOH, LINEAR, JACOBIAN = 0, 1, 2
+HOLDS = {"zoh": ZOH, "linear": LINEAR, "jacobian": JACOBIAN}
+FIRST, HELD = 0, 1                # flags: before the run's first exchange; ``held`` holds one
+THIS, LAST = 0, 1                 # held: this exchange's loads, the last one's
 
 
 def exchange(model, method: str, h: float, n: int, ring=None, m: int = 1, hold: str = "zoh",
@@ -63,15 +65,13 @@ def exchange(model, method: str, h: float, n: int, ring=None, m: int = 1, hold: 
     ring motion of a run this one continues (:attr:`axlebox.mbs.integrate.Run.exchange`),
     else the run starts.  ``m`` > 1: the bodies take ``m`` steps an exchange with the ring
     loads held (``hold``, :data:`HOLDS`; module docstring, "Co-simulation"); ``K`` (n_bearings,
-    3): the bearings' tangent stiffness the "jacobian" hold needs (:func:`axlebox.mbs.dtrb.stiffness`)."""
+    3): the bearings' tangent stiffness the "jacobian" hold needs (:func:`axlebox.mbs.bearings.stiffness`)."""
     nbr = len(model.bearing_names)
-    mode = MODES[method]
-    Z = int(model.S.br_P[0, 0]) if nbr else 0
-    rows = block_rows(model.S.br_P, mode) if nbr else 0
-    G = np.zeros((nbr, rows, Z + 1, 6, 12)) if rows else np.zeros((0, 2, 1, 6, 12))
     start = ring is None
-    ring = np.zeros((nbr, 2, 12)) if start else np.array(ring, float).reshape(nbr, 2, 12)
-    return Exchange(ring=ring, flags=np.array([1 if start else 0, 0], np.int64), h=float(h), n=int(n),
-                    mode=int(mode), G=G, held=np.zeros((2, nbr, 2, 6)), m=int(m), hold=HOLDS[hold],
+    ring = np.zeros((nbr, ROWS, RING)) if start else np.array(ring, float).reshape(nbr, ROWS, RING)
+    flags = np.zeros(2, np.int64)
+    flags[FIRST] = 1 if start else 0
+    return Exchange(ring=ring, flags=flags, h=float(h), n=int(n), mode=int(MODES[method]),
+                    held=np.zeros((2, nbr, ROWS, LOAD)), m=int(m), hold=HOLDS[hold],
                     K=np.zeros((nbr, 3)) if K is None else np.array(K, float).reshape(nbr, 3),
                     r0=np.zeros((nbr, 3)))

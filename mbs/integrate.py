@@ -193,7 +193,7 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
     nbr = len(model.bearing_names)
     nend = model.n_body_states
     if s.method == "galpha" and nbr:
-        raise ParameterError("integrator.method = 'galpha' is not allowed with DTRB bearings: "
+        raise ParameterError("integrator.method = 'galpha' is not allowed with roller bearings: "
                              "their roller and cage states are not in the Jacobian's coupling "
                              "pattern; use 'leapfrog' or 'rk4'")
     if s.method == "galpha":
@@ -227,12 +227,12 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
         try:
             if s.method in ("rk4", "leapfrog", "imex", "imex2"):
                 status, k_done, bad = ki.run_explicit(s.method != "rk4", y, tk, h, s.n_sub, k1, k,
-                                                      n_out - 1, S, W, X, model.nq, nend, s.vmax,
+                                                      n_out - 1, S, W, model.B, X, model.nq, nend, s.vmax,
                                                       out_t, out_sens, out_wh, out_el, out_y, se,
                                                       k == 0 and not continued, base)
             else:
                 status, k_done, bad = ki.run_galpha(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S,
-                                                    W, model.nq, nend, s.vmax, out_t, out_sens,
+                                                    W, model.B, model.nq, nend, s.vmax, out_t, out_sens,
                                                     out_wh, out_el, out_y, se, s.rho_inf, groups,
                                                     n_groups, pattern, scale, atol, s.rtol,
                                                     s.max_iter, stats, base)

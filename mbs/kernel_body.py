@@ -35,6 +35,9 @@ from numba import njit
 
 # body table slots
 BI_POS, BI_VEL, BI_N, BI_SPIN, BI_INV = range(5)
+# a spinning body's spin angle among its positions (after r and p) and its body-frame rate about
+# the axle among its velocities (after v and omega_x)
+SPIN_ANGLE, SPIN_RATE = 7, 4
 BF_M, BF_MC, BF_P0, BF_JINV, BF_GRAV = 0, 1, 4, 13, 22
 BF_WIDTH = 24
 

@@ -46,6 +46,7 @@ import numpy as np
 from numba import njit
 
 from .kernel_body import BI_N, BI_POS, BI_SPIN, BI_VEL, frame_kinematics, position_rates
+from .exchange import FIRST, LINEAR
 from .kernel_system import rhs, rhs_exchange, rhs_held
 
 OK, NOT_FINITE, RUNAWAY, NO_CONVERGENCE = 0, 1, 2, 3
@@ -88,18 +89,18 @@ def _normalise(y, bi):
 
 
 @njit(cache=True)
-def _rk4_step(t, y, k1, k2, k3, k4, yt, h, S, W):
+def _rk4_step(t, y, k1, k2, k3, k4, yt, h, S, W, B):
     """The rest of one RK4 step from ``k1 = F(t, y)``."""
     N = y.shape[0]
     for i in range(N):
         yt[i] = y[i] + 0.5 * h * k1[i]
-    rhs(t + 0.5 * h, yt, k2, S, W)
+    rhs(t + 0.5 * h, yt, k2, S, W, B)
     for i in range(N):
         yt[i] = y[i] + 0.5 * h * k2[i]
-    rhs(t + 0.5 * h, yt, k3, S, W)
+    rhs(t + 0.5 * h, yt, k3, S, W, B)
     for i in range(N):
         yt[i] = y[i] + h * k3[i]
-    rhs(t + h, yt, k4, S, W)
+    rhs(t + h, yt, k4, S, W, B)
     for i in range(N):
         y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
 
@@ -124,7 +125,7 @@ def _kick_drift(y, a, hk, h, S, W):
 
 
 @njit(cache=True)
-def run_explicit(leapfrog, y, t0, h, n_sub, n_out, k0, k_last, S, W, X, nq, nend, vmax, out_t,
+def run_explicit(leapfrog, y, t0, h, n_sub, n_out, k0, k_last, S, W, B, X, nq, nend, vmax, out_t,
                  out_sens, out_wh, out_el, out_y, state_every, start, base):
     """Advance ``y`` in place through outputs ``k0 .. n_out - 1`` by RK4 or (``leapfrog``) the
     leapfrog; output ``k`` is at ``t0 + (k - k0) n_sub h``, recorded from the step's first
@@ -149,10 +150,10 @@ def run_explicit(leapfrog, y, t0, h, n_sub, n_out, k0, k_last, S, W, X, nq, nend
                 if j == 0 and (k % state_every == 0 or k == k_last):
                     ys[:] = y                 # the exchange moves the bearings' states on
                     rs[:] = X.ring
-                    first = X.flags[0]
-                rhs_exchange(t, y, k1, S, W, X)
+                    first = X.flags[FIRST]
+                rhs_exchange(t, y, k1, S, W, B, X)
             else:
-                rhs(t, y, k1, S, W)
+                rhs(t, y, k1, S, W, B)
             if j == 0:
                 st, i = _output(k, base, t, ys if leapfrog else y, y, W, nq, nend, vmax, out_t,
                                 out_sens, out_wh, out_el, out_y, state_every)
@@ -162,7 +163,7 @@ def run_explicit(leapfrog, y, t0, h, n_sub, n_out, k0, k_last, S, W, X, nq, nend
                     if leapfrog:              # the run ends at the state this output was made
                         y[:] = ys             # at: a run continued from it makes this exchange
                         X.ring[:] = rs        # again
-                        X.flags[0] = first
+                        X.flags[FIRST] = first
                     break
             if leapfrog:
                 first = start and k == k0 and j == 0
@@ -170,16 +171,16 @@ def run_explicit(leapfrog, y, t0, h, n_sub, n_out, k0, k_last, S, W, X, nq, nend
                 _kick_drift(y, k1, 0.5 * hb if first else hb, hb, S, W)
                 for i in range(1, X.m):
                     _normalise(y, S.bi)
-                    rhs_held(t + i * hb, y, k1, S, W, X, i / X.m if X.hold == 1 else 0.0)
+                    rhs_held(t + i * hb, y, k1, S, W, B, X, i / X.m if X.hold == LINEAR else 0.0)
                     _kick_drift(y, k1, hb, hb, S, W)
             else:
-                _rk4_step(t, y, k1, k2, k3, k4, yt, h, S, W)
+                _rk4_step(t, y, k1, k2, k3, k4, yt, h, S, W, B)
             _normalise(y, S.bi)
     return OK, n_out, -1
 
 
 @njit(cache=True)
-def jacobian_fd(t, y, f0, S, W, groups, n_groups, pattern, scale, J):
+def jacobian_fd(t, y, f0, S, W, B, groups, n_groups, pattern, scale, J):
     """``J = dF/dy`` by forward differences, one evaluation per column group."""
     N = y.shape[0]
     yp = y.copy()
@@ -192,7 +193,7 @@ def jacobian_fd(t, y, f0, S, W, groups, n_groups, pattern, scale, J):
         for j in range(N):
             if groups[j] == g:
                 yp[j] = y[j] + eps[j]
-        rhs(t, yp, fp, S, W)
+        rhs(t, yp, fp, S, W, B)
         for j in range(N):
             if groups[j] == g:
                 yp[j] = y[j]
@@ -214,7 +215,7 @@ def _iteration_matrix(Jf, h, am, af, ga, Minv):
 
 
 @njit(cache=True)
-def _ga_newton(t, y, ydn, yd, h, am, af, ga, Minv, S, W, atol, rtol, max_iter, y1, ya, f, stats):
+def _ga_newton(t, y, ydn, yd, h, am, af, ga, Minv, S, W, B, atol, rtol, max_iter, y1, ya, f, stats):
     """Modified Newton for ``yd_{n+1}`` of one step; 0 converged, 1 slow (converged late),
     -1 failed.  Converged when the estimated remaining error ``theta / (1 - theta) * |dy|``
     (theta: the observed contraction rate) is below the tolerance (Hairer and Wanner, Solving
@@ -227,7 +228,7 @@ def _ga_newton(t, y, ydn, yd, h, am, af, ga, Minv, S, W, atol, rtol, max_iter, y
         for i in range(N):
             y1[i] = y[i] + h * ydn[i] + ga * h * (yd[i] - ydn[i])
             ya[i] = y[i] + af * (y1[i] - y[i])
-        rhs(t + af * h, ya, f, S, W)
+        rhs(t + af * h, ya, f, S, W, B)
         stats[3] += 1
         stats[1] += 1
         for i in range(N):
@@ -256,7 +257,7 @@ def _ga_newton(t, y, ydn, yd, h, am, af, ga, Minv, S, W, atol, rtol, max_iter, y
 
 
 @njit(cache=True)
-def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t, out_sens, out_wh,
+def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, nq, nend, vmax, out_t, out_sens, out_wh,
                out_el, out_y, state_every, rho_inf, groups, n_groups, pattern, scale, atol, rtol,
                max_iter, stats, base):
     """Generalized-alpha (first order) with modified Newton; ``stats`` gets
@@ -269,7 +270,7 @@ def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t, 
     af = 1.0 / (1.0 + rho_inf)
     ga = 0.5 + am - af
     ydn = np.empty(N)
-    rhs(t0, y, ydn, S, W)
+    rhs(t0, y, ydn, S, W, B)
     stats[3] += 1
     yd = np.empty(N)
     y1 = np.empty(N)
@@ -286,7 +287,7 @@ def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t, 
         for j in range(n_sub):
             t = t0 + ((k - k0) * n_sub + j) * h
             if j == 0:
-                rhs(t, y, f, S, W)
+                rhs(t, y, f, S, W, B)
                 stats[3] += 1
                 st, i = _output(k, base, t, y, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el,
                                 out_y, state_every)
@@ -305,8 +306,8 @@ def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t, 
                     fresh = False
                     for attempt in range(2):
                         if not have or stale or attempt > 0:
-                            rhs(tq, y, f, S, W)
-                            jacobian_fd(tq, y, f, S, W, groups, n_groups, pattern, scale, Jf)
+                            rhs(tq, y, f, S, W, B)
+                            jacobian_fd(tq, y, f, S, W, B, groups, n_groups, pattern, scale, Jf)
                             stats[2] += 1
                             stats[3] += 1 + n_groups
                             have = True
@@ -316,7 +317,7 @@ def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, nq, nend, vmax, out_t, 
                         if hm != h_M:
                             _iteration_matrix(Jf, hm, am, af, ga, Minv)
                             h_M = hm
-                        r = _ga_newton(tq, y, ydn, yd, hm, am, af, ga, Minv, S, W, atol, rtol,
+                        r = _ga_newton(tq, y, ydn, yd, hm, am, af, ga, Minv, S, W, B, atol, rtol,
                                        max_iter, y1, ya, f, stats)
                         if r >= 0:
                             stale = r == 1

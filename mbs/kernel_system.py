@@ -1,8 +1,10 @@
 """The system right-hand side ``y' = F(t, y)`` in numba, over the packed arrays of
 :class:`axlebox.mbs.system.Model`.
 
-``S`` (:class:`Arrays`, static): the bodies, markers, elements, wheels, track, sensors and
-bearings packed; ``W`` (:class:`Work`, overwritten every call): frame quantities per body,
+``S`` (:class:`Arrays`, static): the bodies, markers, elements, wheels, track and sensors
+packed; ``B`` the bearings (:class:`.kernel_bearings.Bearings`, or ``NoBearings``: the
+kernels that take it are compiled for its model alone); ``W`` (:class:`Work`, overwritten
+every call): frame quantities per body,
 marker kinematics and loads, the generalised loads, element, wheel and sensor outputs (numba
 compiles these named tuples: fields by name, no positions to keep in step).
 Order of one evaluation: frames and position rates; marker kinematics; element and wheel-rail
@@ -26,38 +28,35 @@ from .kernel_wheels import G_GRAV, wheel_forces
 
 
 Arrays = namedtuple("Arrays", ["bi", "bf", "inv", "goff", "mk_i", "mk_f", "shp", "el_i", "el_f", "glob",
-                               "wh_i", "wh_f", "wtab", "wpar", "trk", "wrk", "sens", "br_i", "br_P",
-                               "br_D"])
+                               "wh_i", "wh_f", "wtab", "wpar", "trk", "wrk", "sens"])
 Work = namedtuple("Work", ["Ab", "rb", "vb", "omb", "omfb", "mku", "mkp", "mkv", "mkR", "mkw", "mkF",
                            "mkM", "gen", "elout", "whout", "sensout"])
 
 
 @njit(cache=True)
-def rhs(t, y, dy, S, W):
+def rhs(t, y, dy, S, W, B):
     """``dy = F(t, y)``, the bearings' rates included (:func:`.kernel_bearings.bearing_forces`)."""
     _kinematics(t, y, dy, S, W)
-    bearing_forces(t, y, dy, S.bi, S.br_i, S.br_P, S.br_D, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM,
-                   W.elout)
+    bearing_forces(B, t, y, dy, S.bi, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.elout)
     _dynamics(t, y, dy, S, W)
 
 
 @njit(cache=True)
-def rhs_exchange(t, y, dy, S, W, X):
+def rhs_exchange(t, y, dy, S, W, B, X):
     """The bodies' ``dy`` at ``t`` with the bearings exchanged (:func:`.kernel_bearings.bearing_exchange`:
     their states advanced to ``t``, their mean ring loads on the markers); the bearings' rows
     of ``dy`` are left as they were."""
     _kinematics(t, y, dy, S, W)
-    bearing_exchange(t, y, S.bi, S.br_i, S.br_P, S.br_D, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM,
-                     W.elout, X)
+    bearing_exchange(B, X, t, y, S.bi, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.elout)
     _dynamics(t, y, dy, S, W)
 
 
 @njit(cache=True)
-def rhs_held(t, y, dy, S, W, X, u):
+def rhs_held(t, y, dy, S, W, B, X, u):
     """The bodies' ``dy`` at ``t`` between exchanges of a co-simulation: the bearings' loads
     those of the last exchange, carried ``u`` exchange steps on (:func:`.kernel_bearings.held_loads`)."""
     _kinematics(t, y, dy, S, W)
-    held_loads(y, S.bi, S.br_i, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, X, u)
+    held_loads(B, X, y, S.bi, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, u)
     _dynamics(t, y, dy, S, W)
 
 

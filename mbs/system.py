@@ -64,6 +64,7 @@ class System:
         self.wheel_records: dict[str, tuple] = {}   # wheel name -> (values, slopes, ds)
         self.track_ramp = 0.5          # s, the irregularity fades in over this time
         self.bearings: list[tuple] = []
+        self.bearing_tag = None
 
     # -- building -------------------------------------------------------------------------
     def index(self, name: str) -> int:
@@ -117,10 +118,11 @@ class System:
     def sensor(self, name: str, marker: int) -> None:
         self.sensors[name] = marker
 
-    def bearing(self, name: str, inner: int, outer: int, P: np.ndarray, D: np.ndarray,
+    def bearing(self, name: str, inner: int, outer: int, tag, P: np.ndarray, D: np.ndarray,
                 y0: np.ndarray) -> None:
-        """A DTRB between the journal marker ``inner`` (on a spinning body) and the bore marker
-        ``outer``: kernel parameter vector ``P`` and defect table ``D`` (bearing/layout.py,
+        """A bearing between the journal marker ``inner`` (on a spinning body) and the bore marker
+        ``outer``: its model's kernel tag (bearing/models.py ``tag``; one model for all of a
+        system's bearings), parameter vector ``P`` and defect table ``D`` (bearing/layout.py,
         bearing/defects.py), its roller and cage states starting at ``y0``."""
         b = self.markers[inner][0]
         if b < 0 or not self.bodies[b].spin:
@@ -128,11 +130,15 @@ class System:
                                  "expected a marker on a spinning body (the wheelset)")
         if any(x[0] == name for x in self.bearings):
             raise ParameterError(f"bearing = {name!r} is not allowed: the name is taken")
+        if self.bearings and tag != self.bearing_tag:
+            raise ParameterError(f"bearing {name!r}: tag = {tag!r} is not allowed: the system's "
+                                 f"bearings are {self.bearing_tag!r}; expected one model for all")
         for x in self.bearings:     # the bearings run in parallel: each loads its own markers
             if {inner, outer} & {x[1], x[2]}:
                 raise ParameterError(f"bearing {name!r}: markers ({inner}, {outer}) are not "
                                      f"allowed: bearing {x[0]!r} uses ({x[1]}, {x[2]}); expected "
                                      "markers of its own")
+        self.bearing_tag = tag
         self.bearings.append((name, inner, outer, b, np.asarray(P, float),
                               np.asarray(D, float).reshape(-1, defects.WIDTH),
                               np.asarray(y0, float)))
@@ -239,29 +245,38 @@ class System:
         wtab, wpar = self.wheel_tables if self.wheel_tables is not None else (np.zeros((1, 1)), np.zeros(1))
         sens_names = list(self.sensors)
         sens = np.array([self.sensors[s] for s in sens_names], np.int64)
-        br_i, br_P, br_D, y0 = self._pack_bearings(y0)
+        B, y0 = self._pack_bearings(y0)
         S = Arrays(bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f,
-                   np.ascontiguousarray(wtab, float), np.ascontiguousarray(wpar, float), trk, wrk, sens,
-                   br_i, br_P, br_D)
-        return Model(self, S, y0, nq, sens_names, [w[0] for w in self.wheels])
+                   np.ascontiguousarray(wtab, float), np.ascontiguousarray(wpar, float), trk, wrk, sens)
+        return Model(self, S, y0, nq, sens_names, [w[0] for w in self.wheels], B)
 
     def _pack_bearings(self, y0):
-        """Bearing rows (mbs/kernel_bearings.py) and their states appended to ``y0``."""
-        from axlebox.bearing.layout import N_P
+        """The bearings (mbs/kernel_bearings.py ``Bearings``, with every array their kernels
+        write) and their states appended to ``y0``."""
+        from axlebox.bearing import implicit
+        from axlebox.bearing.evaluate import work
+        from axlebox.bearing.layout import CAGES, LOAD, N_Q, RING, ROWS, Z
+        from axlebox.bearing.quasidynamic import QD_WIDTH
 
-        from .kernel_bearings import BR_WIDTH
-        br_i = np.zeros((len(self.bearings), BR_WIDTH), np.int64)
-        br_P = np.zeros((max(len(self.bearings), 1), N_P))
+        from .kernel_bearings import BR_WIDTH, TH, Bearings, NoBearings
+        if not self.bearings:
+            return NoBearings(), y0
+        nbr = len(self.bearings)
+        idx = np.zeros((nbr, BR_WIDTH), np.int64)
         D_parts, off, d0 = [np.zeros((0, defects.WIDTH))], y0.size, 0
-        for k, (_, mi, mo, b, P, D, yb) in enumerate(self.bearings):
-            br_i[k] = (mi, mo, b, off, yb.size, d0, D.shape[0])
-            br_P[k] = P
+        for k, (_, mi, mo, b, _P, D, yb) in enumerate(self.bearings):
+            idx[k] = (mi, mo, b, off, yb.size, d0, D.shape[0])
             D_parts.append(D)
             off += yb.size
             d0 += D.shape[0]
+        P = np.stack([x[4] for x in self.bearings])
+        nz, ns = int(P[0, Z]), self.bearings[0][6].size
         y0 = np.concatenate([y0] + [x[6] for x in self.bearings])
-        br_D = np.concatenate(D_parts) if d0 else np.zeros((1, defects.WIDTH))
-        return br_i, br_P, br_D, y0
+        D = np.concatenate(D_parts) if d0 else np.zeros((1, defects.WIDTH))
+        z = np.zeros
+        return Bearings(self.bearing_tag, idx, P, D, z((nbr, ROWS, RING)), z((nbr, TH)),
+                        z((nbr, ROWS, LOAD)), z((nbr, ROWS, nz, N_Q)), z((nbr, CAGES)),
+                        work(nz, ns, QD_WIDTH, (nbr,)), implicit.scratch(nz, (nbr,))), y0
 
     def initial_marker_pose(self, m: int) -> tuple[np.ndarray, np.ndarray]:
         """Position and axes of marker ``m`` in the initial (undeformed) configuration."""
@@ -289,11 +304,14 @@ class System:
 
 
 class Model:
-    """Packed arrays (``S``), work arrays (``W``), the initial state ``y0`` and helpers."""
+    """Packed arrays (``S``), the bearings (``B``, mbs/kernel_bearings.py), work arrays (``W``),
+    the initial state ``y0`` and helpers."""
 
-    def __init__(self, system: System, S, y0, nq, sensors, wheels):
+    def __init__(self, system: System, S, y0, nq, sensors, wheels, B=None):
+        from .kernel_bearings import NoBearings
         self.system = system
         self.S = S
+        self.B = NoBearings() if B is None else B
         self.y0 = y0
         self.nq = nq
         self.sensor_names = sensors
@@ -322,7 +340,7 @@ class Model:
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         from .kernel_system import rhs
         dy = np.zeros_like(y)
-        rhs(float(t), np.ascontiguousarray(y, float), dy, self.S, self.W)
+        rhs(float(t), np.ascontiguousarray(y, float), dy, self.S, self.W, self.B)
         return dy
 
     def body_state(self, k: int, y: np.ndarray) -> dict:
@@ -348,13 +366,16 @@ class Model:
                 j = i - iv
                 what = ("vx", "vy", "vz", "wx", "wy", "wz")[j] if j < 6 else f"qd{j - 5}"
                 return f"body {b.name!r} ({what})"
+        from axlebox.bearing.layout import N_CAGE, N_ROLLER, ROWS
+
+        from .kernel_bearings import BR_N, BR_OFF
         for k, name in enumerate(self.bearing_names):
-            off, n = (int(x) for x in self.S.br_i[k, 3:5])
+            off, n = int(self.B.idx[k, BR_OFF]), int(self.B.idx[k, BR_N])
             if off <= i < off + n:
                 j = i - off
-                nr = n - 24
-                what = (f"row {j // (nr // 2) + 1}, roller {(j % (nr // 2)) // 12 + 1}" if j < nr
-                        else f"row {(j - nr) // 12 + 1} cage")
+                nr = n - ROWS * N_CAGE
+                what = (f"row {j // (nr // ROWS) + 1}, roller {(j % (nr // ROWS)) // N_ROLLER + 1}"
+                        if j < nr else f"row {(j - nr) // N_CAGE + 1} cage")
                 return f"bearing {name!r} ({what})"
         return f"state {i}"
 

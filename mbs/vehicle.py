@@ -125,9 +125,10 @@ def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None 
           bearings: dict | None = None) -> System:
     """The car as a :class:`~axlebox.mbs.system.System` (not yet in equilibrium: see mbs.statics).
 
-    ``bearings``: ``(k, side) -> (P, D, y0)`` (kernel parameters, defect table, roller and cage
-    states) puts a DTRB between wheelset k's journal and its axle-box on that side instead of
-    the row bushings (:func:`axlebox.pipelines.simulate.build_model` makes them)."""
+    ``bearings``: ``(k, side) -> (tag, P, D, y0)`` (the model's kernel tag, parameters, defect
+    table, roller and cage states) puts a bearing between wheelset k's journal and its axle-box
+    on that side instead of the row bushings (:func:`axlebox.pipelines.simulate.build_model`
+    makes them)."""
     V = cfg["run"]["speed_kmh"] / 3.6
     geo, prim, sec, gb, jt = cfg["geometry"], cfg["primary"], cfg["secondary"], cfg["gearbox"], cfg["joint"]
     r0 = cfg["wheelset"]["r0"]

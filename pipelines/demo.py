@@ -29,13 +29,14 @@ DURATION = 1.6          # s of the validation case: decisive (tests/test_validat
 def min_duration() -> float:
     """The shortest validation run the diagnosis takes, rounded up to 10 ms: the track's fade-in,
     then two periods of the cage (FTF) line, the lowest it resolves (1.41 s at 48 km/h)."""
-    from axlebox.bearing.frequencies import orders, shaft_hz
+    from axlebox.bearing import models
+    from axlebox.bearing.frequencies import shaft_hz
     from axlebox.mbs import config as vconfig
-    from axlebox.mbs import dtrb
 
     from .readers import TRACK_FADE_IN_S
     cfg, _ = vconfig.load(configs.path("validation_48kmh"))
-    ftf = orders(dtrb.params(cfg)).FTF * shaft_hz(cfg["run"]["speed_kmh"], cfg["wheelset"]["r0"])
+    ftf = models.orders(vconfig.bearing_params(cfg)).FTF * shaft_hz(cfg["run"]["speed_kmh"],
+                                                                    cfg["wheelset"]["r0"])
     return math.ceil(100 * (TRACK_FADE_IN_S + 2.0 / ftf)) / 100
 
 

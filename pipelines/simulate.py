@@ -32,7 +32,8 @@ from axlebox.bearing import resultfile
 from axlebox.fem import bodyfile
 from axlebox.mbs import comfort
 from axlebox.mbs import config as vconfig
-from axlebox.mbs import dtrb, integrate, roughness, statics, track, vehicle, wheel_defects
+from axlebox.mbs import bearings as car_bearings
+from axlebox.mbs import integrate, roughness, statics, track, vehicle, wheel_defects
 from axlebox.mbs.wheelrail import element_kernel as ek
 from axlebox.mbs.wheelrail.element import WheelRailParams, build_tables
 from axlebox.mbs.wheelrail.geometry import TrackLayout
@@ -153,25 +154,25 @@ def _car(cfg, tabs, trk, red, bearings=None):
 
 
 def build_model(cfg: dict, log=print):
-    """Vehicle model in static equilibrium: (model, y0).  With ``joint.model = "dtrb"`` the
-    equilibrium is found with row bushings first, then the eight bearings are put in their own
-    (mbs/dtrb.py)."""
+    """Vehicle model in static equilibrium: (model, y0).  With ``joint.model = "bearing"`` the
+    equilibrium is found with row bushings first, then the bearings are put in their own
+    (mbs/bearings.py)."""
     red = reduced_bodies(cfg, log)
     tabs, trk = tables(cfg), track_record(cfg)
     model = _car(cfg, tabs, trk, red)
     log(f"vehicle: {len(model.bodies)} bodies, {model.n_states} states, flexible: "
         + ", ".join(f"{b.name} ({b.n_modes} modes)" for b in model.bodies if b.n_modes))
     y0 = statics.equilibrium(model, log=log)
-    if cfg["joint"]["model"] != "dtrb":
+    if not vconfig.has_bearings(cfg):
         return model, y0
     ws = model.body_state(model.system.index("ws1"), y0)
-    loads = {key: F for key, F in dtrb.joint_loads(model, y0).items()
+    loads = {key: F for key, F in car_bearings.joint_loads(model, y0).items()
              if key[0] in cfg["joint"]["wheelsets"]}        # the rest stay on row bushings
-    starts = dtrb.start(cfg, loads, float(ws["omega"][1]), log)
-    model = _car(cfg, tabs, trk, red, bearings={k: v[:3] for k, v in starts.items()})
-    y0 = dtrb.place_axleboxes(model, y0, starts)
+    starts = car_bearings.start(cfg, loads, float(ws["omega"][1]), log)
+    model = _car(cfg, tabs, trk, red, bearings={k: v[:4] for k, v in starts.items()})
+    y0 = car_bearings.place_axleboxes(model, y0, starts)
     if cfg["coupling"]["hold"] == "jacobian":
-        model.bearing_stiffness = dtrb.stiffness(cfg, loads, model.bearing_names)
+        model.bearing_stiffness = car_bearings.stiffness(cfg, loads, model.bearing_names)
     log(f"coupled: {model.n_states} states ({model.n_states - model.n_body_states} in "
         f"{len(model.bearing_names)} bearings)")
     return model, y0

@@ -1,5 +1,6 @@
-"""The eight axle-box DTRBs of the car: their kernel parameters, defect tables and a start in
-equilibrium, for :func:`axlebox.mbs.vehicle.build` (``joint.model = "dtrb"``).
+"""The car's axle-box bearings, any model of bearing/models.py (``[bearing] type``): their
+kernel parameters, defect tables and a start in equilibrium, for
+:func:`axlebox.mbs.vehicle.build` (``joint.model = "bearing"``).
 
 The start: the car is first put in equilibrium with stiff row bushings in place of the bearings
 (:mod:`axlebox.mbs.statics`; the bearings' roller states would make that Newton solve forty times
@@ -11,7 +12,7 @@ The row bushings leave the rings free to tilt against each other; the bearings d
 front (flexible) wheelsets start with the axle's bending tilt and a load transient of about
 15 % in the first milliseconds.
 
-Rows: the kernel's row 1 lies at -y of the bearing centre, row 2 at +y (bearing/kernel.py),
+Rows: the kernel's row 1 lies at -y of the bearing centre, row 2 at +y (bearing/roller.py),
 and the bearing frame here is the track frame.  A defect's ``row`` counts from the inboard row
 (1) to the outboard row (2) (bearing/defects.py): on the left (+y) bearings that is the
 kernel's numbering, on the right ones it is mirrored.
@@ -23,19 +24,22 @@ import dataclasses
 import numpy as np
 
 from axlebox.bearing import defects as bdefects
+from axlebox.bearing import models
 from axlebox.bearing.equilibrium import static_state
-from axlebox.bearing.layout import pack
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.layout import F_X, F_Z
 
+from .kernel_bearings import BR_MIN, BR_MOUT
 from .kernel_markers import MK_BODY
+from .kernel_body import BI_POS
 from .vehicle import SIDES
 
 
-def params(cfg: dict) -> BearingParams:
-    return BearingParams(**cfg["bearing"])
+def params(cfg: dict):
+    """The bearings' parameters of a validated config (bearing/models.py ``from_table``)."""
+    return models.from_table(cfg["bearing"])
 
 
-def defect_table(cfg: dict, k: int, side: str, p: BearingParams) -> np.ndarray:
+def defect_table(cfg: dict, k: int, side: str, p) -> np.ndarray:
     """Defect table of the bearing of wheelset ``k`` on ``side`` (rows mirrored on the right)."""
     mine = [e["defect"] for e in cfg["defects"] if e["wheelset"] == k and e["side"] == side]
     if side == "R":
@@ -53,15 +57,17 @@ def joint_loads(model, y) -> dict:
     for k in range(1, 5):
         for side, _ in SIDES:
             rows = [names.index(f"joint{k}{side}_{r}") for r in ("row1", "row2")]
-            loads[(k, side)] = out[rows, :3].sum(axis=0)       # on the journal marker (m2)
+            loads[(k, side)] = out[rows, F_X:F_Z + 1].sum(axis=0)     # on the journal marker (m2)
     return loads
 
 
 def start(cfg: dict, loads: dict, omega_w: float, log=print) -> dict:
-    """``(k, side) -> (P, D, y0, u_o)``: each bearing's kernel arrays, its equilibrium roller and
-    cage states under ``loads`` and the outer ring's displacement from the inner ring's centre."""
+    """``(k, side) -> (tag, P, D, y0, u_o)``: each bearing's kernel tag and arrays, its
+    equilibrium roller and cage states under ``loads`` and the outer ring's displacement from
+    the inner ring's centre."""
     p = params(cfg)
-    P = pack(p)
+    P = models.pack(p)
+    tag = models.tag(p)
     out = {}
     for key, F in loads.items():
         D = defect_table(cfg, *key, p)
@@ -72,29 +78,18 @@ def start(cfg: dict, loads: dict, omega_w: float, log=print) -> dict:
         # track's fade-in; 80 km/h on the ballasted track stalled at 5.7 N, 1.0e-4 of the load)
         yb, uo = static_state(p, P, np.zeros((0, bdefects.WIDTH)), F, omega_w, tol=1e-6,
                               roller_tol=2e-4, phase=bdefects.phase_clear_of(D, p.Z))
-        out[key] = (P, D, yb, np.asarray(uo, float))
-    log(f"bearings: {len(out)} DTRBs in equilibrium, outer-ring loads "
+        out[key] = (tag, P, D, yb, np.asarray(uo, float))
+    log(f"bearings: {len(out)} {models.name(p).upper()}s in equilibrium, outer-ring loads "
         f"{min(-F[2] for F in loads.values()) / 1e3:.1f}-{max(-F[2] for F in loads.values()) / 1e3:.1f} kN")
     return out
 
 
 def stiffness(cfg: dict, loads: dict, names) -> np.ndarray:
     """Each named bearing's tangent stiffness (n, 3) along x, y (axial), z (N/m) at its static
-    load, from the quasi-static model (bearing/quasistatic.py): the load moved by 1 % of its
-    size along each axis over the inner ring's displacement that follows.  The interface
-    Jacobian of a co-simulation's "jacobian" hold (mbs/exchange.py)."""
-    from axlebox.bearing import quasistatic
+    load (its model's ``ring_stiffness``): the interface Jacobian of a co-simulation's
+    "jacobian" hold (mbs/exchange.py)."""
     p = params(cfg)
-    out = np.zeros((len(names), 3))
-    for i, name in enumerate(names):
-        F = np.asarray(loads[_key(name)][:3], float)
-        q0 = quasistatic.solve(p, F).q
-        dF = 0.01 * np.linalg.norm(F)
-        for a in range(3):
-            F1 = F.copy()
-            F1[a] += dF
-            out[i, a] = dF / (quasistatic.solve(p, F1).q[a] - q0[a])
-    return out
+    return np.array([models.ring_stiffness(p, loads[_key(name)]) for name in names]).reshape(-1, 3)
 
 
 def place_axleboxes(model, y, start_states: dict) -> np.ndarray:
@@ -102,17 +97,17 @@ def place_axleboxes(model, y, start_states: dict) -> np.ndarray:
     sits at the bearing's equilibrium displacement from the journal marker, followed by the
     bearings' roller and cage states."""
     nb = model.n_body_states
-    y = np.concatenate([np.asarray(y, float)[:nb]] + [start_states[_key(n)][2] for n in model.bearing_names])
+    y = np.concatenate([np.asarray(y, float)[:nb]] + [start_states[_key(n)][3] for n in model.bearing_names])
     model.rhs(0.0, y)
     mkp = model.W.mkp
-    br_i = model.S.br_i
+    idx = model.B.idx
     bi = model.S.bi
     mk_i = model.S.mk_i
     for k, name in enumerate(model.bearing_names):
-        mi, mo = int(br_i[k, 0]), int(br_i[k, 1])
-        d = start_states[_key(name)][3] - (mkp[mo] - mkp[mi])
+        mi, mo = int(idx[k, BR_MIN]), int(idx[k, BR_MOUT])
+        d = start_states[_key(name)][4] - (mkp[mo] - mkp[mi])
         b = int(mk_i[mo, MK_BODY])
-        y[bi[b, 0]:bi[b, 0] + 3] += d
+        y[bi[b, BI_POS]:bi[b, BI_POS] + 3] += d        # its centre: the first three positions
     return y
 
 
