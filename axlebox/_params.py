@@ -21,11 +21,21 @@ def param(default: float, lo: float, hi: float, unit: str = "m", doc: str = ""):
                              metadata={"range": (lo, hi), "unit": unit, "doc": doc})
 
 
+def choice(default: str, choices, doc: str = ""):
+    """A dataclass field that takes one of ``choices`` (strings), declared once with them."""
+    return dataclasses.field(default=default, metadata={"choices": tuple(choices), "doc": doc})
+
+
 def check_ranges(obj) -> None:
-    """Refuse any field whose value is not finite or lies outside its range."""
+    """Refuse any field whose value is not finite or lies outside its range, or is not one of
+    its choices."""
     name = type(obj).__name__
     for f in dataclasses.fields(obj):
         value = getattr(obj, f.name)
+        options = f.metadata.get("choices")
+        if options is not None and (not isinstance(value, str) or value not in options):
+            raise ParameterError(f"{name}.{f.name} = {value!r} is not allowed: expected one of "
+                                 f"{', '.join(options)}")
         rng = f.metadata.get("range")
         if rng is None:
             continue

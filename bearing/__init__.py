@@ -1,16 +1,21 @@
-"""Double-row tapered roller bearing (DTRB) of the axle-box (the paper's Eqs. 1-16: W. Zhao,
-J. Ding, X. Liao, W. Liu, "Investigation on coaxial pseudo-fault characteristics induced by the
-outer ring defect in the single-sided axle-box bearing of wheelset in urban rail vehicles",
-Scientific Reports (2025), doi:10.1038/s41598-025-93857-x).
+"""Axle-box roller bearings: the paper's double-row tapered roller bearing (DTRB; Eqs. 1-16:
+W. Zhao, J. Ding, X. Liao, W. Liu, "Investigation on coaxial pseudo-fault characteristics induced
+by the outer ring defect in the single-sided axle-box bearing of wheelset in urban rail vehicles",
+Scientific Reports (2025), doi:10.1038/s41598-025-93857-x) and the models beside it.
 
-* :mod:`.params` parameters; :mod:`.stiffness` contact stiffnesses (Eqs. 5-11);
-  :mod:`.frequencies` fault frequencies; :mod:`.loaddist` Harris load integrals;
-  :mod:`.quasistatic` series-spring ring equilibrium.
-* :mod:`.layout` the plain arrays; :mod:`.kernel` the numba right-hand side of rollers and cages
-  (Eqs. 1-13, 15, 16) and :mod:`.kernel_numpy` its plain-numpy twin; :mod:`.defects` Eq. (14).
-* :mod:`.equilibrium` the quasi-static start of the dynamic model; :mod:`.integrate` and
-  :mod:`.rig` the standalone rig; :mod:`.resultfile` the ``axlebox-result`` file;
-  :mod:`.spectra` the envelope spectrum.
-"""
+* :mod:`.models` the list of models and the one point where the kernels pick one; :mod:`.dtrb`
+  the DTRB (its parameters :mod:`.params`), with :mod:`.stiffness` contact stiffnesses (Eqs.
+  5-11), :mod:`.quasistatic` series-spring ring equilibrium.
+* The shared parts, plain arrays read by name (:mod:`.layout`): :mod:`.roller` a roller's and a
+  cage's kinematics and Newton-Euler equations (Eqs. 2, 12, 13); :mod:`axlebox.bearing.contact`
+  the contact laws (Eqs. 4, 9); :mod:`.pocket` the cage pockets (Eqs. 9-11); :mod:`.defects` Eq.
+  (14); :mod:`.blocks` the implicit steps' rows; :mod:`.evaluate` one bearing's right-hand side
+  (Eqs. 1-16); :mod:`.kernel_numpy` the DTRB's plain-numpy twin.
+* Stepping: :mod:`.step` the dynamic bearing's leapfrog and :mod:`.implicit` its implicit kick;
+  :mod:`.quasidynamic` the quasi-dynamic bearing; :mod:`.advance` the exchange window.
+* :mod:`.equilibrium` the quasi-static start; :mod:`.integrate` and :mod:`.rig` the standalone
+  rig; :mod:`.frequencies`, :mod:`.catalogue` fault orders; :mod:`.loaddist` Harris load
+  integrals; :mod:`.resultfile` the ``axlebox-result`` file; :mod:`.spectra` the envelope
+  spectrum."""
 from axlebox import _numba  # noqa: F401  (before any kernel compiles or loads)
 

@@ -30,8 +30,9 @@ def roller_grad(n, r, fr):
 def cage_grad(n, rel):
     """The same gradient in the cage's rates, for a contact at ``rel`` from the cage's centre
     (the cage side of the contact, hence the sign)."""
-    m = cross(rel, n)
-    return (-n[0], -n[1], -n[2], -m[0], -m[2], -m[1])
+    nx, ny, nz = n
+    mx, my, mz = cross(rel, n)
+    return (-nx, -ny, -nz, -mx, -mz, -my)
 
 
 @kernel
@@ -69,8 +70,10 @@ def rows(blk, cblk, flag, jk, c, Jr, Jc, cage):
 
 @kernel
 def _add6(a, b, sb):
-    return (a[0] + sb * b[0], a[1] + sb * b[1], a[2] + sb * b[2], a[3] + sb * b[3],
-            a[4] + sb * b[4], a[5] + sb * b[5])
+    """``a + sb b`` of two 6-tuples."""
+    a0, a1, a2, a3, a4, a5 = a
+    b0, b1, b2, b3, b4, b5 = b
+    return (a0 + sb * b0, a1 + sb * b1, a2 + sb * b2, a3 + sb * b3, a4 + sb * b4, a5 + sb * b5)
 
 
 @kernel
@@ -88,8 +91,8 @@ def tilt_rows(blk, cblk, flag, jk, kdk, kkk, Jd, Jk, Jdc, Jkc, cage):
 
 @kernel
 def friction_rows(blk, cblk, flag, jk, cf, t1, n, r, fr, rel, cage):
-    """The friction's secant damping ``cf`` (:func:`.contact.slip_damping`) in the contact plane
-    spanned by the unit ``t1`` and ``t1 x n``, for the implicit kick: the regularised friction is
+    """The friction's secant damping ``cf`` (:func:`axlebox.bearing.contact.slip_damping`) in the
+    contact plane spanned by the unit ``t1`` and ``t1 x n``, for the implicit kick: the regularised friction is
     stiff in the slip (the roller spin's eigenvalue near -1.3e5 1/s holds an explicit step under
     1.5e-5 s)."""
     for t in (t1, cross(t1, n)):
@@ -102,3 +105,23 @@ def tilt_grad(sign):
     rates."""
     return (0.0, 0.0, 0.0, sign, 0.0, 0.0)
 
+
+
+def dense(w, Z_: int):
+    """The blocks of an evaluation (bearing/evaluate.py ``Work``) as one array ``(2, Z + 1, 6,
+    12)``: ``[j, k, :, :6]`` roller k's own, ``[j, k, :, 6:]`` its coupling to the cage of row
+    j, ``[j, Z, :, :6]`` that cage's own (zero where an evaluation wrote nothing), for tests and
+    analysis (the kernels read the blocks where they lie)."""
+    import numpy as np
+
+    from .layout import ROWS
+    G = np.zeros((ROWS, Z_ + 1, 6, 12))
+    for j in range(ROWS):
+        for k in range(Z_):
+            jk = j * Z_ + k
+            if w.flag[jk] != BLK_NONE:
+                G[j, k, :, :BLK_CAGE] = w.blk[jk, :, BLK_ROLLER:BLK_ROLLER + 6]
+            if w.flag[jk] == BLK_COUPLED:
+                G[j, k, :, BLK_CAGE:] = w.blk[jk, :, BLK_CAGE:BLK_CAGE + 6]
+        G[j, Z_, :, :BLK_CAGE] = w.cblk[j]
+    return G

@@ -22,8 +22,8 @@ from functools import cache
 
 from axlebox._params import ParameterError
 
-from .frequencies import FaultOrders, orders
-from .params import BearingParams
+from . import models
+from .frequencies import FaultOrders
 
 
 @dataclass(frozen=True)
@@ -45,13 +45,23 @@ _CWRU = ("CWRU Bearing Data Center, 'Bearing information' (Smith and Randall, MS
          "Table 2)")
 
 
+def of(p, source: str = "") -> Bearing:
+    """The :class:`Bearing` of a bearing model's parameters ``p`` (bearing/models.py): its fault
+    orders from its geometry and its bore."""
+    name = models.name(p)
+    return Bearing(name, models.orders(p), models.bore(p),
+                   source or f"axlebox's {name.upper()} ({models.module(p).__name__}), orders from "
+                             "its geometry")
+
+
 @cache
 def catalogue() -> dict[str, Bearing]:
-    """``{name: Bearing}`` of every bearing known by name."""
+    """``{name: Bearing}`` of every bearing known by name: each model of bearing/models.py with
+    its default parameters, and the test rig's bearings."""
     return {
-        "dtrb": Bearing("dtrb", orders(BearingParams()), 0.130,
-                        "axlebox's DTRB (bearing/params.py: Z = 20 a row, the assumed 130 x 230 x "
-                        "160 mm unit), orders from its geometry"),
+        **{name: of(m.Params(), f"axlebox's {name.upper()} ({m.SUMMARY}; {m.DEFAULTS}), orders "
+                                "from its geometry")
+           for name, m in models.MODELS.items()},
         "6205": Bearing("6205", FaultOrders(FTF=0.39828, BPFO=3.5848, BPFI=5.4152,
                                             BSF=4.7135 / 2), 0.025, "SKF 6205-2RS JEM, " + _CWRU),
         "6203": Bearing("6203", FaultOrders(FTF=0.3817, BPFO=3.0530, BPFI=4.9469,

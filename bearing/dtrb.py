@@ -20,7 +20,7 @@ What the paper's equations become here (one vector form for both rows and both r
   roller, and the tilt restoring moment the paper's Eq. (12d) lacks (slicing, done exactly).
 * Eq. (4b), (8): rib point contact ``K_a delta^(3/2)`` at height h_r on the large end.
 * Friction (the paper's "conventional friction model", f = mu Q): regularised Coulomb
-  (:func:`.contact.friction`); damping by :func:`.contact.normal`.
+  (:func:`axlebox.bearing.contact.friction`); damping by :func:`axlebox.bearing.contact.normal`.
 
 Parameter vector: the shared slots (:mod:`.layout`, ``Z .. N_COMMON - 1``), then ``L_E`` the
 effective contact length (Eq. 6), the cosines and sines of the cup, cone and rib angles,
@@ -44,10 +44,14 @@ from .layout import (C_INNER, C_INNER_RIB, C_OUTER, INNER_RING, L_B, M_R, N_COMM
                      Q_I, Q_O, R_B, V_S)
 from .params import BearingParams
 from .stiffness import contacts as stiffnesses
-from .vec import ZERO, ZERO6, EY, add, cross, dot, lin, mul, sub
+from .vec import AX, AZ, EY, ZERO, ZERO6, add, cross, dot, lin, mul, sub
 
 NAME = "dtrb"
 Params = BearingParams
+SUMMARY = ("the double-row tapered roller bearing of the paper (Zhao et al., Sci. Rep. 2025), "
+           "rollers and cages with six degrees of freedom")
+DEFAULTS = ("Defaults: the paper's Z = 20 rollers a row and an assumed 130 x 230 x 160 mm unit; "
+            "each field's source in bearing/params.py.")
 BORE = 0.130            # m: the assumed 130 x 230 x 160 mm unit (bearing/params.py)
 # s: the explicit steps' limits on the rollers' tilt mode between the raceways (22.6 kHz,
 # damping ratio 0.12): RK4's w h <= 2.8; the leapfrog's 2 (sqrt(1 + z^2) - z) = 1.77 less a
@@ -109,7 +113,7 @@ def guess(p, F_outer):
     e = quasistatic.solve(p, -np.asarray(F_outer, float), (0.0, 0.0))
     d = np.clip(e.delta, 0.0, None)
     s = np.array([1.0, -1.0])[:, None]
-    return -e.q[:3], -0.5 * d * cos(p.alpha_o), -0.5 * d * s * sin(p.alpha_o)
+    return -e.q[quasistatic.QX:quasistatic.QZ + 1], -0.5 * d * cos(p.alpha_o), -0.5 * d * s * sin(p.alpha_o)
 
 
 def ring_stiffness(p, F):
@@ -117,7 +121,7 @@ def ring_stiffness(p, F):
     from the quasi-static model (bearing/quasistatic.py): the load moved by 1 % of its size
     along each axis over the displacement that follows."""
     from . import quasistatic
-    F = np.asarray(F, float)[:3]
+    F = np.asarray(F, float)[AX:AZ + 1]
     q0 = quasistatic.solve(p, F).q
     dF = 0.01 * np.linalg.norm(F)
     out = np.zeros(3)
@@ -231,7 +235,7 @@ def _rib(rec, blk, cblk, flag, jk, fr, rings, P, want, h_k):
 @kernel
 def line_with_defect(d0, kap, h, s1, s2, Le, stiff):
     """A raceway line contact's integrals (and, when ``stiff``, its tangent stiffness over
-    ``K / L``, :func:`.contact.line_stiffness`), with a defect of depth h over ``[s1, s2]`` of
+    ``K / L``, :func:`axlebox.bearing.contact.line_stiffness`), with a defect of depth h over ``[s1, s2]`` of
     the line where ``h > 0`` (Eq. 14)."""
     kdd, kdk, kkk = 0.0, 0.0, 0.0
     if not h > 0.0:

@@ -42,7 +42,8 @@ def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol
     uo0, rol[:, :, RHO], rol[:, :, ETA] = models.module(p).guess(p, F_outer)
     cols = (RHO, ETA, TH_T)
     steps = np.array([1e-12, 1e-12, 1e-10])              # m, m, rad: below barely-touching rollers
-    weights = np.array([p.M_r, p.M_r, p.J_r[1]])         # accelerations -> forces, moment
+    _, J_rd = p.J_r
+    weights = np.array([p.M_r, p.M_r, J_rd])             # accelerations -> forces, moment
     Fs = max(Fn, 1.0)
 
     out = {}
@@ -50,14 +51,19 @@ def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol
     def roller_residual(uo):
         yd, F, Q, _ = rates(model, 0.0, y, ring_motion(omega_w, uo), P, D)
         out["Q"] = Q
-        acc = views(yd, p.Z)[0]
+        acc, _ = views(yd, p.Z)
         return (np.stack([acc[:, :, RATE + c] for c in cols], axis=-1) * weights,
                 F[OUTER, F_X:F_Z + 1].copy())
 
     def norm(r):
-        return np.sqrt(r[..., 0] ** 2 + r[..., 1] ** 2 + (r[..., 2] / p.L_b) ** 2)
+        f_rho, f_eta, m_tht = np.moveaxis(r, -1, 0)        # the columns of ``cols``
+        return np.sqrt(f_rho ** 2 + f_eta ** 2 + (m_tht / p.L_b) ** 2)
 
-    nominal = views(models.nominal_state(p, omega_w), p.Z)[0]
+    def residual(uo):
+        r, _ = roller_residual(uo)
+        return r
+
+    nominal, _ = views(models.nominal_state(p, omega_w), p.Z)
     nominal[:, :, PHI] += phase
 
     def solve_rollers(uo):
@@ -77,17 +83,17 @@ def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol
             J = np.empty(r.shape + (3,))
             for a, c in enumerate(cols):
                 rol[:, :, c] += steps[a]
-                J[..., a] = (roller_residual(uo)[0] - r) / steps[a]
+                J[..., a] = (residual(uo) - r) / steps[a]
                 rol[:, :, c] -= steps[a]
             J[free] = np.eye(3)
-            dx = -np.linalg.solve(J, r[..., None])[..., 0]
+            dx = -np.squeeze(np.linalg.solve(J, r[..., None]), axis=-1)
             dx[free] = 0.0
             x0 = np.stack([rol[:, :, c] for c in cols], axis=-1)
             t = np.ones(r0.shape)
             for _ in range(40):                      # halve each roller's step until it helps
                 for a, c in enumerate(cols):
                     rol[:, :, c] = x0[..., a] + t * dx[..., a]
-                worse = (norm(roller_residual(uo)[0]) > (1 - 1e-4 * t) * r0) & (r0 > 0)
+                worse = (norm(residual(uo)) > (1 - 1e-4 * t) * r0) & (r0 > 0)
                 if not worse.any():
                     break
                 t[worse] *= 0.5

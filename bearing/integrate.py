@@ -60,7 +60,7 @@ def _outer_ring(F, Y, nb, rig, q):
 def _rig_rhs(tag, t, Y, P, D, rig, ring, dY, F, Qc, w):
     nb = Y.shape[0] - RIG
     _rings(t, Y, nb, rig, ring)
-    evaluate(model, t, Y[:nb], ring, P, D, dY[:nb], F, Qc, w, False, 0.0)
+    evaluate(tag, t, Y[:nb], ring, P, D, dY[:nb], F, Qc, w, False, 0.0)
     for q in range(3):
         dY[nb + RIG_U + q] = Y[nb + RIG_V + q]
         dY[nb + RIG_V + q] = _outer_ring(F, Y, nb, rig, q)

@@ -1,5 +1,6 @@
-"""Plain-numpy twin of axlebox.bearing.kernel (same equations, vectorised over rollers): the baseline for
-benchmarks/bearing.py and a cross-check of the numba kernel.
+"""Plain-numpy twin of the DTRB's numba right-hand side (bearing/evaluate.py with bearing/dtrb.py:
+the same equations, vectorised over rollers): the baseline for benchmarks/bearing.py and a
+cross-check of the numba kernels.
 
 Vectors are arrays ``(3, ...)``: the component first, then the (row, roller) axes, so that
 ``k * a`` with ``k (2, Z)`` scales a vector field and ring or cage vectors ``(3, 1, 1)`` /
@@ -9,10 +10,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from .layout import (BETA, C_O, C_RULE, CAC, CAF, CAI, CAM, CAO, GX, GY, GZ, H_R, J_CD, J_CP, J_RA,
-                     J_RD, K_A, K_CR, K_I, K_O, KINEMATIC, L_B, L_E, LAW, M_C, M_R, MU_A, MU_C,
-                     MU_R, N_CAGE, N_ROLLER, R_B, R_M, RATIO, ROW, S_P, S_PA, SAC, SAF, SAI, SAM,
-                     SAO, V_S, ZETA, Z)
+from .dtrb import C_O, CAF, CAI, CAO, H_R, K_A, K_I, K_O, L_E, MU_A, MU_R, SAF, SAI, SAO
+from .layout import (BETA, CAC, CAM, CPHI, CTX, CTZ, CX, C_RULE, D_DEPTH, D_EDGE, D_KIND, D_RADIUS, D_RHO,
+                     D_ROLLER, D_ROW, D_S1, D_S2, D_START, D_TAU, EQ2_CAGE, ETA, FREE_CAGE, G_X, G_Y, G_Z,
+                     INNER, INNER_RING, J_CD, J_CP, J_RA, J_RD, KINEMATIC, K_CR, LAW, LOAD, L_B, MU_C, M_C,
+                     M_R, N_CAGE, N_Q, N_ROLLER, OUTER, OUTER_RING, PHI, POCKET_CAGE, PSI, Q_A, Q_CR1,
+                     Q_CR2, Q_I, Q_O, Q_SIDE, RATE, RATIO, RHO, ROLLER_SURFACE, ROW, ROWS, R_B, R_M, SAC,
+                     SAM, S_P, S_PA, TH_S, TH_T, TH_X, TH_Y, TH_Z, U_X, U_Z, V_S, V_X, V_Z, W_X, W_Y, W_Z,
+                     Z, ZETA)
+from .vec import AX, AY, AZ
 
 N_LINE = 10.0 / 9.0
 N_POINT = 1.5
@@ -21,12 +27,12 @@ EY = np.array([0.0, 1.0, 0.0]).reshape(3, 1, 1)
 
 
 def _dot(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    return a[AX] * b[AX] + a[AY] * b[AY] + a[AZ] * b[AZ]
 
 
 def _cross(a, b):
-    return np.stack(np.broadcast_arrays(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                                        a[0] * b[1] - a[1] * b[0]))
+    return np.stack(np.broadcast_arrays(a[AY] * b[AZ] - a[AZ] * b[AY], a[AZ] * b[AX] - a[AX] * b[AZ],
+                                        a[AX] * b[AY] - a[AY] * b[AX]))
 
 
 def _vec(x, y, z):
@@ -35,7 +41,7 @@ def _vec(x, y, z):
 
 
 def line_integrals_numpy(d0, kap, a, b, n):
-    """Vectorised :func:`bearing.kernel.line_integrals`: ``(int u^n ds, int s u^n ds)`` over
+    """Vectorised :func:`axlebox.bearing.contact.line_integrals`: ``(int u^n ds, int s u^n ds)`` over
     ``[a, b]``, ``u = max(d0 + kap s, 0)``, with the same Taylor / closed-form branches."""
     d0, kap, a, b = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (d0, kap, a, b)))
     h = b - a
@@ -63,7 +69,7 @@ def line_integrals_numpy(d0, kap, a, b, n):
 
 def _normal(q_el, K, n, ddot, m, P, dmax):
     """Normal force from the elastic part ``q_el``, the approach rate ``ddot`` and the largest
-    compression ``dmax`` (see kernel._normal)."""
+    compression ``dmax`` (see contact.normal)."""
     on = q_el > 0.0
     k = n * np.where(on, q_el / np.where(on, dmax, 1.0), 0.0)      # tangent stiffness
     if P[LAW] == 0.0:
@@ -76,7 +82,7 @@ def _normal(q_el, K, n, ddot, m, P, dmax):
 
 
 def _line_contact(i0, i1, K, L, d0, kap, ddot, m, mu, vrel, nrm, P):
-    """Normal force, elastic couple and friction of a line contact (see kernel._line_contact)."""
+    """Normal force, elastic couple and friction of a line contact (see contact.line_load)."""
     Q = _normal(K / L * i0, K, N_LINE, ddot, m, P, d0 + 0.5 * L * np.abs(kap))
     return Q, np.where(Q > 0.0, K / L * i1, 0.0), _friction(vrel, nrm, mu * Q, P[V_S])
 
@@ -92,49 +98,50 @@ def _defect(D, kind, phi, theta):
     on each roller's row, turning with its ring (rotation ``theta``)."""
     h, s1, s2 = np.zeros_like(phi), np.zeros_like(phi), np.zeros_like(phi)
     found = np.zeros(phi.shape, dtype=bool)
-    row = np.arange(2)[:, None]
-    for d in range(D.shape[0]):
-        if D[d, 0] != kind:
+    row = np.arange(ROWS)[:, None]
+    for d in D:
+        if d[D_KIND] != kind:
             continue
-        x = np.mod(phi - theta - D[d, 2], TWO_PI)
-        tau = D[d, 3]
-        hit = ~found & (row == D[d, 1]) & (x < tau)
-        if D[d, 8] == 0.0:                           # Eq. (14)'s half-sine
-            depth = D[d, 4] * np.sin(np.pi * x / tau)
+        x = np.mod(phi - theta - d[D_START], TWO_PI)
+        tau = d[D_TAU]
+        hit = ~found & (row == d[D_ROW]) & (x < tau)
+        if d[D_RHO] == 0.0:                          # Eq. (14)'s half-sine
+            depth = d[D_DEPTH] * np.sin(np.pi * x / tau)
         else:                                        # over the rounded edges (bearing/defects.py)
-            rho = D[d, 8]
-            e = np.maximum(np.minimum(x, tau - x) * D[d, 10] - D[d, 9], 0.0)
-            depth = np.minimum(D[d, 4], e * e / (rho + np.sqrt(np.maximum(rho * rho - e * e, 0.0))))
+            rho = d[D_RHO]
+            e = np.maximum(np.minimum(x, tau - x) * d[D_RADIUS] - d[D_EDGE], 0.0)
+            depth = np.minimum(d[D_DEPTH], e * e / (rho + np.sqrt(np.maximum(rho * rho - e * e, 0.0))))
         h = np.where(hit, depth, h)
-        s1 = np.where(hit, D[d, 5], s1)
-        s2 = np.where(hit, D[d, 6], s2)
+        s1 = np.where(hit, d[D_S1], s1)
+        s2 = np.where(hit, d[D_S2], s2)
         found |= hit
     return h, s1, s2
 
 
 def _roller_defect(D, psi):
-    """``(h_cup, h_cone, s1, s2)`` per roller from the table's roller defects (kind 2), turning
-    with each roller's spin angle psi (see kernel._roller_defect)."""
+    """``(h_cup, h_cone, s1, s2)`` per roller from the table's roller defects, turning with each
+    roller's spin angle psi (see defects.roller_depths)."""
     ho, hi, s1, s2 = (np.zeros_like(psi) for _ in range(4))
-    row = np.arange(2)[:, None]
+    row = np.arange(ROWS)[:, None]
     k = np.arange(psi.shape[1])[None, :]
-    for d in range(D.shape[0]):
-        if D[d, 0] != 2.0:
+    for d in D:
+        if d[D_KIND] != ROLLER_SURFACE:
             continue
-        on = (row == D[d, 1]) & (k == D[d, 7])
-        tau = D[d, 3]
-        xo = np.mod(psi - D[d, 2], TWO_PI)
-        xi = np.mod(psi + np.pi - D[d, 2], TWO_PI)
-        ho = np.where(on & (xo < tau), D[d, 4] * np.sin(np.pi * xo / tau), ho)
-        hi = np.where(on & (xi < tau), D[d, 4] * np.sin(np.pi * xi / tau), hi)
-        s1 = np.where(on, D[d, 5], s1)
-        s2 = np.where(on, D[d, 6], s2)
+        on = (row == d[D_ROW]) & (k == d[D_ROLLER])
+        tau = d[D_TAU]
+        xo = np.mod(psi - d[D_START], TWO_PI)
+        xi = np.mod(psi + np.pi - d[D_START], TWO_PI)
+        ho = np.where(on & (xo < tau), d[D_DEPTH] * np.sin(np.pi * xo / tau), ho)
+        hi = np.where(on & (xi < tau), d[D_DEPTH] * np.sin(np.pi * xi / tau), hi)
+        s1 = np.where(on, d[D_S1], s1)
+        s2 = np.where(on, d[D_S2], s2)
     return ho, hi, s1, s2
 
 
 def _deeper(ring, roller):
     """Of a ring's defect ``(h, s1, s2)`` and a roller's at the same contact, the deeper."""
-    use = roller[0] > ring[0]
+    (h_ring, _, _), (h_roller, _, _) = ring, roller
+    use = h_roller > h_ring
     return tuple(np.where(use, b, a) for a, b in zip(ring, roller))
 
 
@@ -152,7 +159,7 @@ def _raceway(d0, kap, h, s1, s2, Le):
 
 
 def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``(ydot, F (2, 6), Qc (2, Z, 6))`` as written by :func:`bearing.kernel.dtrb_rhs`."""
+    """``(ydot, F (2, LOAD), Qc (2, Z, N_Q))`` as bearing/evaluate.py's ``evaluate`` writes them."""
     nz = int(P[Z])
     R, rb, Le, Lb = P[R_M], P[R_B], P[L_E], P[L_B]
     cao, sao, cai, sai = P[CAO], P[SAO], P[CAI], P[SAI]
@@ -162,41 +169,41 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     Mc, Jcp, Jcd = P[M_C], P[J_CP], P[J_CD]
     vs = P[V_S]
     m_cage = Mr * Mc / (Mr + Mc)
-    g = np.array([P[GX], P[GY], P[GZ]])
-    kinematic = P[KINEMATIC] != 0.0
-    pockets = P[KINEMATIC] == 2.0                 # the quasi-dynamic bearing's cage (kernel.py)
+    g = np.array([P[G_X], P[G_Y], P[G_Z]])
+    kinematic = P[KINEMATIC] != FREE_CAGE
+    pockets = P[KINEMATIC] == POCKET_CAGE         # the quasi-dynamic bearing's cage (roller.py)
     J_orb = Jcp + nz * Mr * R * R
-    nr = 2 * nz * N_ROLLER
-    rol = y[:nr].reshape(2, nz, N_ROLLER)
-    cag = y[nr:nr + 2 * N_CAGE].reshape(2, N_CAGE)
+    nr = ROWS * nz * N_ROLLER
+    rol = y[:nr].reshape(ROWS, nz, N_ROLLER)
+    cag = y[nr:nr + ROWS * N_CAGE].reshape(ROWS, N_CAGE)
 
     # rings relative to the inner-ring centre (ui = vi = 0)
-    th_i = np.array([ring[0, 3], 0.0, ring[0, 5]]).reshape(3, 1, 1)
-    wi = ring[0, 9:12].reshape(3, 1, 1)
-    uo = (ring[1, :3] - ring[0, :3]).reshape(3, 1, 1)
-    th_o = np.array([ring[1, 3], 0.0, ring[1, 5]]).reshape(3, 1, 1)
-    vo = (ring[1, 6:9] - ring[0, 6:9]).reshape(3, 1, 1)
-    wo = ring[1, 9:12].reshape(3, 1, 1)
-    theta_oy = ring[1, 4]
-    omega_w = ring[0, 10] - ring[1, 10]
+    th_i = np.array([ring[INNER, TH_X], 0.0, ring[INNER, TH_Z]]).reshape(3, 1, 1)
+    wi = ring[INNER, W_X:W_Z + 1].reshape(3, 1, 1)
+    uo = (ring[OUTER, U_X:U_Z + 1] - ring[INNER, U_X:U_Z + 1]).reshape(3, 1, 1)
+    th_o = np.array([ring[OUTER, TH_X], 0.0, ring[OUTER, TH_Z]]).reshape(3, 1, 1)
+    vo = (ring[OUTER, V_X:V_Z + 1] - ring[INNER, V_X:V_Z + 1]).reshape(3, 1, 1)
+    wo = ring[OUTER, W_X:W_Z + 1].reshape(3, 1, 1)
+    theta_oy = ring[OUTER, TH_Y]
+    omega_w = ring[INNER, W_Y] - ring[OUTER, W_Y]
 
     s = np.array([1.0, -1.0])[:, None]                      # row sign
     yj = -s * P[ROW]
     pocket = TWO_PI * np.arange(nz) / nz
 
     # cages (3, 2, 1)
-    xc = cag[:, 0:3].T[:, :, None]
-    th_c = _vec(cag[:, 3], 0.0, cag[:, 4])[:, :, None]
-    phi_c = cag[:, 5][:, None]
-    vc = cag[:, 6:9].T[:, :, None]
-    wcx, wcz, phid_c = cag[:, 9], cag[:, 10], cag[:, 11]
-    if kinematic and not pockets:
-        phid_c = np.full(2, P[RATIO] * omega_w)
+    xc = cag[:, CX:CX + 3].T[:, :, None]
+    th_c = _vec(cag[:, CTX], 0.0, cag[:, CTZ])[:, :, None]
+    phi_c = cag[:, CPHI][:, None]
+    vc = cag[:, RATE + CX:RATE + CX + 3].T[:, :, None]
+    wcx, wcz, phid_c = cag[:, RATE + CTX], cag[:, RATE + CTZ], cag[:, RATE + CPHI]
+    if P[KINEMATIC] == EQ2_CAGE:
+        phid_c = np.full(ROWS, P[RATIO] * omega_w)
     wc = _vec(wcx, phid_c, wcz)[:, :, None]
 
     # rollers (2, Z)
-    rho, phi, eta, tht, ths = (rol[..., q] for q in range(5))
-    rhod, phid, etad, thtd, thsd, ws = (rol[..., 6 + q] for q in range(6))
+    rho, phi, eta, tht, ths = (rol[..., q] for q in (RHO, PHI, ETA, TH_T, TH_S))
+    rhod, phid, etad, thtd, thsd, ws = (rol[..., RATE + q] for q in (RHO, PHI, ETA, TH_T, TH_S, PSI))
     if kinematic:
         phi = phi_c + pocket
         phid = np.broadcast_to(phid_c[:, None], phi.shape)
@@ -220,8 +227,8 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     po = c + rb * no
     d0 = _dot(disp - (uo + _cross(th_o, po - uo)), no) - P[C_O]
     kap = s * (tht - _dot(th_o, et))
-    ho_r, hi_r, r1, r2 = _roller_defect(D, rol[..., 5])
-    i0, i1 = _raceway(d0, kap, *_deeper(_defect(D, 0.0, phi, theta_oy), (ho_r, r1, r2)), Le)
+    ho_r, hi_r, r1, r2 = _roller_defect(D, rol[..., PSI])
+    i0, i1 = _raceway(d0, kap, *_deeper(_defect(D, OUTER_RING, phi, theta_oy), (ho_r, r1, r2)), Le)
     vrel = Vc + _cross(wr, rb * no) - (vo + _cross(wo, po - uo))
     Qo, m1, f = _line_contact(i0, i1, P[K_O], Le, d0, kap, _dot(vrel, no), Mr, P[MU_R],
                                vrel, no, P)
@@ -235,7 +242,7 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     pi_ = c - rb * ni
     d0 = _dot(_cross(th_i, pi_) - disp, ni)
     kap = s * (_dot(th_i, et) - tht)
-    i0, i1 = _raceway(d0, kap, *_deeper(_defect(D, 1.0, phi, ring[0, 4]), (hi_r, r1, r2)), Le)
+    i0, i1 = _raceway(d0, kap, *_deeper(_defect(D, INNER_RING, phi, ring[INNER, TH_Y]), (hi_r, r1, r2)), Le)
     vrel = Vc + _cross(wr, -rb * ni) - _cross(wi, pi_)
     Qi, m1, f = _line_contact(i0, i1, P[K_I], Le, d0, kap, -_dot(vrel, ni), Mr, P[MU_R],
                                vrel, ni, P)
@@ -285,8 +292,8 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
         Fc -= fr.sum(axis=2)
         Mcg += (couple - _cross(pw - xc, fr)).sum(axis=2)
         Qw.append(Q)
-    chi = dd[1]
-    chid = Vc[1] - vc[1] - _cross(wc, c - xc)[1]
+    chi = dd[AY]
+    chid = Vc[AY] - vc[AY] - _cross(wc, c - xc)[AY]
     Qs = np.zeros_like(chi)
     for sw in (1.0, -1.0):
         d0 = sw * chi - P[S_PA]
@@ -299,39 +306,44 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
         Qs = Qs + Q
 
     # --- Newton-Euler of the rollers, Eq. (12) in polar form ---
-    ydot = np.zeros(nr + 2 * N_CAGE)
-    yr = ydot[:nr].reshape(2, nz, N_ROLLER)
-    yc = ydot[nr:].reshape(2, N_CAGE)
+    ydot = np.zeros(nr + ROWS * N_CAGE)
+    yr = ydot[:nr].reshape(ROWS, nz, N_ROLLER)
+    yc = ydot[nr:].reshape(ROWS, N_CAGE)
     Rr = R + rho
-    yr[..., 0], yr[..., 2], yr[..., 3], yr[..., 4], yr[..., 5] = rhod, etad, thtd, thsd, ws
-    yr[..., 6] = _dot(Fr, er) / Mr + Rr * phid * phid
-    yr[..., 8] = Fr[1] / Mr
+    for q, v in ((RHO, rhod), (ETA, etad), (TH_T, thtd), (TH_S, thsd), (PSI, ws), (PHI, phid)):
+        yr[..., q] = v
+    yr[..., RATE + RHO] = _dot(Fr, er) / Mr + Rr * phid * phid
+    yr[..., RATE + ETA] = Fr[AY] / Mr
     if kinematic:
         phidd = np.zeros_like(rho)
-        yr[..., 1] = phid
-        yr[..., 7] = _dot(Fr, et) * Rr / J_orb if pockets else 0.0
+        yr[..., RATE + PHI] = _dot(Fr, et) * Rr / J_orb if pockets else 0.0
     else:
         phidd = (_dot(Fr, et) / Mr - 2.0 * rhod * phid) / Rr
-        yr[..., 1] = phid
-        yr[..., 7] = phidd
+        yr[..., RATE + PHI] = phidd
     wa = ws + phid * s * cam
-    yr[..., 9] = (_dot(Mr_, et) + Ja * wa * phid * sam - Jd * phid * phid * s * sam * cam
-                  - Jd * phid * thsd * cam + s * Ja * wa * thsd) / Jd
-    yr[..., 10] = (_dot(Mr_, bx) - Jd * phidd * s * sam + Jd * phid * thtd * cam
-                   - s * Ja * wa * thtd) / Jd
-    yr[..., 11] = _dot(Mr_, ax) / Ja - s * cam * phidd
+    yr[..., RATE + TH_T] = (_dot(Mr_, et) + Ja * wa * phid * sam - Jd * phid * phid * s * sam * cam
+                            - Jd * phid * thsd * cam + s * Ja * wa * thsd) / Jd
+    yr[..., RATE + TH_S] = (_dot(Mr_, bx) - Jd * phidd * s * sam + Jd * phid * thtd * cam
+                            - s * Ja * wa * thtd) / Jd
+    yr[..., RATE + PSI] = _dot(Mr_, ax) / Ja - s * cam * phidd
 
     # --- the cages, Eq. (13) ---
-    yc[:, 0:3] = cag[:, 6:9]
-    yc[:, 6:9] = Fc.T / Mc + g
-    yc[:, 3], yc[:, 4], yc[:, 5] = wcx, wcz, phid_c
-    yc[:, 9] = (Mcg[0] + Jcp * phid_c * wcz) / Jcd
-    yc[:, 10] = (Mcg[2] - Jcp * phid_c * wcx) / Jcd
+    yc[:, CX:CX + 3] = cag[:, RATE + CX:RATE + CX + 3]
+    yc[:, RATE + CX:RATE + CX + 3] = Fc.T / Mc + g
+    yc[:, CTX], yc[:, CTZ], yc[:, CPHI] = wcx, wcz, phid_c
+    Mc_x, Mc_y, Mc_z = Mcg
+    yc[:, RATE + CTX] = (Mc_x + Jcp * phid_c * wcz) / Jcd
+    yc[:, RATE + CTZ] = (Mc_z - Jcp * phid_c * wcx) / Jcd
     if pockets:
-        yc[:, 11] = Mcg[1] / J_orb + yr[..., 7].sum(axis=1)
+        yc[:, RATE + CPHI] = Mc_y / J_orb + yr[..., RATE + PHI].sum(axis=1)
     else:
-        yc[:, 11] = 0.0 if kinematic else Mcg[1] / Jcp
+        yc[:, RATE + CPHI] = 0.0 if kinematic else Mc_y / Jcp
 
-    F = np.stack([np.concatenate([Fi, Mi]), np.concatenate([Fo, Mo])])
-    Qc = np.stack([Qo, Qi, Qa, Qw[0], Qw[1], Qs], axis=-1)
+    F = np.zeros((ROWS, LOAD))
+    F[INNER] = np.concatenate([Fi, Mi])
+    F[OUTER] = np.concatenate([Fo, Mo])
+    Qc = np.zeros((ROWS, nz, N_Q))
+    Qw1, Qw2 = Qw
+    for q, v in ((Q_O, Qo), (Q_I, Qi), (Q_A, Qa), (Q_CR1, Qw1), (Q_CR2, Qw2), (Q_SIDE, Qs)):
+        Qc[..., q] = v
     return ydot, F, Qc

@@ -1,5 +1,6 @@
 """The plain arrays every bearing model shares, slot by slot: the one place that says what each
-slot holds (a model's own parameter slots are declared in its module: :mod:`.dtrb`, :mod:`.dcrb`).
+slot holds (a model's own parameter slots are declared in its module, e.g.
+:mod:`.dtrb`).
 
 The numba kernels see only these arrays and read every slot by name; nothing outside this
 module and the models' own layouts indexes a slot by number (tests/test_layout_names.py).
@@ -55,7 +56,7 @@ roller's flag says it filled.
 
 **Parameter vector**: the slots every model fills, ``Z .. N_COMMON - 1`` (the parts a model
 shares: roller and cage dynamics, pockets, contact laws, :mod:`.roller`, :mod:`.pocket`,
-:mod:`.contact`); a model's own slots follow from ``N_COMMON`` (its module).
+:mod:`axlebox.bearing.contact`); a model's own slots follow from ``N_COMMON`` (its module).
 """
 from __future__ import annotations
 

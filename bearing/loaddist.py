@@ -25,7 +25,8 @@ def J_r(eps: float, n: float = 10 / 9) -> float:
         raise ValueError(f"eps = {eps!r} is not allowed: expected 0 < eps <= 1")
     psi_l = np.arccos(np.clip(1 - 2 * eps, -1, 1))
     f = lambda psi: (1 - (1 - np.cos(psi)) / (2 * eps)) ** n * np.cos(psi)   # noqa: E731
-    return quad(f, -psi_l, psi_l, limit=200)[0] / (2 * np.pi)
+    value, _ = quad(f, -psi_l, psi_l, limit=200)
+    return value / (2 * np.pi)
 
 
 def eps_radial(delta_r: float, u_r: float) -> float:

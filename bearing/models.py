@@ -37,8 +37,8 @@ SCHEMES = ("dynamic", "quasi-dynamic")      # a model's ``model`` field
 DtrbDynamic = namedtuple("DtrbDynamic", [])
 DtrbQuasiDynamic = namedtuple("DtrbQuasiDynamic", [])
 TAGS = {("dtrb", "dynamic"): DtrbDynamic, ("dtrb", "quasi-dynamic"): DtrbQuasiDynamic}
-_MODEL_OF = {cls: MODELS[key[0]] for key, cls in TAGS.items()}
-_SCHEME_OF = {cls: key[1] for key, cls in TAGS.items()}
+_MODEL_OF = {cls: MODELS[name] for (name, _), cls in TAGS.items()}
+_SCHEME_OF = {cls: scheme for (_, scheme), cls in TAGS.items()}
 _QD_METHODS = ("leapfrog", "imex", "imex2")       # the quasi-dynamic step whatever the method
 
 

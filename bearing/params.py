@@ -14,11 +14,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 from math import cos, pi, radians, sin
 
-from axlebox._params import ParameterError, check_ranges, param, require
+from axlebox._params import ParameterError, check_ranges, choice, param, require
 
 from .layout import DAMPING_LAWS
+
 CAGE_MODES = ("dynamic", "kinematic")
-MODELS = ("dynamic", "quasi-dynamic")
+MODELS = ("dynamic", "quasi-dynamic")            # the schemes a model runs by (bearing/models.py)
 
 
 @dataclass(frozen=True)
@@ -54,27 +55,25 @@ class BearingParams:
     # friction regularisation and contact damping
     v_s: float = param(0.01, 1e-5, 1.0, unit="m/s", doc="slip speed over which friction builds up "
                        "to mu Q (regularised Coulomb)")
-    damping: str = "ratio"
+    damping: str = choice("ratio", DAMPING_LAWS, "contact damping law: 'ratio' (zeta), 'paper' "
+                          "(c_rule x K) or 'stiffness' (beta x the tangent stiffness)")
     zeta: float = param(0.10, 0.0, 5.0, unit="", doc="contact damping ratio (damping='ratio'); "
                         "assumed, an underdamped lubricated contact (see benchmarks/README.md)")
     c_rule: float = param(1e-3, 0.0, 1.0, unit="s", doc="the paper's C = c_rule x K (damping='paper')")
     beta: float = param(2.5e-5, 0.0, 1.0, unit="s", doc="C = beta x k, k the contact's tangent "
                         "stiffness (damping='stiffness'); the paper cites 2.5e-5 to 0.25 s of the "
                         "stiffness for bearing contacts (below its Eq. 4, its ref. 6)")
-    cage: str = "dynamic"
-    # "dynamic": the paper's model, every roller and cage with its six DOF; "quasi-dynamic": the
-    # rollers' contact equilibrium solved each step, spins and cage rotation as states
-    # (bearing/quasidynamic.py: for studies, not for the defect's mechanism)
-    model: str = "dynamic"
+    cage: str = choice("dynamic", CAGE_MODES, "cage rotation: a dynamic state, or kinematic (the "
+                       "paper's Eq. 2)")
+    model: str = choice("dynamic", MODELS, "'dynamic': the paper's model, every roller and cage "
+                        "with its six DOF; 'quasi-dynamic': the rollers' contact equilibrium solved "
+                        "each step, spins and cage rotation as states (bearing/quasidynamic.py; for "
+                        "studies, not for the defect's mechanism)")
 
     def __post_init__(self):
         if isinstance(self.Z, bool) or not isinstance(self.Z, int):
             raise ParameterError(f"BearingParams.Z = {self.Z!r} is not allowed: "
                                  "expected an integer >= 3")
-        for name, allowed in (("damping", DAMPING_LAWS), ("cage", CAGE_MODES), ("model", MODELS)):
-            if getattr(self, name) not in allowed:
-                raise ParameterError(f"BearingParams.{name} = {getattr(self, name)!r} is not allowed: "
-                                     f"expected one of {', '.join(allowed)}")
         check_ranges(self)
         require(self.D_b < 0.5 * self.D_m, self, "D_b", f"must be below half the pitch diameter "
                 f"D_m = {self.D_m:g} m")

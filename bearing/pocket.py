@@ -2,7 +2,7 @@
 the roller, the roller's skew in their tilt, and the side beams in the axial direction (the
 paper leaves them out; they keep the cage from drifting axially), with the same law.  The cage
 is roller-guided: it touches nothing else.  Every model whose rollers sit in such a cage shares
-these contacts (:mod:`.dtrb`, :mod:`.dcrb`).
+these contacts (:mod:`.models`).
 """
 from __future__ import annotations
 

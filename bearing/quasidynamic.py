@@ -170,10 +170,10 @@ def equilibrium(model, t, x, ring, P, D, h, w):
     rings = ring_frame(ring)
     n_inner, n_roller = count(D, INNER_RING), count(D, ROLLER_SURFACE)
     J_orb = orbital_inertia(P)
-    c0 = cage_frame(x, ROWS * nz * N_ROLLER, P, rings.omega)
-    c1 = cage_frame(x, ROWS * nz * N_ROLLER + N_CAGE, P, rings.omega)
-    pocket_angles(c0.phi, nz, w.sin_p[0], w.cos_p[0])
-    pocket_angles(c1.phi, nz, w.sin_p[1], w.cos_p[1])
+    cb = ROWS * nz * N_ROLLER
+    cages = (cage_frame(x, cb, P, rings.omega), cage_frame(x, cb + N_CAGE, P, rings.omega))
+    for j in range(ROWS):
+        pocket_angles(cages[j].phi, nz, w.sin_p[j], w.cos_p[j])
     for jk in range(ROWS * nz):
         s = w.qd[jk]
         b0 = jk * N_ROLLER
@@ -190,8 +190,8 @@ def equilibrium(model, t, x, ring, P, D, h, w):
         for jk in range(ROWS * nz):
             if w.qd[jk, QD_ACTIVE] != 0.0:
                 j, k = jk // nz, jk % nz
-                roller(model, x, w.dx, j, k, rings, c0 if j == 0 else c1, P, D, n_inner, n_roller,
-                       w.Qs, w, True, h, J_orb)
+                roller(model, x, w.dx, j, k, rings, cages[j], P, D, n_inner, n_roller, w.Qs, w, True,
+                       h, J_orb)
                 n += 1
         evaluated += n
         if n == 0 or it == passes or _newton(x, w, P, h, nz) == 0:
@@ -201,8 +201,8 @@ def equilibrium(model, t, x, ring, P, D, h, w):
         orbit = 0.0
         for k in range(nz):
             orbit += w.rec[j * nz + k, REC_ORBIT]
-        cage_rates(x, w.dx, ROWS * nz * N_ROLLER + j * N_CAGE, P, w.rec[j * nz:(j + 1) * nz], nz,
-                   c0 if j == 0 else c1, orbit, J_orb)
+        cage_rates(x, w.dx, cb + j * N_CAGE, P, w.rec[j * nz:(j + 1) * nz], nz, cages[j], orbit,
+                   J_orb)
     return evaluated / (ROWS * nz)
 
 

@@ -35,6 +35,7 @@ from .params import BearingParams
 from .stiffness import roller_raceways
 
 N_EXP = 10 / 9
+QX, QY, QZ, QTX, QTZ, N_QS = range(6)     # q: the inner ring's displacement and tilt
 
 
 @dataclass
@@ -61,14 +62,14 @@ def _geometry(p: BearingParams, psi: np.ndarray):
     y = np.array([-p.row_offset, p.row_offset])
     ca, sa = np.cos(p.alpha_o), np.sin(p.alpha_o)
     er = np.stack([np.sin(psi), np.zeros_like(psi), np.cos(psi)], axis=-1)        # (Z, 3)
-    G = np.zeros((2, len(psi), 5))
+    G = np.zeros((2, len(psi), N_QS))
     for j in range(2):
         n = ca * er + s[j] * sa * np.array([0.0, 1.0, 0.0])
         r = R * er + np.array([0.0, y[j], 0.0])
-        m = np.cross(r, n)
-        G[j, :, :3] = n
-        G[j, :, 3] = m[:, 0]
-        G[j, :, 4] = m[:, 2]
+        m_x, _, m_z = np.cross(r, n).T
+        G[j, :, QX:QZ + 1] = n
+        G[j, :, QTX] = m_x
+        G[j, :, QTZ] = m_z
     return G, p.clearance_n
 
 
@@ -77,9 +78,9 @@ def solve(p: BearingParams, F, M=(0.0, 0.0), *, tol: float = 1e-10, max_iter: in
     """Equilibrium under the external load ``F = (Fx, Fy, Fz)`` (N) and moments
     ``M = (Mx, Mz)`` (N m) on the inner ring; Newton with backtracking."""
     load = np.concatenate([np.asarray(F, float).ravel(), np.asarray(M, float).ravel()])
-    if load.shape != (5,) or not np.all(np.isfinite(load)):
+    if load.shape != (N_QS,) or not np.all(np.isfinite(load)):
         raise ParameterError(f"load = {load.tolist()!r} is not allowed: expected F (3,) and M (2,) finite")
-    if not np.any(load[:3]):
+    if not np.any(load[QX:QZ + 1]):
         raise ParameterError("load F = (0, 0, 0) is not allowed: the rings are free within the clearance")
     _, _, K = roller_raceways(p)
     psi = psi0 + 2 * np.pi * np.arange(p.Z) / p.Z
@@ -95,11 +96,11 @@ def solve(p: BearingParams, F, M=(0.0, 0.0), *, tol: float = 1e-10, max_iter: in
         return delta, Q, res, J
 
     # start: rigid shift along the force, deep enough to engage a few rollers
-    f = load[:3]
+    f = load[QX:QZ + 1]
     Fn = np.linalg.norm(f)
     guess = (Fn / (0.25 * p.Z * K)) ** (1 / N_EXP) + c
-    q = np.zeros(5)
-    q[:3] = f / Fn * guess * 2
+    q = np.zeros(N_QS)
+    q[QX:QZ + 1] = f / Fn * guess * 2
     scale = np.abs(load).max()
     it = 0
     while it < max_iter:
@@ -108,11 +109,12 @@ def solve(p: BearingParams, F, M=(0.0, 0.0), *, tol: float = 1e-10, max_iter: in
         r0 = np.linalg.norm(res / scale)
         if r0 < tol:
             break
-        J = J + 1e-12 * np.trace(J) * np.eye(5)            # keep it invertible if a DOF is unloaded
+        J = J + 1e-12 * np.trace(J) * np.eye(N_QS)         # keep it invertible if a DOF is unloaded
         step = np.linalg.solve(J, res)
         t = 1.0
         while t > 1e-6:                                    # backtracking on the residual norm
-            if np.linalg.norm(state(q + t * step)[2] / scale) < (1 - 1e-4 * t) * r0:
+            _, _, res_t, _ = state(q + t * step)
+            if np.linalg.norm(res_t / scale) < (1 - 1e-4 * t) * r0:
                 break
             t *= 0.5
         q = q + t * step

@@ -32,6 +32,12 @@ BLOCK_BYTES = 32 << 20         # rows copied at a time from a streamed output
 GZIP = {"compression": "gzip", "compression_opts": 1, "shuffle": True}
 
 
+def _array(item):
+    """A group's array: given alone or as ``(array, attributes)``."""
+    data, _ = item if isinstance(item, tuple) else (item, None)
+    return data
+
+
 def write(path, *, config_toml: str, seed: int, time: np.ndarray, fs_hz: float,
           signals: dict, groups: dict | None = None, attrs: dict | None = None) -> Path:
     """Write ``signals`` (sensor -> {channel: array}) and ``groups`` (name -> {dataset: array or
@@ -41,7 +47,7 @@ def write(path, *, config_toml: str, seed: int, time: np.ndarray, fs_hz: float,
     rows at a time (an object with ``shape``, ``dtype``, ``nbytes`` and ``rows(r0, r1)``, as
     axlebox.pipelines.stream.Rows): a long run's outputs never all in memory."""
     arrays = [time, *(a for ch in signals.values() for a in ch.values()),
-              *(i[0] if isinstance(i, tuple) else i for g in (groups or {}).values() for i in g.values())]
+              *(_array(i) for g in (groups or {}).values() for i in g.values())]
     with h5_written(path, h5_bound(arrays)) as f:
         f.attrs.update(format=FORMAT, version=VERSION, config=config_toml, seed=int(seed))
         f.attrs.update(attrs or {})

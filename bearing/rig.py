@@ -1,7 +1,7 @@
 """The standalone bearing rig: one DTRB, inner ring spinning at the speed of a 0.42 m wheel and
 held in place, outer ring = axle-box mass on a spring-damper to ground, constant radial and axial
 load; started from the quasi-static equilibrium; fixed-step RK4 or the leapfrog
-(:mod:`axlebox.bearing.integrate`).
+(:mod:`.integrate`).
 
 Python API::
 
@@ -37,10 +37,11 @@ from .frequencies import shaft_hz
 from .implicit import scratch
 from .integrate import (ANGLE, CAGE_OUT, R_CX, R_FX, R_KX, R_MASS, R_N, R_OMEGA, R_UX, RIG, RIG_U,
                         run_leapfrog, run_rk4)
-from .layout import LOAD, N_Q, OUTER, Q_A, Q_NAMES, Q_O, ROWS
+from .layout import F_X, F_Z, LOAD, N_Q, OUTER, Q_A, Q_NAMES, Q_O, ROWS
 from .params import BearingParams
 from .quasidynamic import QD_WIDTH
 from .step import MODES
+from .vec import AZ
 
 SENSOR = "outer_ring"
 RIG_METHODS = ("rk4", "leapfrog", "imex", "imex2")
@@ -139,8 +140,8 @@ class RigResult:
     def cage_hz(self, t_from: float = 0.0) -> float:
         """Mean cage rotation frequency from ``t_from`` on (both rows; slope of the angle)."""
         m = self.time >= t_from
-        slope = [np.polyfit(self.time[m], self.cage[m, j, ANGLE], 1)[0] for j in range(ROWS)]
-        return float(np.mean(slope) / (2 * np.pi))
+        slope = [np.polyfit(self.time[m], self.cage[m, j, ANGLE], 1) for j in range(ROWS)]
+        return float(np.mean([b for b, _ in slope]) / (2 * np.pi))
 
     def save(self, path) -> Path:
         groups = {"bearing": {"Q": (self.Q.astype(np.float32), {"columns": Q_NAMES, "unit": "N"}),
@@ -151,7 +152,7 @@ class RigResult:
         return resultfile.write(path, config_toml=self.config.to_toml(), seed=self.config.seed,
                                 time=self.time, fs_hz=self.fs,
                                 signals={SENSOR: {"acceleration": self.acceleration,
-                                                  "force": self.ring_loads[:, 1, :3]}},
+                                                  "force": self.ring_loads[:, OUTER, F_X:F_Z + 1]}},
                                 groups=groups)
 
     def plot(self, path=None, t_from: float = 0.05):
@@ -163,25 +164,25 @@ class RigResult:
 
         from .spectra import envelope_spectrum
         m = self.time >= min(t_from, 0.5 * self.time[-1])
-        t, a = self.time[m], self.acceleration[m, 2]
+        t, a = self.time[m], self.acceleration[m, AZ]
         f_s = shaft_hz(self.config.speed_kmh, self.config.r_wheel)
         o = models.orders(self.config.bearing).at(f_s)
-        fig, ax = plt.subplots(3, 1, figsize=(9, 9), constrained_layout=True)
-        ax[0].plot(t, a, lw=0.5)
-        ax[0].set(xlabel="time (s)", ylabel="outer ring a_z (m/s²)", title=f"{self.config.speed_kmh:g} km/h, "
+        fig, (top, mid, bottom) = plt.subplots(3, 1, figsize=(9, 9), constrained_layout=True)
+        top.plot(t, a, lw=0.5)
+        top.set(xlabel="time (s)", ylabel="outer ring a_z (m/s²)", title=f"{self.config.speed_kmh:g} km/h, "
                   f"{len(self.config.defects)} defect(s)")
         f, A = envelope_spectrum(a, self.fs, band=(1000.0, 4000.0))
         keep = f < 8 * o["BPFO"]
-        ax[1].plot(f[keep], A[keep], lw=0.8)
+        mid.plot(f[keep], A[keep], lw=0.8)
         for h in range(1, 8):
-            ax[1].axvline(h * o["BPFO"], color="r", lw=0.5, ls="--")
-        ax[1].set(xlabel="frequency (Hz)", ylabel="envelope amplitude (m/s²)",
+            mid.axvline(h * o["BPFO"], color="r", lw=0.5, ls="--")
+        mid.set(xlabel="frequency (Hz)", ylabel="envelope amplitude (m/s²)",
                   title=f"envelope spectrum, BPFO = {o['BPFO']:.2f} Hz (dashed)")
         first = 0                                      # roller 1 of row 2
-        ax[2].plot(self.time, self.Q[:, OUTER, first, Q_O], lw=0.6, label="roller 1, row 2, outer raceway")
-        ax[2].plot(self.time, self.Q[:, OUTER, first, Q_A], lw=0.6, label="rib")
-        ax[2].set(xlabel="time (s)", ylabel="contact force (N)")
-        ax[2].legend()
+        bottom.plot(self.time, self.Q[:, OUTER, first, Q_O], lw=0.6, label="roller 1, row 2, outer raceway")
+        bottom.plot(self.time, self.Q[:, OUTER, first, Q_A], lw=0.6, label="rib")
+        bottom.set(xlabel="time (s)", ylabel="contact force (N)")
+        bottom.legend()
         if path is not None:
             fig.savefig(path, dpi=110)
         return fig

@@ -20,6 +20,7 @@ kernel's numbering, on the right ones it is mirrored.
 from __future__ import annotations
 
 import dataclasses
+from collections import namedtuple
 
 import numpy as np
 
@@ -27,11 +28,16 @@ from axlebox.bearing import defects as bdefects
 from axlebox.bearing import models
 from axlebox.bearing.equilibrium import static_state
 from axlebox.bearing.layout import F_X, F_Z
+from axlebox.bearing.vec import AZ
 
 from .kernel_bearings import BR_MIN, BR_MOUT
 from .kernel_markers import MK_BODY
 from .kernel_body import BI_POS
 from .vehicle import SIDES
+
+#: one bearing's start (:func:`start`): its kernel tag, parameter vector and defect table, its
+#: roller and cage states and the outer ring's displacement from the inner ring's centre
+Start = namedtuple("Start", ["tag", "P", "D", "y0", "uo"])
 
 
 def params(cfg: dict):
@@ -62,9 +68,9 @@ def joint_loads(model, y) -> dict:
 
 
 def start(cfg: dict, loads: dict, omega_w: float, log=print) -> dict:
-    """``(k, side) -> (tag, P, D, y0, u_o)``: each bearing's kernel tag and arrays, its
-    equilibrium roller and cage states under ``loads`` and the outer ring's displacement from
-    the inner ring's centre."""
+    """``(k, side) -> Start``: each bearing's kernel tag and arrays, its equilibrium roller and
+    cage states under ``loads`` and the outer ring's displacement from the inner ring's
+    centre."""
     p = params(cfg)
     P = models.pack(p)
     tag = models.tag(p)
@@ -78,9 +84,9 @@ def start(cfg: dict, loads: dict, omega_w: float, log=print) -> dict:
         # track's fade-in; 80 km/h on the ballasted track stalled at 5.7 N, 1.0e-4 of the load)
         yb, uo = static_state(p, P, np.zeros((0, bdefects.WIDTH)), F, omega_w, tol=1e-6,
                               roller_tol=2e-4, phase=bdefects.phase_clear_of(D, p.Z))
-        out[key] = (tag, P, D, yb, np.asarray(uo, float))
+        out[key] = Start(tag, P, D, yb, np.asarray(uo, float))
     log(f"bearings: {len(out)} {models.name(p).upper()}s in equilibrium, outer-ring loads "
-        f"{min(-F[2] for F in loads.values()) / 1e3:.1f}-{max(-F[2] for F in loads.values()) / 1e3:.1f} kN")
+        f"{min(-F[AZ] for F in loads.values()) / 1e3:.1f}-{max(-F[AZ] for F in loads.values()) / 1e3:.1f} kN")
     return out
 
 
@@ -97,7 +103,7 @@ def place_axleboxes(model, y, start_states: dict) -> np.ndarray:
     sits at the bearing's equilibrium displacement from the journal marker, followed by the
     bearings' roller and cage states."""
     nb = model.n_body_states
-    y = np.concatenate([np.asarray(y, float)[:nb]] + [start_states[_key(n)][3] for n in model.bearing_names])
+    y = np.concatenate([np.asarray(y, float)[:nb]] + [start_states[_key(n)].y0 for n in model.bearing_names])
     model.rhs(0.0, y)
     mkp = model.W.mkp
     idx = model.B.idx
@@ -105,7 +111,7 @@ def place_axleboxes(model, y, start_states: dict) -> np.ndarray:
     mk_i = model.S.mk_i
     for k, name in enumerate(model.bearing_names):
         mi, mo = int(idx[k, BR_MIN]), int(idx[k, BR_MOUT])
-        d = start_states[_key(name)][4] - (mkp[mo] - mkp[mi])
+        d = start_states[_key(name)].uo - (mkp[mo] - mkp[mi])
         b = int(mk_i[mo, MK_BODY])
         y[bi[b, BI_POS]:bi[b, BI_POS] + 3] += d        # its centre: the first three positions
     return y

@@ -177,7 +177,7 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
             and getattr(model, "bearing_stiffness", None) is None:
         raise ParameterError("coupling.hold = 'jacobian' is not allowed for this model: it has no "
                              "bearing_stiffness (pipelines/simulate.build_model sets it; "
-                             "mbs/dtrb.stiffness); expected 'zoh' or 'linear'")
+                             "mbs/bearings.stiffness); expected 'zoh' or 'linear'")
     X = exchange(model, s.method if s.method in ("leapfrog", "imex", "imex2") else "leapfrog", s.dt,
                  s.n_exchange, exchange_ring if (continued or resume is not None) else None,
                  m=s.body_substeps, hold=s.hold, K=getattr(model, "bearing_stiffness", None))

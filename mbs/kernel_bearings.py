@@ -58,35 +58,51 @@ Bearings = namedtuple("Bearings", ["tag", "idx", "P", "D", "ring", "th", "F", "Q
 NoBearings = namedtuple("NoBearings", [])
 
 
+@kernel
 def bearing_forces(B, t, y, dy, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout):
     """State derivatives of every bearing's rollers and cages, and their ring loads on the
     markers; bearing k's outputs fill ``BR_ROWS`` rows of ``elout`` from row ``ne + BR_ROWS k``
-    (``ne``: the elements' rows).  (numba only)"""
-    raise NotImplementedError
+    (``ne``: the elements' rows)."""
+    _forces_of(B, t, y, dy, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout)
 
 
+@kernel
 def bearing_exchange(B, X, t, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout):
     """The exchange at ``t`` of a leapfrog run (module docstring): every bearing's states
     advanced over the exchange's window (``X``: :class:`axlebox.mbs.exchange.Exchange`;
     :func:`axlebox.bearing.advance.advance`), the ring motion on the line through the last
     exchange's (``X.ring``) and this one's, which then becomes the last; the mean ring loads go
     onto the markers and into the outputs as in :func:`bearing_forces`.  The bearings' rows of
-    ``dy`` are not written: their states are already advanced.  (numba only)"""
-    raise NotImplementedError
+    ``dy`` are not written: their states are already advanced."""
+    _exchange_of(B, X, t, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout)
 
 
+@kernel
 def held_loads(B, X, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, u):
     """The last exchange's ring loads on the markers, carried ``u`` exchange steps on along the
     line through the last two (``u = 0``: held); with the "jacobian" hold (``X.hold``) plus
     ``-K`` times the outer ring's displacement from the inner since the exchange on the outer
-    ring, its opposite on the inner.  (numba only)"""
-    raise NotImplementedError
+    ring, its opposite on the inner."""
+    _held_of(B, X, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, u)
+
+
+# each of the three compiled for the bearings' own model, or to nothing for NoBearings
+def _forces_of(B, t, y, dy, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout):
+    raise NotImplementedError("numba only")
+
+
+def _exchange_of(B, X, t, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout):
+    raise NotImplementedError("numba only")
+
+
+def _held_of(B, X, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, u):
+    raise NotImplementedError("numba only")
 
 
 _JIT = {"cache": True, "error_model": "numpy"}
 
 
-@overload(bearing_forces, jit_options=_JIT)
+@overload(_forces_of, jit_options=_JIT)
 def _forces(B, t, y, dy, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout):
     if B.instance_class is NoBearings:
         return lambda B, t, y, dy, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout: None
@@ -98,7 +114,7 @@ def _forces(B, t, y, dy, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout):
     return impl
 
 
-@overload(bearing_exchange, jit_options=_JIT)
+@overload(_exchange_of, jit_options=_JIT)
 def _exchange(B, X, t, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout):
     if B.instance_class is NoBearings:
         return lambda B, X, t, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout: None
@@ -115,7 +131,7 @@ def _exchange(B, X, t, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout):
     return impl
 
 
-@overload(held_loads, jit_options=_JIT)
+@overload(_held_of, jit_options=_JIT)
 def _held(B, X, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, u):
     if B.instance_class is NoBearings:
         return lambda B, X, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, u: None

@@ -2,8 +2,8 @@
 
 :data:`FIELDS` gives each field of :data:`axlebox.mbs.config.SCHEMA` its unit and a one-line
 meaning (the code's words; where a shipped config names the source of a default, it is said).
-The free-form tables are read from the code that checks them: ``[bearing]`` from
-:class:`axlebox.bearing.params.BearingParams`, ``[[defects]]`` from
+The free-form tables are read from the code that checks them: ``[bearing]`` from each bearing
+model's parameters (:data:`axlebox.bearing.models.MODELS`), ``[[defects]]`` from
 :class:`axlebox.bearing.defects.Defect` and :data:`axlebox.mbs.config.DEFECT_PLACE`,
 ``[[wheel_defects]]`` from :data:`axlebox.mbs.config.WHEEL_DEFECT`, the bearing rig's ``[rig]``
 from :class:`axlebox.bearing.rig.RigConfig` and ``[sweep]`` from :mod:`axlebox.pipelines.sweep`.
@@ -18,11 +18,9 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from axlebox.bearing import params as _bparams
+from axlebox.bearing import models as _models
 from axlebox.bearing.defects import PROFILES, Defect
-from axlebox.bearing.integrate import DT_MAX
 from axlebox.bearing.layout import KINDS
-from axlebox.bearing.quasidynamic import DT_MAX as QD_DT_MAX
 
 from axlebox.bearing.rig import RIG_METHODS, RIG_SECTIONS, RigConfig
 from axlebox.mbs.config import (_WHEEL_FIELDS, B, BODY_KINDS, DEFECT_PLACE, F, I, L, N, S, SCHEMA,
@@ -75,7 +73,17 @@ def _default(v, unit: str = "") -> str:
     return text
 
 
-_DT_MAX = ", ".join(f"{m} {_num(v)}" for m, v in DT_MAX.items())
+def _steps(scheme: str) -> str:
+    """Each model's methods and largest steps under ``scheme`` (bearing/models.py ``methods``)."""
+    out = []
+    for name, m in _models.MODELS.items():
+        p = dataclasses.replace(m.Params(), model=scheme)
+        out.append(f"{name.upper()}: " + ", ".join(f"{k} {_num(v)}" for k, v in _models.methods(p).items()))
+    return "; ".join(out)
+
+
+_DT_MAX = _steps("dynamic")
+_QD_DT_MAX = _steps("quasi-dynamic")
 ZHAI = "Zhai et al. 2004"
 
 #: section -> one line on what it is
@@ -116,11 +124,11 @@ FIELDS: dict[str, dict[str, tuple[str, str]]] = {
     "integrator": {
         "method": ("", "'leapfrog' (explicit central differences), 'imex' / 'imex2' (the leapfrog "
                        "with the bearings' contact damping / stiffness implicit), 'rk4' or 'galpha' "
-                       f"(generalized-alpha); with joint.model = 'dtrb' one of {', '.join(DT_MAX)}, "
-                       "with the quasi-dynamic bearing a leapfrog one"),
+                       "(generalized-alpha); with bearings (joint.model) one their model accepts "
+                       f"({_DT_MAX}; quasi-dynamic: {_QD_DT_MAX})"),
         "dt": ("s", "fixed step, dividing 1/output_rate_hz; with bearings and a leapfrog method "
-                    "their sub-step; with joint.model = 'dtrb' at most "
-                    f"{_DT_MAX} s by method, {_num(QD_DT_MAX)} s with the quasi-dynamic bearing"),
+                    "their sub-step; with bearings (joint.model) at most their model's step for the "
+                    "method (s, as under method)"),
         "output_rate_hz": ("Hz", "sensor output rate (the field system's 10 kHz); with "
                                  "sensors.model = 'accelerometer' a whole multiple >= 2 of "
                                  "sensors.fs_hz"),
@@ -288,14 +296,6 @@ FIELDS: dict[str, dict[str, tuple[str, str]]] = {
 }
 
 #: the BearingParams fields without a ``param`` range: (choices, meaning)
-BEARING_CHOICES: dict[str, tuple[tuple, str]] = {
-    "damping": (_bparams.DAMPING_LAWS, "contact damping law: 'ratio' (zeta), 'paper' (c_rule x K) "
-                                       "or 'stiffness' (beta x the tangent stiffness)"),
-    "cage": (_bparams.CAGE_MODES, "cage rotation: a dynamic state, or kinematic (the paper's Eq. 2)"),
-    "model": (_bparams.MODELS, "'dynamic': the paper's model, every roller and cage with its six "
-                               "DOF; 'quasi-dynamic': the rollers' contact equilibrium solved each "
-                               "step (bearing/quasidynamic.py; for studies)"),
-}
 
 #: the Defect fields without a ``param`` range: (choices, meaning)
 DEFECT_CHOICES: dict[str, tuple[tuple, str]] = {
@@ -332,8 +332,8 @@ RIG_CONSTRAINTS: dict[str, str] = {
     "speed_kmh": "> 0",
     "F_r": "F_r > 0 or F_a != 0",
     "duration": "at least one output sample",
-    "dt": f"1/fs_out a whole number of steps; at most {_DT_MAX} s by method, {_num(QD_DT_MAX)} s with "
-          "the quasi-dynamic bearing",
+    "dt": f"1/fs_out a whole number of steps; at most the bearing model's step for the method "
+          f"({_DT_MAX}; quasi-dynamic: {_QD_DT_MAX})",
     "seed": "an integer >= 0",
 }
 
@@ -397,6 +397,8 @@ def _dataclass_rows(cls, choices: dict, skip=(), constraints: dict | None = None
         elif f.name in choices:
             unit, (opts, doc) = "", choices[f.name]
             allowed = _choices(opts)
+        elif "choices" in md:                   # declared with its choices (axlebox._params.choice)
+            unit, allowed, doc = "", _choices(md["choices"]), md.get("doc", "")
         else:
             unit, allowed, doc = ("-" if typ in ("int", "float") else ""), "", md.get("doc", "")
         extra = (constraints or {}).get(f.name)
@@ -407,9 +409,14 @@ def _dataclass_rows(cls, choices: dict, skip=(), constraints: dict | None = None
 
 # ---- the sections ------------------------------------------------------------------------------
 
-def bearing_rows() -> list[tuple]:
-    """``[bearing]``: every :class:`~axlebox.bearing.params.BearingParams` field."""
-    return _dataclass_rows(_bparams.BearingParams, BEARING_CHOICES)
+def bearing_rows(model: str = _models.DEFAULT) -> list[tuple]:
+    """``[bearing]`` of ``model``: ``type``, then every field of its parameters."""
+    m = _models.MODELS[model]
+    rows = _dataclass_rows(m.Params, {})
+    kind = ("type", "str", _default(_models.DEFAULT), "", _choices(tuple(_models.MODELS)),
+            "the bearing model (bearing/models.py): " + "; ".join(
+                f"'{n}' {mm.SUMMARY}" for n, mm in _models.MODELS.items()))
+    return [kind] + [r for r in rows if r[0] != "type"]
 
 
 def defect_rows() -> list[tuple]:
@@ -457,11 +464,12 @@ def sections() -> list[tuple[str, str, list[tuple]]]:
     out = [(f"[{sec}]", SECTION_NOTES[sec],
             [_schema_row(k, spec, *FIELDS[sec][k]) for k, spec in fields.items()])
            for sec, fields in SCHEMA.items()]
+    out += [(("[bearing]" if name == _models.DEFAULT else f"[bearing] type = \"{name}\""),
+             f"The axle-box bearings of the vehicle (with joint.model = 'bearing') and of the rig, "
+             f"type = '{name}': {m.SUMMARY} ({m.Params.__module__}.{m.Params.__name__}; SI, angles "
+             f"in rad). {m.DEFAULTS}", bearing_rows(name))
+            for name, m in _models.MODELS.items()]
     out += [
-        ("[bearing]", "The DTRB axle-box bearings of the vehicle (with joint.model = 'dtrb') and "
-                      "of the rig: axlebox.bearing.params.BearingParams (SI, angles in rad; "
-                      "defaults: Zhao et al., Sci. Rep. 2025, Z = 20 rollers a row, an assumed "
-                      "130 x 230 x 160 mm unit; each field's source in bearing/params.py).", bearing_rows()),
         ("[[defects]]", "Local bearing defects, paper Eqs. (14)-(15): axlebox.bearing.defects.Defect "
                         "(SI). The vehicle config places each on a bearing (wheelset, side) and "
                         "gives its angle in degrees (angle_deg); the rig config takes the Defect "

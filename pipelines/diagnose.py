@@ -21,7 +21,7 @@ from axlebox.bearing.frequencies import FaultOrders, shaft_hz
 
 from .readers import Record, read
 
-DTRB_BORE = 0.130            # m: the assumed 130 x 230 x 160 mm unit of bearing/params.py (catalogue "dtrb")
+DTRB_BORE = lookup("dtrb").bore   # m: the DTRB's (bearing/dtrb.py BORE, catalogue "dtrb")
 
 
 def parse_orders(text: str, option: str = "--orders") -> FaultOrders:
@@ -51,7 +51,8 @@ def side_bearings(rec: Record, *, orders_text=None, bore=None, bearing=None, ord
                   bore_right=None) -> dict:
     """Each side's :class:`axlebox.bearing.catalogue.Bearing` and where it came from: a side's
     own option (``--orders-left``/``--bearing-left``, ...), else the option for both sides
-    (``--orders``/``--bearing``), else the file's bearing (a rig's result), else the DTRB.
+    (``--orders``/``--bearing``), else the file's bearing (its config's ``[bearing]``), else the
+    DTRB.
     Given orders need a bore (``--bore``, or the side's ``--bore-left``/``--bore-right``)."""
     out = {}
     for side, o_side, b_side, bore_side in (("left", orders_left, bearing_left, bore_left),
@@ -77,9 +78,10 @@ def side_bearings(rec: Record, *, orders_text=None, bore=None, bearing=None, ord
             b, src = custom(fo, D, name=f"{opt} bearing"), opt
         elif opt is not None:
             b, src = lookup(text, opt), f"{opt} {text}"
-        elif rec.orders is not None:
-            b, src = custom(rec.orders, DTRB_BORE if D is None else D, name="the file's bearing"), \
-                "the file's bearing"
+        elif rec.bearing is not None:
+            b, src = rec.bearing, "the file's bearing"
+            if D is not None:
+                b = replace(b, bore=float(D))
         else:
             b, src = lookup("dtrb"), "the DTRB (bearing/params.py)"
         if D is not None and opt is not None and not opt.startswith("--orders"):

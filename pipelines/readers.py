@@ -26,9 +26,8 @@ import h5py
 import numpy as np
 
 from axlebox._params import ParameterError
-from axlebox.bearing import resultfile
-from axlebox.bearing.frequencies import FaultOrders, orders, shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing import catalogue, models, resultfile
+from axlebox.bearing.frequencies import FaultOrders, shaft_hz
 
 HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
 DEFAULT_SENSORS = ("ws2_L", "ws2_R")
@@ -46,6 +45,7 @@ class Record:
     kind: str
     shaft_hz: float | None = None
     orders: FaultOrders | None = None
+    bearing: object = None        # the file's bearing (catalogue.Bearing), where its config has one
     notes: list[str] = field(default_factory=list)
 
 
@@ -130,9 +130,13 @@ def _read_result(path, left, right, fs, column: int) -> Record:
                  tuple(names), "axlebox-result")
     if "rig" in cfg:                          # standalone rig: its own bearing and wheel
         rec.shaft_hz = shaft_hz(cfg["rig"]["speed_kmh"], cfg["rig"].get("r_wheel", 0.42))
-        rec.orders = orders(BearingParams(**cfg["bearing"])) if "bearing" in cfg else None
+        rec.bearing = catalogue.of(models.from_table(cfg.get("bearing", {})), "the file's [bearing]")
+        rec.orders = rec.bearing.orders
     elif "run" in cfg and "speed_kmh" in cfg["run"]:
         rec.shaft_hz = shaft_hz(cfg["run"]["speed_kmh"], cfg.get("wheelset", {}).get("r0", 0.42))
+    if vehicle and "bearing" in cfg:           # a car on bearings of a model the file names
+        rec.bearing = catalogue.of(models.from_table(cfg["bearing"]), "the file's [bearing]")
+        rec.orders = rec.bearing.orders
     if vehicle:                               # drop the track irregularity's fade-in
         n0 = int(round(TRACK_FADE_IN_S * rec.fs))
         if rec.left.size > 2 * n0:

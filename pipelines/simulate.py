@@ -169,7 +169,7 @@ def build_model(cfg: dict, log=print):
     loads = {key: F for key, F in car_bearings.joint_loads(model, y0).items()
              if key[0] in cfg["joint"]["wheelsets"]}        # the rest stay on row bushings
     starts = car_bearings.start(cfg, loads, float(ws["omega"][1]), log)
-    model = _car(cfg, tabs, trk, red, bearings={k: v[:4] for k, v in starts.items()})
+    model = _car(cfg, tabs, trk, red, bearings={k: (v.tag, v.P, v.D, v.y0) for k, v in starts.items()})
     y0 = car_bearings.place_axleboxes(model, y0, starts)
     if cfg["coupling"]["hold"] == "jacobian":
         model.bearing_stiffness = car_bearings.stiffness(cfg, loads, model.bearing_names)

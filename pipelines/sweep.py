@@ -314,13 +314,12 @@ def rig_rows(c: Case, path: Path, criterion) -> list[dict]:
     from axlebox.bearing.diagnostics.channel import analyse
     from axlebox.bearing.rig import SENSOR
 
-    from .diagnose import DTRB_BORE
     from .readers import read
     rec = read(path, SENSOR, SENSOR)
     f = rec.orders.at(rec.shaft_hz)
     lines = tuple(n for n in ("BPFO", "BPFI", "2BSF", "FTF")
                   if rec.left.size / rec.fs >= 2.0 / f[n]) or ("BPFO",)
-    ch = analyse(rec.left, rec.fs, rec.shaft_hz, rec.orders, DTRB_BORE, lines=lines,
+    ch = analyse(rec.left, rec.fs, rec.shaft_hz, rec.orders, rec.bearing.bore, lines=lines,
                  vf_band=criterion.vf_band)
     verdict = f"lines {' '.join(ch.detected)}" if ch.detected else "no fault line"
     return [_row(c, path, "-", SENSOR, ch, verdict)]

@@ -5,10 +5,13 @@ mean."""
 import numpy as np
 import pytest
 
-from axlebox.bearing import defects, equilibrium, kernel, layout
-from axlebox.bearing.advance import EXPLICIT, IMEX, IMEX2, advance, cage_outputs, kick_drift, scratch
-from axlebox.bearing.implicit import NEWMARK_K, damped_kick
+from axlebox.bearing import defects, equilibrium, layout, models
+from axlebox.bearing.advance import EXPLICIT, IMEX, IMEX2, advance
+from axlebox.bearing.evaluate import evaluate, work
+from axlebox.bearing.implicit import NEWMARK_K, damped_kick, scratch
 from axlebox.bearing.params import BearingParams
+from axlebox.bearing.quasidynamic import QD_WIDTH
+from axlebox.bearing.step import cage_outputs, kick_drift
 
 LOAD, OMEGA, H = (0.0, 0.0, -54e3), 48 / 3.6 / 0.42, 5e-6     # N (the car's bearing), rad/s (48 km/h), s
 
@@ -18,32 +21,37 @@ def bearing():
     """The shipped calibration (contact damping 1e-4 s x stiffness) with the 2 mm defect, at its
     static state, the inner ring turning at 48 km/h."""
     p = BearingParams(damping="stiffness", beta=1e-4)
-    P = layout.pack(p)
+    P = models.pack(p)
     D = defects.table((defects.Defect(W=2e-3),), p)
     y, uo = equilibrium.static_state(p, P, D, LOAD, OMEGA)
     return p, P, D, y, equilibrium.ring_motion(OMEGA, uo)
 
 
+TAG = models.tag(BearingParams())
+
+
 def _single_rate_step(x, ring, P, D, t, h, mode, first):
     """The leapfrog step the car and the rig took before the seam: evaluate, (implicit) kick,
-    drift (bearing/implicit.py, advance.kick_drift)."""
+    drift (bearing/implicit.py, bearing/step.py kick_drift)."""
     Z = int(P[layout.Z])
-    dx, F, Qc = np.empty(x.size), np.zeros((2, 6)), np.zeros((2, Z, 6))
-    G = np.zeros((2, Z + 1, 6, 12)) if mode != EXPLICIT else np.empty((0, 1, 6, 12))
-    kernel.dtrb_rhs_damped(t, x, ring, P, D, dx, F, Qc, G, NEWMARK_K * h if mode == IMEX2 else 0.0)
-    cages = np.empty(4)
+    w = work(Z, x.size)
+    dx, F, Qc = np.empty(x.size), np.zeros((layout.ROWS, layout.LOAD)), np.zeros((layout.ROWS, Z, layout.N_Q))
+    evaluate(TAG, t, x, ring, P, D, dx, F, Qc, w, mode != EXPLICIT, NEWMARK_K * h if mode == IMEX2 else 0.0)
+    cages = np.empty(layout.CAGES)
     cage_outputs(x, dx, cages)
     hk = 0.5 * h if first else h
     if mode != EXPLICIT:
-        damped_kick(x, dx, G, P, hk)
+        damped_kick(x, dx, w.blk, w.cblk, w.flag, P, hk, 1.0, scratch(Z))
     kick_drift(x, dx, P, hk, h, mode == EXPLICIT)
     return F, Qc, cages
 
 
 def _advance(x, ring_a, ring_b, P, D, t, h, n, first, mode):
     Z = int(P[layout.Z])
-    F, Qc, cages = np.zeros((2, 6)), np.zeros((2, Z, 6)), np.empty(4)
-    advance(x, ring_a, ring_b, P, D, t, h, n, first, mode, F, Qc, cages, *scratch(P, x.size, mode))
+    F, Qc = np.zeros((layout.ROWS, layout.LOAD)), np.zeros((layout.ROWS, Z, layout.N_Q))
+    cages = np.empty(layout.CAGES)
+    advance(TAG, x, ring_a, ring_b, P, D, work(Z, x.size, QD_WIDTH), scratch(Z), t, h, n, first, mode,
+            1.0, F, Qc, cages)
     return F, Qc, cages
 
 
@@ -58,8 +66,8 @@ def test_one_substep_an_exchange_is_the_single_rate_step_bit_for_bit(bearing, mo
     for i in range(20):
         t = i * H
         ring_b = ring.copy()
-        ring_b[0, 4] = OMEGA * t
-        ring_b[1, 2] -= 1e-6 * i
+        ring_b[layout.INNER, layout.TH_Y] = OMEGA * t
+        ring_b[layout.OUTER, layout.U_Z] -= 1e-6 * i
         ref = _single_rate_step(x_ref, ring_b, P, D, t, H, mode, i == 0)
         got = _advance(x, ring_a, ring_b, P, D, t, H, 1, i == 0, mode)
         ring_a = ring_b
@@ -92,9 +100,9 @@ def test_the_window_is_centred_on_the_exchange_on_the_line_through_two_ring_moti
     those ring positions, and the loads their mean."""
     p, P, D, y, ring = bearing
     ring_a, ring_b = ring.copy(), ring.copy()
-    ring_a[1, 2] += 1e-6
-    ring_b[1, 2] -= 1e-6
-    ring_b[1, 8] = -0.4                       # and its velocity, m/s
+    ring_a[layout.OUTER, layout.U_Z] += 1e-6
+    ring_b[layout.OUTER, layout.U_Z] -= 1e-6
+    ring_b[layout.OUTER, layout.V_Z] = -0.4     # and its velocity, m/s
     x_ref, x = y.copy(), y.copy()
     F_steps = []
     for j in range(1, n + 1):

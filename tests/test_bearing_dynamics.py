@@ -6,7 +6,8 @@ from scipy.ndimage import uniform_filter1d
 from scipy.signal import find_peaks
 
 from axlebox._params import ParameterError
-from axlebox.bearing import defects, equilibrium, kernel, layout, stiffness
+from axlebox.bearing import contact, defects, equilibrium, layout, models, stiffness
+from axlebox.bearing.evaluate import rates
 from axlebox.bearing.defects import Defect
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.params import BearingParams
@@ -51,11 +52,10 @@ def test_static_start_balances_the_load_and_matches_stribeck():
     forces included): the ring load is carried to 1e-6, Q_max Z cos(a) / F_row within 3 % of
     4.08 (Stribeck/Harris), and each roller is in radial, axial and tilt balance."""
     p = BearingParams(u_r=0.0, u_a=0.0)
-    P, D = layout.pack(p, gravity=(0.0, 0.0, 0.0)), np.zeros((0, defects.WIDTH))
+    P, D = models.pack(p, gravity=(0.0, 0.0, 0.0)), np.zeros((0, defects.WIDTH))
     Fr = 60e3
     y, uo = equilibrium.static_state(p, P, D, (0.0, 0.0, -Fr), 1e-9)
-    yd, F, Q = np.zeros_like(y), np.zeros((2, 6)), np.zeros((2, p.Z, 6))
-    kernel.dtrb_rhs(0.0, y, equilibrium.ring_motion(1e-9, uo), P, D, yd, F, Q)
+    yd, F, Q, _ = rates(models.tag(p), 0.0, y, equilibrium.ring_motion(1e-9, uo), P, D)
     assert np.abs(F[1, :3] - (0.0, 0.0, Fr)).max() < 1e-6 * Fr
     ratio = Q[:, :, 0].max() * p.Z * np.cos(p.alpha_o) / (Fr / 2)
     assert ratio == pytest.approx(4.08, rel=0.03)
@@ -255,14 +255,14 @@ def test_paper_damping_rule_is_overdamped_default_is_not():
     zeta_paper = p.c_rule * K / (2 * np.sqrt(p.M_r * k_lin))
     assert zeta_paper > 10
     # the kernel's law 0 reproduces zeta: damping force / (2 sqrt(m k) v) at a known rate
-    q0, c0_law = kernel._normal(Q, K, n, 1.0, p.M_r, layout.pack(p), (Q / K) ** (1 / n))
+    q0, c0_law = contact.normal(Q, K, n, 1.0, p.M_r, models.pack(p), (Q / K) ** (1 / n), 0.0, 0.0)
     c0 = q0 - Q                                   # the rate is 1 m/s: the force is c
     assert c0_law == pytest.approx(c0, rel=1e-9)  # and the coefficient the implicit step uses
     assert c0 / (2 * np.sqrt(p.M_r * k_lin)) == pytest.approx(p.zeta, rel=1e-12)
     # law 2, the rule made dimensionally consistent: c = beta x the tangent stiffness, and at the
     # low end of the range the paper cites (2.5e-5 s) the contact is near critical, not 100x over
     ps = BearingParams(damping="stiffness", beta=2.5e-5)
-    q2, c2_law = kernel._normal(Q, K, n, 1.0, ps.M_r, layout.pack(ps), (Q / K) ** (1 / n))
+    q2, c2_law = contact.normal(Q, K, n, 1.0, ps.M_r, models.pack(ps), (Q / K) ** (1 / n), 0.0, 0.0)
     c2 = q2 - Q
     assert c2_law == pytest.approx(c2, rel=1e-9)
     assert c2 == pytest.approx(ps.beta * k_lin, rel=1e-12)

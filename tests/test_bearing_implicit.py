@@ -1,4 +1,4 @@
-"""The DTRB's contact damping taken implicitly (bearing/implicit.py, kernel.dtrb_rhs_damped).
+"""The DTRB's contact damping taken implicitly (bearing/implicit.py, the blocks of bearing/blocks.py).
 
 * The damping blocks the kernel leaves are the damping forces: with friction off, the generalised
   forces of a damped and an undamped contact law at the same state differ by exactly ``-C u``.
@@ -12,8 +12,10 @@
 import numpy as np
 import pytest
 
-from axlebox.bearing import defects, equilibrium, kernel, layout
-from axlebox.bearing.implicit import NEWMARK_K, damped_kick
+from axlebox.bearing import defects, equilibrium, layout, models
+from axlebox.bearing.blocks import dense
+from axlebox.bearing.evaluate import rates
+from axlebox.bearing.implicit import NEWMARK_K, damped_kick, scratch
 from axlebox.bearing.layout import N_CAGE, N_ROLLER
 from axlebox.bearing.params import BearingParams
 
@@ -22,18 +24,21 @@ LOAD = (0.0, 0.0, -54e3)
 
 
 def start(p):
-    P = layout.pack(p)
+    P = models.pack(p)
     D = defects.table((defects.Defect(W=2e-3),), p)
     y, uo = equilibrium.static_state(p, P, D, LOAD, OMEGA)
     return P, D, y, equilibrium.ring_motion(OMEGA, uo)
 
 
-def rhs(y, ring, P, D, damped: bool, h_k: float = 0.0):
-    Z = int(P[layout.Z])
-    yd, F, Qc = np.zeros(y.size), np.zeros((2, 6)), np.zeros((2, Z, layout.N_Q))
-    G = np.zeros((2, Z + 1, 6, 12)) if damped else np.zeros((0, 1, 6, 12))
-    kernel.dtrb_rhs_damped(0.0, y, ring, P, D, yd, F, Qc, G, h_k)
-    return yd, F, G
+TAG = models.tag(BearingParams())
+
+
+def rhs(y, ring, P, D, damped: bool, h_k: float = 0.0, with_work: bool = False):
+    """``(y', F, G)``, G the blocks as one array (bearing/blocks.py ``dense``; with
+    ``with_work`` the evaluation's scratch, for the kick)."""
+    yd, F, _, w = rates(TAG, 0.0, y, ring, P, D, damped, h_k)
+    G = dense(w, int(P[layout.Z])) if damped else None
+    return (yd, F, G, w) if with_work else (yd, F, G)
 
 
 def masses(p, y):
@@ -57,8 +62,8 @@ def test_damping_blocks_are_the_damping_forces(seed):
     kw = dict(mu_race=0.0, mu_rib=0.0, mu_cage=0.0)
     p = BearingParams(damping="stiffness", beta=5e-5, **kw)
     _, D, y, ring = start(BearingParams())          # the quasi-static start needs friction
-    P = layout.pack(p)
-    P0 = layout.pack(BearingParams(damping="stiffness", beta=0.0, **kw))
+    P = models.pack(p)
+    P0 = models.pack(BearingParams(damping="stiffness", beta=0.0, **kw))
     rng = np.random.default_rng(seed)
     rol, cag = layout.views(y, p.Z)
     rol[..., 6:11] += 1e-5 * rng.standard_normal(rol[..., 6:11].shape)
@@ -89,13 +94,14 @@ def run(p, h, T, damped: bool, h_k: float = 0.0):
     P, D, y, ring = start(p)
     n, every = int(round(T / h)), int(round(1e-4 / h))
     out = []
+    K = scratch(int(P[layout.Z]))
     for i in range(n):
-        a, F, G = rhs(y, ring, P, D, damped, h_k * h)
+        a, F, _, w = rhs(y, ring, P, D, damped, h_k * h, with_work=True)
         if i % every == 0:
-            out.append(F[1, 2])
+            out.append(F[layout.OUTER, layout.F_Z])
         hk = 0.5 * h if i == 0 else h
         if damped:
-            damped_kick(y, a, G, P, hk)
+            damped_kick(y, a, w.blk, w.cblk, w.flag, P, hk, 1.0, K)
         for o in range(0, y.size, N_ROLLER):
             if not damped:
                 y[o + 6:o + 12] += hk * a[o + 6:o + 12]
@@ -138,21 +144,22 @@ def test_stiffness_blocks_are_the_contacts_stiffness():
     touching along part of their line only): every roller's radial, axial and tilt rows against
     central differences of its contact forces in rho, eta and theta_t, the cross terms included.
     The blocks take each line contact's exact tangent in its approach and tilt
-    (``kernel.line_stiffness``, closed form); what they leave out is geometric (the contact
+    (``contact.line_stiffness``, closed form); what they leave out is geometric (the contact
     normals turning with the roller), 0.02 % of the rows' diagonal here: 1 % of the diagonal."""
-    from axlebox.bearing.integrate import run_rk4
-    from axlebox.bearing.rig import RigConfig, initial_state
+    from axlebox.bearing.integrate import CAGE_OUT, RIG_U
+    from axlebox.bearing.rig import RigConfig, initial_state, stepper
     kw = dict(mu_race=0.0, mu_rib=0.0, mu_cage=0.0, damping="stiffness", beta=0.0)
     p = BearingParams(**kw)
-    cfg = RigConfig(defects=(defects.Defect(W=2e-3),), bearing=p)
+    cfg = RigConfig(defects=(defects.Defect(W=2e-3),), bearing=p, dt=1e-5, fs_out=1e4)
     Y, P0, D, rig = initial_state(cfg)
     m = 5000
-    assert run_rk4(Y, 0.0, 1e-5, m, 10, P0, D, rig, np.zeros((m, 3)), np.zeros((m // 10, 2, 6)),
-                   np.zeros((m // 10, 2, p.Z, 6)), np.zeros((m // 10, 2, 2)))
+    assert stepper(cfg, P0, D, rig)(Y, 0.0, m, (np.zeros((m, 3)), np.zeros((m // 10, 2, 6)),
+                                                np.zeros((m // 10, 2, p.Z, 6)),
+                                                np.zeros((m // 10, 2, CAGE_OUT))), True)
     n = layout.n_state(p.Z)
     y = Y[:n]
-    ring = equilibrium.ring_motion(cfg.omega_w, Y[n:n + 3])
-    ring[0, 4] = cfg.omega_w * 0.05
+    ring = equilibrium.ring_motion(cfg.omega_w, Y[n + RIG_U:n + RIG_U + 3])
+    ring[layout.INNER, layout.TH_Y] = cfg.omega_w * 0.05
     eta = 1e-10
     _, _, G0 = rhs(y, ring, P0, D, True)
     _, _, G1 = rhs(y, ring, P0, D, True, eta)

@@ -4,8 +4,9 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from axlebox.bearing import defects, equilibrium, layout
-from axlebox.bearing.kernel import dtrb_rhs, line_integrals
+from axlebox.bearing import defects, equilibrium, layout, models
+from axlebox.bearing.contact import line_integrals
+from axlebox.bearing.evaluate import rates
 from axlebox.bearing.kernel_numpy import dtrb_rhs_numpy, line_integrals_numpy
 from axlebox.bearing.layout import CPHI, CTX, CTZ, CX, CY, CZ, ETA, PHI, PSI, RHO, TH_S, TH_T
 from axlebox.bearing.params import BearingParams
@@ -18,7 +19,7 @@ RTOL = 1e-9
 def start():
     """Default bearing with a 2 mm defect on row 2 at angle 0, quasi-static under 54 kN."""
     p = BearingParams()
-    P = layout.pack(p)
+    P = models.pack(p)
     D = defects.table((defects.Defect(W=2e-3),), p)
     y, uo = equilibrium.static_state(p, P, D, (0.0, 0.0, -54e3), OMEGA)
     return p, P, D, y, equilibrium.ring_motion(OMEGA, uo)
@@ -48,11 +49,11 @@ def perturbed(p, y, ring, seed=1):
     return y, ring
 
 
+TAG = models.tag(BearingParams())
+
+
 def both(y, ring, P, D):
-    n = y.shape[0]
-    Z = int(P[layout.Z])
-    yd, F, Qc = np.zeros(n), np.zeros((2, 6)), np.zeros((2, Z, layout.N_Q))
-    dtrb_rhs(0.0, y, ring, P, D, yd, F, Qc)
+    yd, F, Qc, _ = rates(TAG, 0.0, y, ring, P, D)
     return (yd, F, Qc), dtrb_rhs_numpy(0.0, y, ring, P, D)
 
 
@@ -86,7 +87,7 @@ def test_perturbed_contacts(start):
 def test_variants(start, kw):
     p, _, D, y0, ring0 = start
     p2 = BearingParams(**kw)
-    P2 = layout.pack(p2)
+    P2 = models.pack(p2)
     assert_same(y0, ring0, P2, D)
     for seed in (1, 2):
         y, ring = perturbed(p2, y0, ring0, seed)
@@ -122,7 +123,7 @@ def test_a_defect_with_edges_is_the_rollers_centre_path_over_them(start, r_e):
     edges, rounded to r_e, drops by rho - sqrt(rho^2 - (d - r_e)^2), rho = r_b + r_e, at arc
     distance d from the nearer edge; with sharp edges its middle is Eq. (14)'s depth A, and the
     path breaks there by the closed-form slope (W/2 - r_e) / sqrt(rho^2 - (W/2 - r_e)^2)."""
-    from axlebox.bearing import contact, kernel_numpy
+    from axlebox.bearing import kernel_numpy
     p, P, _, y, ring = start
     d = defects.Defect(W=2e-3, profile="edges", edge_radius=r_e)
     D = defects.table((d,), p)
@@ -132,7 +133,7 @@ def test_a_defect_with_edges_is_the_rollers_centre_path_over_them(start, r_e):
     e = np.clip(arc - r_e, 0.0, None)
     ref = e ** 2 / (rho + np.sqrt(rho ** 2 - e ** 2))          # rho - sqrt(rho^2 - e^2)
     ref = np.minimum(ref, D[0, 4])           # capped at the chord's W/2 (the arc is a hair longer)
-    got = np.array([contact._defect(D, 0.0, 1, D[0, 2] + xi, 0.0)[0] for xi in x])
+    got = np.array([defects.depth_under(D, layout.OUTER_RING, 1, D[0, 2] + xi, 0.0)[0] for xi in x])
     np.testing.assert_allclose(got, ref, rtol=1e-12, atol=1e-18)
     phi = np.zeros((2, x.size))
     phi[1] = D[0, 2] + x
@@ -205,7 +206,7 @@ def test_a_diverged_compression_passes_nan_on_instead_of_raising():
     """A NaN compression (a state that diverged) with no tilt used to reach the closed form's
     division by ``kap`` and stop the run with numba's ZeroDivisionError; it must come back as
     NaN, so that the integrators' finite check ends the run with its own message."""
-    from axlebox.bearing.kernel import line_stiffness
+    from axlebox.bearing.contact import line_stiffness
     for kap in (0.0, 1e-3):
         assert all(np.isnan(line_integrals(np.nan, kap, -H, H, N)))
         assert all(np.isnan(line_stiffness(np.nan, kap, -H, H, N)))

@@ -1,5 +1,5 @@
 """The car with its eight DTRBs as force elements with their own roller and cage states
-(mbs/kernel_bearings.py, mbs/dtrb.py; ``joint.model = "dtrb"``).
+(mbs/kernel_bearings.py, mbs/bearings.py; ``joint.model = "dtrb"``, the old name of "bearing").
 
 Rigid bodies here (the coupled flexible car is the validation case's, and slower): the
 bearings are what is under test.
@@ -158,7 +158,7 @@ def test_one_substep_an_exchange_is_the_cars_single_rate_leapfrog(car):
     evaluation of every state's rate (bodies and bearings), the bodies' kick-drift, each
     bearing's kick-drift.  100 steps of 1e-5 s, an output every step: sensors, wheel-rail and
     element outputs (the bearings' rows among them) and the end state equal to the bit."""
-    from axlebox.bearing.advance import kick_drift
+    from axlebox.bearing.step import kick_drift
     from axlebox.mbs import kernel_integrate as ki
     from axlebox.mbs.kernel_bearings import BR_N, BR_OFF
     cfg, model, y0 = car
@@ -176,8 +176,8 @@ def test_one_substep_an_exchange_is_the_cars_single_rate_leapfrog(car):
             break
         hk = 0.5 * h if i == 0 else h
         ki._kick_drift(y, dy, hk, h, model.S, model.W)
-        for k, (off, nb) in enumerate(model.S.br_i[:, [BR_OFF, BR_N]]):
-            kick_drift(y[off:off + nb], dy[off:off + nb], model.S.br_P[k], hk, h, True)
+        for k, (off, nb) in enumerate(model.B.idx[:, [BR_OFF, BR_N]]):
+            kick_drift(y[off:off + nb], dy[off:off + nb], model.B.P[k], hk, h, True)
         ki._normalise(y, model.S.bi)
     np.testing.assert_array_equal(np.array(sens), np.stack([run.sensors[nm] for nm in model.sensor_names], 1))
     el = np.array(el)
@@ -233,8 +233,8 @@ def test_a_co_simulation_with_a_short_exchange_follows_the_multirate_run(car):
     X.held[:] = rng.standard_normal(X.held.shape)
     mkF, mkM = np.zeros_like(model.W.mkF), np.zeros_like(model.W.mkM)
     W = model.W
-    held_loads(y0, model.S.bi, model.S.br_i, W.mkp, W.mkv, W.mkR, W.mkw, mkF, mkM, X, 0.5)
-    for k, (mi, mo) in enumerate(model.S.br_i[:, [BR_MIN, BR_MOUT]]):
+    held_loads(model.B, X, y0, model.S.bi, W.mkp, W.mkv, W.mkR, W.mkw, mkF, mkM, 0.5)
+    for k, (mi, mo) in enumerate(model.B.idx[:, [BR_MIN, BR_MOUT]]):
         for r, mk in ((0, mi), (1, mo)):
             want = 1.5 * X.held[0, k, r] - 0.5 * X.held[1, k, r]
             np.testing.assert_allclose(mkF[mk], want[:3], rtol=1e-13, atol=1e-15)
@@ -249,11 +249,11 @@ def test_a_co_simulation_with_a_short_exchange_follows_the_multirate_run(car):
     ring, th = np.zeros((2, 12)), np.zeros(6)
     delta = np.array([1e-6, -2e-6, 3e-6])
     for k in range(len(model.bearing_names)):
-        _ring_motion(k, y0, model.S.bi, model.S.br_i, W.mkp, W.mkv, W.mkR, W.mkw, ring, th)
+        _ring_motion(k, y0, model.S.bi, model.B.idx, W.mkp, W.mkv, W.mkR, W.mkw, ring, th)
         XJ.r0[k] = ring[1, :3] - delta
     mkF, mkM = np.zeros_like(W.mkF), np.zeros_like(W.mkM)
-    held_loads(y0, model.S.bi, model.S.br_i, W.mkp, W.mkv, W.mkR, W.mkw, mkF, mkM, XJ, 0.0)
-    for mi, mo in model.S.br_i[:, [BR_MIN, BR_MOUT]]:
+    held_loads(model.B, XJ, y0, model.S.bi, W.mkp, W.mkv, W.mkR, W.mkw, mkF, mkM, 0.0)
+    for mi, mo in model.B.idx[:, [BR_MIN, BR_MOUT]]:
         np.testing.assert_allclose(mkF[mo], -K * delta, rtol=1e-6)
         np.testing.assert_allclose(mkF[mi], K * delta, rtol=1e-6)
 
@@ -286,18 +286,18 @@ def test_imex_runs_the_damping_the_paper_cites_where_the_leapfrog_cannot(car):
     damping implicit, runs; and at the earlier default damping ratio of 0.1, where both are
     stable, it stays with the leapfrog (RMS on both sides within 3 %, as the leapfrog against RK4
     above)."""
-    from axlebox.bearing import layout
+    from axlebox.bearing import models
     cfg, model, y0 = car
-    P0 = model.S.br_P.copy()
+    P0 = model.B.P.copy()
     runs = {}
     try:
         for name, method, bp in (("lf0.1", "leapfrog", None), ("imex0.1", "imex", None),
                                  ("lf", "leapfrog", 1e-4), ("imex", "imex", 1e-4)):
-            model.S.br_P[:] = P0 if bp is None else layout.pack(BearingParams(damping="stiffness", beta=bp))
+            model.B.P[:] = P0 if bp is None else models.pack(BearingParams(damping="stiffness", beta=bp))
             s = integrate.Settings(method=method, dt=1e-5, output_rate_hz=1e4, state_rate_hz=100)
             runs[name] = integrate.simulate(model, 0.3 if bp is None else 0.1, s, y0=y0)
     finally:
-        model.S.br_P[:] = P0
+        model.B.P[:] = P0
     assert not runs["lf"].ok and runs["imex"].ok, runs["lf"].message
     for nm in ("ws2_R", "ws2_L"):
         a, b = (runs[k].sensors[nm][500:, 2].std() for k in ("lf0.1", "imex0.1"))

@@ -32,7 +32,7 @@ def test_kernel_hash_moves_with_any_kernel_source_and_only_with_kernels(tmp_path
     cfg = tmp_path / "mbs" / "config.py"                 # no kernel: the cache stays
     cfg.write_text(cfg.read_text() + "\n# a comment\n")
     assert _numba.kernel_hash(tmp_path) == h0
-    callee = tmp_path / "bearing" / "kernel.py"          # called from mbs's kernels
+    callee = tmp_path / "bearing" / "contact.py"         # called from mbs's kernels
     callee.write_text(callee.read_text() + "\n# a comment\n")
     assert _numba.kernel_hash(tmp_path) != h0
 
@@ -64,7 +64,7 @@ def test_a_kernel_compiled_here_and_one_loaded_from_the_cache_give_the_same_bits
     bearing kernels (and writes them), the second loads them.  Their accelerations and contact
     forces agree to the bit.  With ``fastmath`` they did not (a last-bit difference in some
     roller accelerations, grown by the quasi-static start's 1e-12 m Newton steps into a rig
-    RMS 5 % apart): bearing/kernel.py's docstring."""
+    RMS 5 % apart): bearing/evaluate.py's docstring."""
     import subprocess
     import sys
     env = {**os.environ, "AXLEBOX_CACHE": str(tmp_path / "cache")}

@@ -5,14 +5,17 @@ import numpy as np
 import pytest
 
 from axlebox._params import ParameterError
+from axlebox.bearing import layout, models
 from axlebox.bearing import quasidynamic as qd
-from axlebox.bearing.defects import Defect
-from axlebox.bearing.kernel import N_PART, dtrb_rhs, dtrb_rhs_damped, dtrb_rhs_part
-from axlebox.bearing.layout import J_RA, N_ROLLER, PSI, RHO
+from axlebox.bearing.blocks import dense
+from axlebox.bearing.defects import Defect, count
 from axlebox.bearing.diagnostics.channel import analyse
+from axlebox.bearing.evaluate import rates, ring_loads, roller, work
 from axlebox.bearing.frequencies import orders, shaft_hz
+from axlebox.bearing.layout import J_RA, N_ROLLER, PSI, RHO
 from axlebox.bearing.params import BearingParams
 from axlebox.bearing.rig import RigConfig, initial_state, simulate
+from axlebox.bearing.roller import cage_frame, orbital_inertia, ring_frame
 
 QD = BearingParams(model="quasi-dynamic")
 
@@ -27,18 +30,15 @@ def _rig(dt=5e-5, duration=0.3, defects=DEFECT):
 def _at_start():
     """The healthy rig's bearing at its quasi-static start, the rollers put in contact
     equilibrium: (config, state, ring motion, P, D, derivative, ring loads, contact forces,
-    blocks, evaluations taken)."""
+    scratch, evaluations taken)."""
     c = _rig(defects=())
     Y, P, D, rig = initial_state(c)
     nb, Z = Y.size - 6, c.bearing.Z
     x = Y[:nb].copy()
-    ring = np.zeros((2, 12))
-    ring[0, 10] = c.omega_w
-    ring[1, :3] = Y[nb:nb + 3]
-    F, Qc, dx = np.zeros((2, 6)), np.zeros((2, Z, 6)), np.zeros(nb)
-    Gb, buf = np.zeros((2, Z + 1, 6, 12)), np.zeros(qd.n_buffer(Z, nb))
-    evals = qd.equilibrium(0.0, x, ring, P, D, 5e-5, dx, F, Qc, Gb, buf)
-    return c, x, ring, P, D, dx, F, Qc, Gb, evals
+    ring = layout.ring_motion(c.omega_w, Y[nb:nb + 3])
+    w = work(Z, nb, qd.QD_WIDTH)
+    evals = qd.equilibrium(models.tag(QD), 0.0, x, ring, P, D, 5e-5, w)
+    return c, x, ring, P, D, w.dx, w.F, w.Qs, w, evals
 
 
 def test_rollers_in_equilibrium_pass_the_load_from_ring_to_ring():
@@ -47,51 +47,37 @@ def test_rollers_in_equilibrium_pass_the_load_from_ring_to_ring():
     applied one within 0.5 %, and the inner ring's is its opposite within 0.2 % of the load (the
     rollers' own weight, 40 x 1.3 N, and the solver's residual, at most 30 N a roller: F_TOL,
     are the difference).  Newton converges in a few evaluations."""
-    c, x, ring, P, D, dx, F, Qc, Gb, evals = _at_start()
+    c, x, ring, P, D, dx, F, Qc, w, evals = _at_start()
     assert evals <= 10
     assert F[1, 2] == pytest.approx(c.F_r, rel=5e-3)
     np.testing.assert_allclose(F[0, :3], -F[1, :3], atol=2e-3 * c.F_r)
     assert (Qc[:, :, 0] > 1e3).sum() >= 8                  # a load zone of several rollers a row
 
 
-def test_a_partial_evaluation_gives_the_whole_bearings_loads():
-    """The quasi-dynamic Newton evaluates only the rollers it moved (kernel.dtrb_rhs_part): the
-    others' stored shares must make the whole bearing.  At the rig's start, (1) with every roller
-    evaluated and shares kept, the result is dtrb_rhs_damped's bit for bit (the blocks on the
-    entries the QD step reads, the others left 0); (2) after one loaded
-    roller is moved by 1 um and evaluated alone, the ring loads, that roller's rows, the cage's
-    rotation row and the cage's block entry equal a whole evaluation's to rounding (1e-9 of the
-    load: a stored share is a difference of running sums)."""
-    c, x, ring, P, D, dx, F, Qc, Gb, evals = _at_start()
+def test_a_roller_evaluated_alone_gives_the_whole_bearings_loads():
+    """The quasi-dynamic Newton evaluates only the rollers it moved (evaluate.roller, the part
+    the whole evaluation calls roller by roller), and sums the records once it is done.  At the
+    rig's start, after one loaded roller is moved by 1 um and evaluated alone, the ring loads
+    summed from the records, that roller's rows and its block equal a whole evaluation's bit for
+    bit (each record holds its roller's own loads: nothing is a difference of running sums)."""
+    c, x, ring, P, D, dx, F, Qc, w, evals = _at_start()
     Z, h = c.bearing.Z, 5e-5
-    whole = [np.zeros_like(a) for a in (dx, F, Qc, Gb)]
-    dtrb_rhs_damped(0.0, x, ring, P, D, *whole, h)
-    part = [np.zeros_like(a) for a in (dx, F, Qc, Gb)]
-    parts = np.zeros((2, Z, N_PART))
-    dtrb_rhs_part(0.0, x, ring, P, D, *part, h, None, parts)
-    for a, b in zip(whole[:3], part[:3]):
-        assert np.array_equal(a, b)
-    read = np.zeros((Z + 1, 6, 12), bool)                 # the block entries the QD step reads
-    for a in (0, 2, 3):
-        read[:Z, a, [0, 2, 3]] = True
-    for a in (1, 5):
-        read[:Z, a, [1, 5, 11]] = True
-    read[Z, 5, 5] = True
-    assert np.array_equal(part[3][:, read], whole[3][:, read])
-    assert not part[3][:, ~read].any() and whole[3][:, ~read].any()
+    tag = models.tag(QD)
     k = int(np.argmax(Qc[0, :, 0]))                       # the most loaded roller of row 1
     x[k * N_ROLLER + RHO] += 1e-6
-    active = np.zeros(2 * Z)
-    active[k] = 1.0
-    dtrb_rhs_part(0.0, x, ring, P, D, *part, h, active, parts)
-    dtrb_rhs_damped(0.0, x, ring, P, D, *whole, h)
-    np.testing.assert_allclose(part[1], whole[1], rtol=0, atol=1e-9 * c.F_r)
-    assert whole[1][1, 2] != pytest.approx(F[1, 2], abs=1.0)    # the move changed the loads
+    rings = ring_frame(ring)
+    cage = cage_frame(x, 2 * Z * N_ROLLER, P, rings.omega)
+    roller(tag, x, w.dx, 0, k, rings, cage, P, D, count(D, layout.INNER_RING),
+           count(D, layout.ROLLER_SURFACE), w.Qs, w, True, h, orbital_inertia(P))
+    F_part = np.zeros_like(F)
+    ring_loads(w.rec, F_part)
+    whole_dx, whole_F, whole_Q, whole_w = rates(tag, 0.0, x, ring, P, D, True, h)
+    np.testing.assert_array_equal(F_part, whole_F)
+    assert whole_F[1, 2] != pytest.approx(F[1, 2], abs=1.0)    # the move changed the loads
     rows = slice(k * N_ROLLER, (k + 1) * N_ROLLER)
-    np.testing.assert_array_equal(part[0][rows], whole[0][rows])
-    cb = 2 * Z * N_ROLLER
-    assert part[0][cb + 11] == pytest.approx(whole[0][cb + 11], rel=1e-9, abs=1e-9)
-    assert part[3][0, Z, 5, 5] == pytest.approx(whole[3][0, Z, 5, 5], rel=1e-9, abs=1e-12)
+    np.testing.assert_array_equal(w.dx[rows], whole_dx[rows])
+    np.testing.assert_array_equal(dense(w, Z)[0, k], dense(whole_w, Z)[0, k])
+    np.testing.assert_array_equal(w.Qs[0, k], whole_Q[0, k])
 
 
 def test_spin_step_jacobian_is_the_kernels_friction_derivative():
@@ -99,15 +85,15 @@ def test_spin_step_jacobian_is_the_kernels_friction_derivative():
     its own): on every loaded roller of the rig's start, ``d(omega_s')/d(omega_s)`` from the
     blocks equals the kernel's own finite difference within 2 % (near pure rolling, slip below
     the regularisation speed, secant and tangent agree), and it damps the slip."""
-    c, x, ring, P, D, dx, F, Qc, Gb, _ = _at_start()
-    nb, Z = x.size, c.bearing.Z
+    c, x, ring, P, D, dx, F, Qc, w, _ = _at_start()
+    Z = c.bearing.Z
     eps = 1e-3                                           # rad/s on each spin: 1e-5 m/s of slip
-    xp, ap = x.copy(), np.zeros(nb)
-    w = np.arange(2 * Z) * N_ROLLER + 6 + PSI
-    xp[w] += eps
-    dtrb_rhs(0.0, xp, ring, P, D, ap, F.copy(), Qc.copy())
-    d_fd = (ap[w] - dx[w]) / eps
-    d_blocks = -Gb[:, :Z, 5, 5].reshape(-1) / P[J_RA]
+    xp = x.copy()
+    idx = np.arange(2 * Z) * N_ROLLER + 6 + PSI
+    xp[idx] += eps
+    ap = rates(models.tag(QD), 0.0, xp, ring, P, D)[0]
+    d_fd = (ap[idx] - dx[idx]) / eps
+    d_blocks = -dense(w, Z)[:, :Z, PSI, PSI].reshape(-1) / P[J_RA]
     loaded = Qc[:, :, 0].reshape(-1) > 1e3
     assert loaded.sum() >= 8
     np.testing.assert_allclose(d_blocks[loaded], d_fd[loaded], rtol=0.02)
