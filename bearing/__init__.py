@@ -13,8 +13,8 @@ Scientific Reports (2025), doi:10.1038/s41598-025-93857-x) and the models beside
   (Eqs. 1-16); :mod:`.kernel_numpy` the DTRB's plain-numpy twin.
 * Stepping: :mod:`.step` the dynamic bearing's leapfrog and :mod:`.implicit` its implicit kick;
   :mod:`.quasidynamic` the quasi-dynamic bearing; :mod:`.advance` the exchange window.
-* :mod:`.equilibrium` the quasi-static start; :mod:`.integrate` and :mod:`.rig` the standalone
-  rig; :mod:`.frequencies`, :mod:`.catalogue` fault orders; :mod:`.loaddist` Harris load
+* :mod:`.equilibrium` the quasi-static start; :mod:`axlebox.bearing.integrate` and :mod:`.rig`
+  the standalone rig; :mod:`.frequencies`, :mod:`.catalogue` fault orders; :mod:`.loaddist` Harris load
   integrals; :mod:`.resultfile` the ``axlebox-result`` file; :mod:`.spectra` the envelope
   spectrum."""
 from axlebox import _numba  # noqa: F401  (before any kernel compiles or loads)

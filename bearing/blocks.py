@@ -92,9 +92,9 @@ def tilt_rows(blk, cblk, flag, jk, kdk, kkk, Jd, Jk, Jdc, Jkc, cage):
 @kernel
 def friction_rows(blk, cblk, flag, jk, cf, t1, n, r, fr, rel, cage):
     """The friction's secant damping ``cf`` (:func:`axlebox.bearing.contact.slip_damping`) in the
-    contact plane spanned by the unit ``t1`` and ``t1 x n``, for the implicit kick: the regularised friction is
-    stiff in the slip (the roller spin's eigenvalue near -1.3e5 1/s holds an explicit step under
-    1.5e-5 s)."""
+    contact plane spanned by the unit ``t1`` and ``t1 x n``, for the implicit kick: the
+    regularised friction is stiff in the slip (the roller spin's eigenvalue near -1.3e5 1/s holds
+    an explicit step under 1.5e-5 s)."""
     for t in (t1, cross(t1, n)):
         rows(blk, cblk, flag, jk, cf, roller_grad(t, r, fr), cage_grad(t, rel) if cage else ZERO6, cage)
 

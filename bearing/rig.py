@@ -1,7 +1,7 @@
 """The standalone bearing rig: one DTRB, inner ring spinning at the speed of a 0.42 m wheel and
 held in place, outer ring = axle-box mass on a spring-damper to ground, constant radial and axial
 load; started from the quasi-static equilibrium; fixed-step RK4 or the leapfrog
-(:mod:`.integrate`).
+(:mod:`axlebox.bearing.integrate`).
 
 Python API::
 
@@ -248,7 +248,7 @@ def initial_state(c: RigConfig):
 def stepper(c: RigConfig, P, D, rig):
     """``step(Y, t0, n_steps, outs, start) -> ok``: the rig's integrator for ``c`` (its method,
     its bearing's tag and scratch), advancing ``Y`` in place and writing ``outs`` (acceleration,
-    ring loads, contact forces, cages: :func:`.integrate.run_rk4`)."""
+    ring loads, contact forces, cages: :func:`axlebox.bearing.integrate.run_rk4`)."""
     p = c.bearing
     tag = models.tag(p)
     n = models.n_state(p)
