@@ -29,24 +29,24 @@ effective contact length (Eq. 6), the cosines and sines of the cup, cone and rib
 """
 from __future__ import annotations
 
-from math import cos, pi, sin, sqrt
+from math import cos, sin
 
 import numpy as np
 
 from axlebox._numba import kernel
 
 from . import layout as lo
-from .blocks import friction_rows, roller_grad, rows, tilt_grad, tilt_rows
-from .contact import (N_LINE, N_POINT, friction, line_integrals, line_load, line_stiffness, load, normal,
-                      slip_damping)
+from .contact import (N_LINE, line_integrals, line_stiffness)
 from .defects import depth_under, roller_depths
-from .layout import (C_INNER, C_INNER_RIB, C_OUTER, INNER_RING, L_B, M_R, N_COMMON, OUTER_RING, Q_A,
-                     Q_I, Q_O, R_B, V_S)
+from .layout import (C_INNER, C_INNER_RIB, C_OUTER, INNER_RING, L_B, N_COMMON, OUTER_RING, Q_A,
+                     Q_I, Q_O)
 from .params import BearingParams
+from .rings import raceway_approach, raceway_load, rib
 from .stiffness import contacts as stiffnesses
-from .vec import AX, AZ, EY, ZERO, ZERO6, add, cross, dot, lin, mul, sub
+from .vec import AX, AZ, EY, lin
 
 NAME = "dtrb"
+nominal_state = lo.nominal_state
 Params = BearingParams
 SUMMARY = ("the double-row tapered roller bearing of the paper (Zhao et al., Sci. Rep. 2025), "
            "rollers and cages with six degrees of freedom")
@@ -70,33 +70,13 @@ def pack(p, gravity=(0.0, 0.0, -9.81)) -> np.ndarray:
     """The parameter vector of ``p`` (a :class:`.params.BearingParams`) for the kernels."""
     k = stiffnesses(p)
     v = np.zeros(N_P)
-    common(v, p, gravity, cos(p.alpha_m), sin(p.alpha_m))
+    lo.pack_common(v, p, gravity)
     v[L_E] = p.L_e
     v[[CAO, SAO, CAI, SAI]] = cos(p.alpha_o), sin(p.alpha_o), cos(p.alpha_i), sin(p.alpha_i)
     v[[CAF, SAF, C_O, H_R]] = cos(p.alpha_f), sin(p.alpha_f), p.clearance_n, p.h_r
     v[[K_O, K_I, K_A]] = k["K_ro"], k["K_ri"], k["K_a"]
     v[[MU_R, MU_A]] = p.mu_race, p.mu_rib
     return v
-
-
-def common(v, p, gravity, cam, sam) -> None:
-    """Fill the shared slots (:mod:`.layout`) of ``v`` from ``p`` (any model's parameters with
-    the shared fields: rollers, pitch, cage, pockets, masses, damping, friction); ``cam, sam``
-    the cosine and sine of the roller axis's angle from the bearing axis."""
-    from .stiffness import e_prime, k_line
-    J_ra, J_rd = p.J_r
-    J_cp, J_cd = p.J_c
-    v[[lo.Z, lo.R_M, lo.R_B, lo.L_B, lo.CAM, lo.SAM, lo.ROW]] = (p.Z, 0.5 * p.D_m, p.r_b, p.L_b,
-                                                               cam, sam, p.row_offset)
-    v[[lo.M_R, lo.J_RA, lo.J_RD, lo.M_C, lo.J_CP, lo.J_CD]] = p.M_r, J_ra, J_rd, p.M_c, J_cp, J_cd
-    v[[lo.CAC, lo.SAC, lo.S_P, lo.S_PA]] = cos(p.alpha_c), sin(p.alpha_c), 0.5 * p.s_p, 0.5 * p.s_pa
-    v[lo.K_CR] = k_line(e_prime(p.E_r, p.nu_r, p.E_c, p.nu_c), p.L_b)
-    v[[lo.MU_C, lo.V_S]] = p.mu_cage, p.v_s
-    v[[lo.LAW, lo.ZETA, lo.C_RULE, lo.BETA]] = lo.DAMPING_LAWS.index(p.damping), p.zeta, p.c_rule, p.beta
-    v[[lo.G_X, lo.G_Y, lo.G_Z]] = gravity
-    quasi = p.model == "quasi-dynamic"
-    v[lo.KINEMATIC] = lo.EQ2_CAGE if p.cage == "kinematic" else (lo.POCKET_CAGE if quasi else lo.FREE_CAGE)
-    v[lo.RATIO] = 0.5 * (1.0 - p.gamma)      # paper Eq. (2): omega_c = (1 - D_b/D_m) omega_w / 2
 
 
 def orders(p):
@@ -132,104 +112,37 @@ def ring_stiffness(p, F):
     return out
 
 
-def nominal_state(p, omega_w: float = 0.0) -> np.ndarray:
-    """Rollers centred in their pockets on the pitch circle, rolling without slip at the
-    inner-ring speed ``omega_w`` (rad/s) with the outer ring at rest; cages concentric."""
-    y = np.zeros(lo.n_state(p.Z))
-    rol, cag = lo.views(y, p.Z)
-    R, r = 0.5 * p.D_m, p.r_b
-    R_i, R_o = R - r * cos(p.alpha_i), R + r * cos(p.alpha_o)
-    w_c = omega_w * R_i / (R_i + R_o)                 # epicyclic cage speed of this geometry
-    k_cos = cos(p.alpha_o - p.alpha_m)
-    for j, s in enumerate((1.0, -1.0)):
-        rol[j, :, lo.PHI] = 2 * pi * np.arange(p.Z) / p.Z
-        rol[j, :, lo.RATE + lo.PHI] = w_c
-        rol[j, :, lo.RATE + lo.PSI] = -s * w_c * R_o / (r * k_cos)     # no slip at the cup
-        cag[j, lo.RATE + lo.CPHI] = w_c
-    return y
-
-
 # --- the rollers' contacts with the rings (numba) -------------------------------------------------
 @kernel
 def contacts(rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n_roller, want, h_k):
-    """Roller k of row j (:class:`.roller.Frame` ``fr``; ``psi`` its spin angle) against the cup,
-    the cone and the cone's rib (``rings``: :class:`.roller.Rings`): their loads into the
+    """Roller k of row j (:class:`.roller.Frame` ``fr``; ``psi`` its spin angle) against the
+    cup, the cone and the cone's rib (``rings``: :class:`.roller.Rings`): their loads into the
     roller's record ``rec``, their normal loads into its outputs ``Q`` and, with ``want``, their
     rows into its block (bearing/blocks.py).  ``n_inner``, ``n_roller``: the defect table's
     inner-ring and roller defects (none: not looked up)."""
     s = fr.s
+    stiff = want and h_k > 0.0
     h, s1, s2 = depth_under(D, OUTER_RING, j, fr.phi, rings.angle_o)
     hr_o, hr_i, r1, r2 = roller_depths(D, j, k, psi) if n_roller > 0 else (0.0, 0.0, 0.0, 0.0)
     if hr_o > h:
         h, s1, s2 = hr_o, r1, r2
-    n_o = lin(P[CAO], fr.er, s * P[SAO], EY)
-    Q[Q_O] = _raceway(rec, blk, cblk, flag, jk, fr, n_o, 1.0, P[C_O], P[K_O], rings.uo, rings.tho,
-                      rings.vo, rings.wo, C_OUTER, h, s1, s2, P, want, h_k)
+    n = lin(P[CAO], fr.er, s * P[SAO], EY)                     # cup, Eqs. (1), (3a), (4a), (14)
+    d0, kap, r, rel = raceway_approach(fr, n, 1.0, P[C_O], rings.uo, rings.tho, P)
+    Q[Q_O] = raceway_load(rec, blk, cblk, flag, jk, fr, n, 1.0, r, rel, rings.vo, rings.wo, d0, kap,
+                          line_with_defect(d0, kap, h, s1, s2, P[L_E], stiff), P[K_O], P[L_E],
+                          P[MU_R], C_OUTER, P, want, h_k)
     h, s1, s2 = depth_under(D, INNER_RING, j, fr.phi, rings.angle_i) if n_inner > 0 else (0.0, 0.0, 0.0)
     if hr_i > h:
         h, s1, s2 = hr_i, r1, r2
-    n_i = lin(-P[CAI], fr.er, -s * P[SAI], EY)
-    Q[Q_I] = _raceway(rec, blk, cblk, flag, jk, fr, n_i, -1.0, 0.0, P[K_I], rings.ui, rings.thi,
-                      rings.vi, rings.wi, C_INNER, h, s1, s2, P, want, h_k)
-    Q[Q_A] = _rib(rec, blk, cblk, flag, jk, fr, rings, P, want, h_k)
-
-
-@kernel
-def _raceway(rec, blk, cblk, flag, jk, fr, n, sigma, clearance, K, u, th, v_r, w_r, slot, h, s1, s2,
-             P, want, h_k):
-    """A raceway's line contact along roller ``fr``, normal ``n`` from the roller to the ring
-    (``sigma`` +1 the cup, -1 the cone, whose tilts enter ``kap`` with opposite signs), the ring's
-    motion ``u, th, v_r, w_r`` and its record slot ``slot``; a defect of depth ``h`` over
-    ``[s1, s2]`` of the line.  Returns the normal load."""
-    Le = P[L_E]
-    r = mul(P[R_B], n)
-    p = add(fr.c, r)
-    rel = sub(p, u)
-    d0 = dot(sub(fr.disp, add(u, cross(th, rel))), n) - clearance
-    kap = sigma * fr.s * (fr.tht - dot(th, fr.et))
-    stiff = want and h_k > 0.0
-    i0, i1, kdd, kdk, kkk = line_with_defect(d0, kap, h, s1, s2, Le, stiff)
-    if not i0 > 0.0:
-        return 0.0
-    v = sub(add(fr.V, cross(fr.w, r)), add(v_r, cross(w_r, rel)))
-    KL = K / Le
-    Q, m1, c = line_load(i0, i1, K, Le, d0, kap, dot(v, n), P[M_R], P, KL * kdd, h_k)
-    f = friction(v, n, P[MU_R] * Q, P[V_S])
-    fr_ = lin(-Q, n, 1.0, f)
-    couple = mul(-sigma * fr.s * m1, fr.et)          # the tilted line's restoring moment
-    load(rec, slot, fr_, add(couple, cross(r, f)), mul(-1.0, add(cross(rel, fr_), couple)))
-    if want and c > 0.0:
-        J = roller_grad(n, r, fr)
-        rows(blk, cblk, flag, jk, c, J, ZERO6, False)
-        if stiff:
-            tilt_rows(blk, cblk, flag, jk, h_k * KL * kdk, h_k * KL * kkk, J, tilt_grad(sigma * fr.s),
-                      ZERO6, ZERO6, False)
-            friction_rows(blk, cblk, flag, jk, slip_damping(v, n, P[MU_R] * Q, P[V_S]), fr.et, n, r, fr,
-                          ZERO, False)
-    return Q
-
-
-@kernel
-def _rib(rec, blk, cblk, flag, jk, fr, rings, P, want, h_k):
-    """The cone's rib on the roller's large end: a point contact at height ``h_r`` above the
-    roller's axis (Eqs. 3c, 4b, 8).  Returns the normal load."""
-    ra = lin(-0.5 * P[L_B], fr.ax, -P[H_R], fr.bx)
-    p = add(fr.c, ra)
-    n = lin(P[SAF], fr.er, -fr.s * P[CAF], EY)          # from the roller to the rib
-    d0 = dot(sub(add(fr.disp, cross(fr.theta, ra)), add(rings.ui, cross(rings.thi, p))), n)
-    if not d0 > 0.0:
-        return 0.0
-    rel = sub(p, rings.ui)
-    v = sub(add(fr.V, cross(fr.w, ra)), add(rings.vi, cross(rings.wi, rel)))
-    Q, c = normal(P[K_A] * d0 * sqrt(d0), P[K_A], N_POINT, dot(v, n), P[M_R], P, d0, 0.0, h_k)
-    fr_ = lin(-Q, n, 1.0, friction(v, n, P[MU_A] * Q, P[V_S]))
-    load(rec, C_INNER_RIB, fr_, cross(ra, fr_), mul(-1.0, cross(rel, fr_)))
-    if want and c > 0.0:
-        rows(blk, cblk, flag, jk, c, roller_grad(n, ra, fr), ZERO6, False)
-        if h_k > 0.0:
-            friction_rows(blk, cblk, flag, jk, slip_damping(v, n, P[MU_A] * Q, P[V_S]), fr.et, n, ra, fr,
-                          ZERO, False)
-    return Q
+    n = lin(-P[CAI], fr.er, -s * P[SAI], EY)                   # cone, Eqs. (1), (3b), (4a)
+    d0, kap, r, rel = raceway_approach(fr, n, -1.0, 0.0, rings.ui, rings.thi, P)
+    Q[Q_I] = raceway_load(rec, blk, cblk, flag, jk, fr, n, -1.0, r, rel, rings.vi, rings.wi, d0, kap,
+                          line_with_defect(d0, kap, h, s1, s2, P[L_E], stiff), P[K_I], P[L_E],
+                          P[MU_R], C_INNER, P, want, h_k)
+    # the cone's rib on the large end, at h_r above the roller's axis, Eqs. (3c), (4b), (8)
+    Q[Q_A] = rib(rec, blk, cblk, flag, jk, fr, lin(P[SAF], fr.er, -s * P[CAF], EY),
+                 lin(-0.5 * P[L_B], fr.ax, -P[H_R], fr.bx), rings.ui, rings.thi, rings.vi, rings.wi,
+                 0.0, P[K_A], P[MU_A], C_INNER_RIB, P, want, h_k)
 
 
 @kernel

@@ -20,14 +20,33 @@ from .evaluate import rates
 from .layout import CPHI, ETA, F_X, F_Z, OUTER, PHI, Q_I, Q_O, RATE, RHO, TH_T, ring_motion, views
 
 __all__ = ["ring_motion", "static_state"]
+FLOOR = 1e-6            # a direction with no stiffness: this fraction of the block's stiffest
+
+
+def floored(J):
+    """``J`` (blocks ``(..., 3, 3)``) with every diagonal entry below :data:`FLOOR` of its
+    block's largest raised to it, with that entry's sign: a direction that nothing holds (a
+    cylindrical roller's axial place inside its ribs' play, the DCRB's ring axially in it)
+    moves by the residual over that small stiffness, toward what holds it, instead of making the
+    block singular; a block held in every direction (the DTRB's) is left as it is."""
+    d = np.diagonal(J, axis1=-2, axis2=-1)
+    big = np.abs(d).max(axis=-1, keepdims=True)
+    low = np.abs(d) < FLOOR * big
+    if not low.any():
+        return J
+    J = J.copy()
+    sign = np.where(np.take_along_axis(d, np.abs(d).argmax(axis=-1)[..., None], -1) < 0, -1.0, 1.0)
+    idx = np.nonzero(low)
+    J[idx + (idx[-1],)] = (sign * FLOOR * big * np.ones_like(d))[idx]
+    return J
 
 
 def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol: float = 1e-7,
                  phase: float = 0.0):
     """``(y, uo)``: the bearing state and the outer ring's displacement at which the bearing
     carries ``F_outer`` (N, the load applied to the outer ring) with no radial, axial or tilt
-    acceleration of any roller.  ``tol``: the ring residual and ``roller_tol`` the rollers'
-    accepted once Newton stalls, both relative to the load.  ``phase`` (rad) turns the roller
+    acceleration of any roller.  ``tol``: the ring residual, and ``roller_tol`` the rollers'
+    (and the ring's) accepted once Newton stalls, both relative to the load.  ``phase`` (rad) turns the roller
     set and cages from their nominal places first.  Raises RuntimeError when it does not
     converge."""
     F_outer = np.asarray(F_outer, float)
@@ -86,7 +105,7 @@ def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol
                 J[..., a] = (residual(uo) - r) / steps[a]
                 rol[:, :, c] -= steps[a]
             J[free] = np.eye(3)
-            dx = -np.squeeze(np.linalg.solve(J, r[..., None]), axis=-1)
+            dx = -np.squeeze(np.linalg.solve(floored(J), r[..., None]), axis=-1)
             dx[free] = 0.0
             x0 = np.stack([rol[:, :, c] for c in cols], axis=-1)
             t = np.ones(r0.shape)
@@ -103,10 +122,13 @@ def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol
                            f"{r0.max():.1e} N)")
 
     uo = uo0.copy()
+    best_res, best_y, best_uo = np.inf, None, None
     for _ in range(50):
         res = solve_rollers(uo) + F_outer
         if np.linalg.norm(res) < tol * Fs:
             return y.copy(), uo
+        if np.linalg.norm(res) < best_res:
+            best_res, best_y, best_uo = np.linalg.norm(res), y.copy(), uo.copy()
         J = np.empty((3, 3))
         saved = y.copy()
         for a in range(3):
@@ -114,5 +136,14 @@ def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol
             du[a] = 1e-9
             J[:, a] = (solve_rollers(uo + du) + F_outer - res) / 1e-9
             y[:] = saved
-        uo = uo - np.linalg.solve(J, res)
+        Jf = floored(J)
+        free = np.diagonal(Jf) != np.diagonal(J)
+        # a direction nothing holds (the DCRB's ring axially inside its ribs' play) is balanced
+        # once its residual is the rollers' own (friction's last digits): any place in the play is
+        if free.any() and np.linalg.norm(res[~free]) < tol * Fs \
+                and np.linalg.norm(res[free]) < roller_tol * Fs:
+            return y.copy(), uo
+        uo = uo - np.linalg.solve(Jf, res)
+    if best_res < roller_tol * Fs:       # stalled where a roller at the loaded zone's edge
+        return best_y, best_uo           # touches and lets go by turns: its load is the rest
     raise RuntimeError(f"quasi-static start did not converge (ring residual {np.linalg.norm(res):.1e} N)")

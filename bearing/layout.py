@@ -60,6 +60,10 @@ shares: roller and cage dynamics, pockets, contact laws, :mod:`.roller`, :mod:`.
 """
 from __future__ import annotations
 
+from math import cos, pi, sin
+
+import numpy as np
+
 # --- state ------------------------------------------------------------------------------------
 RHO, PHI, ETA, TH_T, TH_S, PSI = range(6)            # roller positions
 CX, CY, CZ, CTX, CTZ, CPHI = range(6)                # cage positions
@@ -116,10 +120,48 @@ def views(y, Z_: int):
     return y[:nr].reshape(ROWS, Z_, N_ROLLER), y[nr:nr + ROWS * N_CAGE].reshape(ROWS, N_CAGE)
 
 
+def pack_common(v, p, gravity) -> None:
+    """Fill the shared slots of ``v`` from ``p`` (any model's parameters with the shared fields:
+    rollers, pitch, the roller axis's angle ``alpha_m`` from the bearing axis, cage, pockets,
+    masses, damping, friction)."""
+    from .stiffness import e_prime, k_line
+    J_ra, J_rd = p.J_r
+    J_cp, J_cd = p.J_c
+    v[[Z, R_M, R_B, L_B, CAM, SAM, ROW]] = (p.Z, 0.5 * p.D_m, p.r_b, p.L_b, cos(p.alpha_m),
+                                            sin(p.alpha_m), p.row_offset)
+    v[[M_R, J_RA, J_RD, M_C, J_CP, J_CD]] = p.M_r, J_ra, J_rd, p.M_c, J_cp, J_cd
+    v[[CAC, SAC, S_P, S_PA]] = cos(p.alpha_c), sin(p.alpha_c), 0.5 * p.s_p, 0.5 * p.s_pa
+    v[K_CR] = k_line(e_prime(p.E_r, p.nu_r, p.E_c, p.nu_c), p.L_b)
+    v[[MU_C, V_S]] = p.mu_cage, p.v_s
+    v[[LAW, ZETA, C_RULE, BETA]] = DAMPING_LAWS.index(p.damping), p.zeta, p.c_rule, p.beta
+    v[[G_X, G_Y, G_Z]] = gravity
+    quasi = p.model == "quasi-dynamic"
+    v[KINEMATIC] = EQ2_CAGE if p.cage == "kinematic" else (POCKET_CAGE if quasi else FREE_CAGE)
+    v[RATIO] = 0.5 * (1.0 - p.gamma)      # paper Eq. (2): omega_c = (1 - D_b/D_m) omega_w / 2
+
+
+def nominal_state(p, omega_w: float = 0.0) -> np.ndarray:
+    """Rollers centred in their pockets on the pitch circle, rolling without slip at the
+    inner-ring speed ``omega_w`` (rad/s) with the outer ring at rest; cages concentric (any
+    model's parameters ``p``: ``Z, D_m, r_b`` and the contact angles ``alpha_o, alpha_i,
+    alpha_m``)."""
+    y = np.zeros(n_state(p.Z))
+    rol, cag = views(y, p.Z)
+    R, r = 0.5 * p.D_m, p.r_b
+    R_i, R_o = R - r * cos(p.alpha_i), R + r * cos(p.alpha_o)
+    w_c = omega_w * R_i / (R_i + R_o)                 # epicyclic cage speed of this geometry
+    k_cos = cos(p.alpha_o - p.alpha_m)
+    for j, s in enumerate((1.0, -1.0)):
+        rol[j, :, PHI] = 2 * pi * np.arange(p.Z) / p.Z
+        rol[j, :, RATE + PHI] = w_c
+        rol[j, :, RATE + PSI] = -s * w_c * R_o / (r * k_cos)     # no slip at the cup
+        cag[j, RATE + CPHI] = w_c
+    return y
+
+
 def ring_motion(omega_w: float, uo=(0.0, 0.0, 0.0), t: float = 0.0):
     """A ring motion: the inner ring at the origin turning at ``omega_w`` (its angle at ``t``),
     the outer ring at rest displaced by ``uo``."""
-    import numpy as np
     ring = np.zeros((ROWS, RING))
     ring[INNER, TH_Y] = omega_w * t
     ring[INNER, W_Y] = omega_w

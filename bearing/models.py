@@ -26,17 +26,20 @@ from numba.extending import overload
 from axlebox._params import ParameterError
 from axlebox._params import from_table as _table
 
-from . import dtrb
+from . import dcrb, dtrb
 
 #: the models by the name ``[bearing] type`` gives them
-MODELS = {"dtrb": dtrb}
+MODELS = {"dtrb": dtrb, "dcrb": dcrb}
 DEFAULT = "dtrb"
 SCHEMES = ("dynamic", "quasi-dynamic")      # a model's ``model`` field
 
 # the tags' classes, one a model and scheme (module attributes, so numba's cache can pickle them)
 DtrbDynamic = namedtuple("DtrbDynamic", [])
 DtrbQuasiDynamic = namedtuple("DtrbQuasiDynamic", [])
-TAGS = {("dtrb", "dynamic"): DtrbDynamic, ("dtrb", "quasi-dynamic"): DtrbQuasiDynamic}
+DcrbDynamic = namedtuple("DcrbDynamic", [])
+DcrbQuasiDynamic = namedtuple("DcrbQuasiDynamic", [])
+TAGS = {("dtrb", "dynamic"): DtrbDynamic, ("dtrb", "quasi-dynamic"): DtrbQuasiDynamic,
+        ("dcrb", "dynamic"): DcrbDynamic, ("dcrb", "quasi-dynamic"): DcrbQuasiDynamic}
 _MODEL_OF = {cls: MODELS[name] for (name, _), cls in TAGS.items()}
 _SCHEME_OF = {cls: scheme for (_, scheme), cls in TAGS.items()}
 _QD_METHODS = ("leapfrog", "imex", "imex2")       # the quasi-dynamic step whatever the method

@@ -1,4 +1,6 @@
-"""Parameters of the double-row tapered roller axle-box bearing (DTRB).
+"""Parameters of the roller bearings: the fields every model shares (:class:`RollerBearing`, which
+the shared parts read) and the double-row tapered roller axle-box bearing's (DTRB,
+:class:`BearingParams`).
 
 The bearing table (Table 1) of the paper, W. Zhao, J. Ding, X. Liao, W. Liu, "Investigation on
 coaxial pseudo-fault characteristics induced by the outer ring defect in the single-sided axle-box
@@ -17,22 +19,21 @@ from math import cos, pi, radians, sin
 from axlebox._params import ParameterError, check_ranges, choice, param, require
 
 from .layout import DAMPING_LAWS
-
-CAGE_MODES = ("dynamic", "kinematic")
 MODELS = ("dynamic", "quasi-dynamic")            # the schemes a model runs by (bearing/models.py)
+CAGE_MODES = ("dynamic", "kinematic")
 
 
 @dataclass(frozen=True)
-class BearingParams:
+class RollerBearing:
+    """The fields every roller-bearing model shares (its rollers, pitch, cage and pockets,
+    masses, materials, friction, damping, scheme); each model's class gives them its own
+    defaults and adds its own (:class:`BearingParams`, bearing/dcrb.py)."""
+
     Z: int = param(20, 3, 80, unit="", doc="rollers a row")
     D_m: float = param(0.180, 0.02, 1.0, doc="pitch diameter")
     D_b: float = param(0.0234, 0.002, 0.2, doc="mean roller diameter")
     L_b: float = param(0.040, 0.002, 0.3, doc="roller length")
-    alpha_o: float = param(radians(10.0), 0.0, radians(45.0), unit="rad", doc="cup (outer) contact angle")
-    alpha_i: float = param(radians(7.5), 0.0, radians(45.0), unit="rad", doc="cone (inner) contact angle")
     row_offset: float = param(0.040, 0.0, 0.5, doc="axial distance of each row from the bearing centre")
-    u_r: float = param(0.05e-3, 0.0, 1e-3, doc="radial (diametral) clearance, mounted")
-    u_a: float = param(0.30e-3, 0.0, 3e-3, doc="axial clearance, mounted")
     M_r: float = param(0.135, 1e-4, 10.0, unit="kg", doc="roller mass")
     M_c: float = param(0.30, 1e-3, 20.0, unit="kg", doc="cage mass, each row")
     E_r: float = param(2.08e11, 1e9, 1e12, unit="Pa", doc="Young's modulus of rollers and rings")
@@ -40,12 +41,9 @@ class BearingParams:
     E_c: float = param(8.0e9, 1e8, 1e12, unit="Pa", doc="Young's modulus of the cage (glass-filled PA66)")
     nu_c: float = param(0.35, 0.0, 0.5, unit="", doc="Poisson's ratio of the cage")
     mu_race: float = param(0.005, 0.0, 0.5, unit="", doc="roller-raceway friction, lubricated")
-    # rib (cone back face) contact, Eqs. (3c), (4b), (8); assumed values for a 180 mm TDO unit
-    alpha_f: float = param(radians(8.75), 0.0, radians(30.0), unit="rad",
-                           doc="rib contact normal from the bearing axis (square to the roller axis)")
+    # rib (roller end) contact, Eqs. (3c), (4b), (8)
     h_r: float = param(0.006, 0.0, 0.1, doc="rib contact height above the roller axis (Fig. 3d)")
-    R_e: float = param(0.50, 0.01, 10.0, doc="sphere radius of the roller's large end (about 0.85 x "
-                       "the cone apex distance)")
+    R_e: float = param(0.50, 0.01, 10.0, doc="sphere radius of the roller's end face at the rib")
     mu_rib: float = param(0.03, 0.0, 0.5, unit="", doc="roller end - rib sliding friction")
     # cage (roller-guided, Eqs. 9-11, 13)
     alpha_c: float = param(radians(5.0), 0.0, radians(45.0), unit="rad", doc="pocket pressing slope angle")
@@ -72,7 +70,7 @@ class BearingParams:
 
     def __post_init__(self):
         if isinstance(self.Z, bool) or not isinstance(self.Z, int):
-            raise ParameterError(f"BearingParams.Z = {self.Z!r} is not allowed: "
+            raise ParameterError(f"{type(self).__name__}.Z = {self.Z!r} is not allowed: "
                                  "expected an integer >= 3")
         check_ranges(self)
         require(self.D_b < 0.5 * self.D_m, self, "D_b", f"must be below half the pitch diameter "
@@ -81,7 +79,6 @@ class BearingParams:
         require(self.Z * self.D_b < pi * self.D_m, self, "Z",
                 f"{self.Z} rollers of {self.D_b * 1e3:g} mm do not fit on a "
                 f"{self.D_m * 1e3:g} mm pitch circle")
-
         require(self.h_r < self.r_b, self, "h_r", f"must be below the roller radius {self.r_b:g} m")
 
     @property
@@ -90,13 +87,38 @@ class BearingParams:
         return self.D_b / self.D_m
 
     @property
+    def r_b(self) -> float:
+        return 0.5 * self.D_b
+
+    @property
+    def J_r(self) -> tuple[float, float]:
+        """Roller moments of inertia (axial, diametral) as a solid cylinder (kg m^2)."""
+        r, L = self.r_b, self.L_b
+        return 0.5 * self.M_r * r * r, self.M_r * (3 * r * r + L * L) / 12
+
+    @property
+    def J_c(self) -> tuple[float, float]:
+        """Cage moments of inertia (polar, diametral) as a thin ring on the pitch circle (kg m^2)."""
+        R, L = 0.5 * self.D_m, self.L_b
+        return self.M_c * R * R, self.M_c * (0.5 * R * R + L * L / 12)
+
+
+@dataclass(frozen=True)
+class BearingParams(RollerBearing):
+    """The DTRB: the paper's double-row tapered roller bearing (module docstring)."""
+
+    alpha_o: float = param(radians(10.0), 0.0, radians(45.0), unit="rad", doc="cup (outer) contact angle")
+    alpha_i: float = param(radians(7.5), 0.0, radians(45.0), unit="rad", doc="cone (inner) contact angle")
+    u_r: float = param(0.05e-3, 0.0, 1e-3, doc="radial (diametral) clearance, mounted")
+    u_a: float = param(0.30e-3, 0.0, 3e-3, doc="axial clearance, mounted")
+    # the rib (cone back face) contact, Eqs. (3c), (4b), (8); assumed values for a 180 mm TDO unit
+    alpha_f: float = param(radians(8.75), 0.0, radians(30.0), unit="rad",
+                           doc="rib contact normal from the bearing axis (square to the roller axis)")
+
+    @property
     def L_e(self) -> float:
         """Effective contact length, Eq. (6): L_b / cos((alpha_o - alpha_i) / 2)."""
         return self.L_b / cos(0.5 * (self.alpha_o - self.alpha_i))
-
-    @property
-    def r_b(self) -> float:
-        return 0.5 * self.D_b
 
     @property
     def alpha_m(self) -> float:
@@ -122,15 +144,3 @@ class BearingParams:
         clearance is at least reached: ``max(u_r cos(alpha_o), u_a sin(alpha_o)) / 2``.
         """
         return 0.5 * max(self.u_r * cos(self.alpha_o), self.u_a * sin(self.alpha_o))
-
-    @property
-    def J_r(self) -> tuple[float, float]:
-        """Roller moments of inertia (axial, diametral) as a solid cylinder (kg m^2)."""
-        r, L = self.r_b, self.L_b
-        return 0.5 * self.M_r * r * r, self.M_r * (3 * r * r + L * L) / 12
-
-    @property
-    def J_c(self) -> tuple[float, float]:
-        """Cage moments of inertia (polar, diametral) as a thin ring on the pitch circle (kg m^2)."""
-        R, L = 0.5 * self.D_m, self.L_b
-        return self.M_c * R * R, self.M_c * (0.5 * R * R + L * L / 12)

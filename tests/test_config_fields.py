@@ -11,6 +11,7 @@ import pytest
 
 from axlebox._params import ParameterError
 from axlebox.bearing.defects import Defect
+from axlebox.bearing.dcrb import DcrbParams
 from axlebox.bearing.params import BearingParams
 from axlebox.bearing.rig import RIG_SECTIONS, RigConfig
 from axlebox.mbs import config
@@ -89,13 +90,14 @@ def test_speed_kmh_says_it_is_in_kmh():
 
 @pytest.mark.parametrize("rows, expected", [
     (config_reference.bearing_rows, ["type"] + [f.name for f in dataclasses.fields(BearingParams)]),
+    (lambda: config_reference.bearing_rows("dcrb"), ["type"] + [f.name for f in dataclasses.fields(DcrbParams)]),
     (config_reference.defect_rows, list(DEFECT_PLACE) + [f.name for f in dataclasses.fields(Defect)]
      + ["angle_deg"]),
     (config_reference.wheel_defect_rows, list(WHEEL_DEFECT)),
     (config_reference.rig_rows, [f.name for f in dataclasses.fields(RigConfig)
                               if f.name not in RIG_SECTIONS]),
     (config_reference.sweep_rows, list(SWEEP_FIELDS)),
-], ids=["bearing", "defects", "wheel_defects", "rig", "sweep"])
+], ids=["bearing", "bearing_dcrb", "defects", "wheel_defects", "rig", "sweep"])
 def test_free_form_tables_document_every_field_the_code_takes(rows, expected):
     got = rows()
     assert [r[0] for r in got] == expected
@@ -107,7 +109,8 @@ def test_free_form_tables_document_every_field_the_code_takes(rows, expected):
 
 
 def test_free_form_defaults_and_ranges_are_the_dataclasses(page):
-    for heading, cls in (("[bearing]", BearingParams), ("[rig]", RigConfig)):
+    for heading, cls in (("[bearing]", BearingParams), ('[bearing] type = "dcrb"', DcrbParams),
+                         ("[rig]", RigConfig)):
         for f in dataclasses.fields(cls):
             if f.name in RIG_SECTIONS:
                 continue
@@ -143,7 +146,8 @@ def test_page_title_intro_and_headings(md, page):
     assert sum(line.startswith("# ") for line in lines) == 1
     assert not any(line.startswith("###") for line in lines)
     assert "generated from `axlebox.mbs.config.SCHEMA`" in md
-    expected = [f"[{s}]" for s in SCHEMA] + ["[bearing]", "[[defects]]", "[[wheel_defects]]",
+    expected = [f"[{s}]" for s in SCHEMA] + ["[bearing]", '[bearing] type = "dcrb"', "[[defects]]",
+                                             "[[wheel_defects]]",
                                              "[rig]", "[sweep]"]
     assert list(page) == expected
 
