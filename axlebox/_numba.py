@@ -86,13 +86,27 @@ configure()
 
 
 def kernel(fn=None, **options):
-    """``numba.njit`` as the kernels use it: cached, IEEE arithmetic (no ``fastmath``: a
-    kernel compiled in this process and the same one loaded from the cache must give the same
-    bits, bearing/evaluate.py), and numpy's error model (a division by zero gives inf or NaN,
-    which the integrators' finite checks catch, instead of a branch to raise at every
-    division).  Parts are plain functions, not ``inline="always"``: LLVM inlines what is small
-    (numba's own inlining copies and retypes the callee's IR at every call, which made the
-    compile of the old 335-line right-hand side take minutes)."""
+    """``numba.njit`` as the bearing kernels use it (``@kernel``, or ``@kernel(option=...)``):
+
+    * cached;
+    * IEEE arithmetic, no ``fastmath``: a kernel compiled in this process and the same one
+      loaded from the cache must give the same bits (bearing/evaluate.py);
+    * numpy's error model: a division by zero gives inf or NaN, which the integrators' finite
+      checks catch, instead of a branch to raise at every division;
+    * no reference counting (numba's ``_nrt=False``) unless the kernel allocates
+      (``allocates=True``): the kernels write into arrays they are given, and with counting on
+      every array handed to a part that LLVM does not inline is counted up and down atomically,
+      which cost half the bearing's evaluation (benchmarks/README.md, "The bearing core");
+    * parts are plain functions; those a roller's evaluation is made of are inlined where they
+      are called (``inline="always"``, marked at each): numba hands a call's tuples and arrays
+      over argument by argument, and a roller's frame and its rings' motion are dozens of
+      numbers.  The rest stays apart, which keeps the compile short (numba's inlining copies
+      and retypes the callee at every call: the old one-function right-hand side took minutes).
+    """
     from numba import njit
+    if fn is None:
+        return lambda f: kernel(f, **options)
     options = {"cache": True, "error_model": "numpy", **options}
-    return njit(**options) if fn is None else njit(**options)(fn)
+    if not options.pop("allocates", False):
+        options.setdefault("_nrt", False)
+    return njit(**options)(fn)

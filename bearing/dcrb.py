@@ -217,7 +217,7 @@ def ring_stiffness(p: DcrbParams, F):
 
 
 # --- the rollers' contacts with the rings (numba) -----------------------------------------------
-@kernel
+@kernel(inline="always")
 def contacts(rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n_roller, want, h_k):
     """Roller k of row j (:class:`.roller.Frame` ``fr``; ``psi`` its spin angle) on both raceways
     (their line contacts by slices) and against the ribs of both rings: their loads into the

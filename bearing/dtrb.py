@@ -113,7 +113,7 @@ def ring_stiffness(p, F):
 
 
 # --- the rollers' contacts with the rings (numba) -------------------------------------------------
-@kernel
+@kernel(inline="always")
 def contacts(rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n_roller, want, h_k):
     """Roller k of row j (:class:`.roller.Frame` ``fr``; ``psi`` its spin angle) against the
     cup, the cone and the cone's rib (``rings``: :class:`.roller.Rings`): their loads into the

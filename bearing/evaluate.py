@@ -82,7 +82,7 @@ def evaluate(model, t, x, ring, P, D, dx, F, Qc, w, want, h_k):
     ring_loads(w.rec, F)
 
 
-@kernel
+@kernel(inline="always")
 def roller(model, x, dx, j, k, rings, cage, P, D, n_inner, n_roller, Qc, w, want, h_k, J_orb):
     """Roller k of row j: its record (its contacts' loads), its contact forces, its block rows
     (with ``want``) and its rows of ``dx``."""

@@ -66,7 +66,7 @@ def _rig_rhs(tag, t, Y, P, D, rig, ring, dY, F, Qc, w):
         dY[nb + RIG_V + q] = _outer_ring(F, Y, nb, rig, q)
 
 
-@kernel
+@kernel(allocates=True)
 def run_rk4(tag, Y, t0, dt, n_steps, every, P, D, rig, w, acc, Fout, Qout, cage):
     """Advance ``Y`` in place by ``n_steps`` steps of ``dt`` from ``t0`` (the bearing of tag
     ``tag``, its scratch ``w``, bearing/evaluate.py ``Work``).
@@ -107,7 +107,7 @@ def run_rk4(tag, Y, t0, dt, n_steps, every, P, D, rig, w, acc, Fout, Qout, cage)
     return True
 
 
-@kernel
+@kernel(allocates=True)
 def _record(i, every, Y, a, F, Qc, acc, Fout, Qout, cage):
     """Step i's outer-ring acceleration; every ``every`` steps the loads, contacts and cages."""
     nb = Y.shape[0] - RIG
@@ -123,7 +123,7 @@ def _record(i, every, Y, a, F, Qc, acc, Fout, Qout, cage):
             cage[m, j, SPEED] = a[cb + N_CAGE * j + CPHI]
 
 
-@kernel
+@kernel(allocates=True)
 def run_leapfrog(tag, Y, t0, dt, n_steps, every, P, D, rig, w, K, acc, Fout, Qout, cage, mode,
                  start, theta=1.0):
     """:func:`run_rk4`'s contract by the leapfrog (module docstring): the outer ring and the

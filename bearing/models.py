@@ -145,7 +145,7 @@ def contacts(model, rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_i
     raise NotImplementedError("bearing.models.contacts runs in numba only")
 
 
-@overload(contacts, jit_options={"cache": True, "error_model": "numpy"})
+@overload(contacts, jit_options={"cache": True, "error_model": "numpy"}, inline="always")
 def _contacts(model, rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n_roller, want,
               h_k):
     f = _MODEL_OF[model.instance_class].contacts

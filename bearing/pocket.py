@@ -16,7 +16,7 @@ from .layout import (C_SIDE_1, C_SIDE_2, C_WALL_1, C_WALL_2, CAC, K_CR, L_B, M_C
 from .vec import EY, ZERO, add, cross, dot, lin, mul, sub
 
 
-@kernel
+@kernel(inline="always")
 def pockets(rec, Q, blk, cblk, flag, jk, fr, cage, sp, cp, P, want, h_k):
     """The pocket of roller ``fr`` (bearing/roller.py ``Frame``) in ``cage`` (its ``Cage``),
     the pocket's azimuth of sine ``sp`` and cosine ``cp``: both walls and the side beams into
@@ -35,7 +35,7 @@ def pockets(rec, Q, blk, cblk, flag, jk, fr, cage, sp, cp, P, want, h_k):
     Q[Q_SIDE] = _side_beams(rec, blk, cblk, flag, jk, fr, cage, dd, m, P, want, h_k)
 
 
-@kernel
+@kernel(inline="always")
 def _wall(rec, blk, cblk, flag, jk, fr, cage, dd, nw, sw, slot, m, P, want, h_k):
     """One pocket wall of normal ``nw`` (side ``sw``, record slot ``slot``): its line contact along
     the roller, the roller's skew relative to the cage in the tilt.  Returns its normal load."""
@@ -70,7 +70,7 @@ def _wall(rec, blk, cblk, flag, jk, fr, cage, dd, nw, sw, slot, m, P, want, h_k)
     return Q
 
 
-@kernel
+@kernel(inline="always")
 def _side_beams(rec, blk, cblk, flag, jk, fr, cage, dd, m, P, want, h_k):
     """The side beams at the roller's two ends: the axial play ``chi`` of the roller in its
     pocket beyond the clearance, the same line law along the end's diameter.  Returns their

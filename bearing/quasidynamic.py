@@ -63,6 +63,7 @@ from .layout import (BLK_CAGE, BLK_CAGE_CAGE, BLK_COUPLED, BLK_ROLLER, CPHI, CTZ
                      POCKET_CAGE, PSI, RATE, REC_ORBIT, RHO, ROLLER_SURFACE, ROWS, TH_S, TH_T, Z)
 from .roller import cage_frame, cage_rates, orbital_inertia, pocket_angles, ring_frame
 from .step import cage_outputs
+from .vec import copy3
 
 DT_MAX = 1e-4           # s: the step is held by accuracy (the defect's passage), not stability
 MAX_IT = 8              # Newton iterations at most a step
@@ -333,6 +334,6 @@ def substep(model, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages):
     and cages), then the spins and cage."""
     equilibrium(model, t, x, ring, P, D, h, w)
     if out:
-        Qc[:, :, :] = w.Qs
+        copy3(Qc, w.Qs)
         cage_outputs(x, w.dx, cages)
     spin_step(x, P, h, w)

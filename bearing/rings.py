@@ -17,7 +17,7 @@ from .layout import M_R, R_B, V_S
 from .vec import ZERO, ZERO6, add, cross, dot, lin, mul, sub
 
 
-@kernel
+@kernel(inline="always")
 def raceway_approach(fr, n, sigma, clearance, u, th, P):
     """A raceway's line contact along roller ``fr`` (bearing/roller.py ``Frame``), normal ``n``
     from the roller to the ring (``sigma`` +1 the outer raceway, -1 the inner, whose tilts
@@ -30,7 +30,7 @@ def raceway_approach(fr, n, sigma, clearance, u, th, P):
     return d0, sigma * fr.s * (fr.tht - dot(th, fr.et)), r, rel
 
 
-@kernel
+@kernel(inline="always")
 def raceway_load(rec, blk, cblk, flag, jk, fr, n, sigma, r, rel, v_r, w_r, d0, kap, law, K, L, mu,
                  slot, P, want, h_k):
     """The raceway contact of :func:`raceway_approach` under its line law's ``law = (i0, i1,
@@ -59,7 +59,7 @@ def raceway_load(rec, blk, cblk, flag, jk, fr, n, sigma, r, rel, v_r, w_r, d0, k
     return Q
 
 
-@kernel
+@kernel(inline="always")
 def rib(rec, blk, cblk, flag, jk, fr, n, ra, u, th, v_r, w_r, gap, K, mu, slot, P, want, h_k):
     """A rib's point contact ``K delta^(3/2)`` at ``ra`` from the centre of roller ``fr``, normal
     ``n`` from the roller to the rib, beyond the play ``gap``; the ring's displacement, small

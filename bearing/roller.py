@@ -89,7 +89,7 @@ def pocket_angles(phi_c, nz, sin_p, cos_p):
         sp, cp = sp * cd + cp * sd, cp * cd - sp * sd
 
 
-@kernel
+@kernel(inline="always")
 def roller_frame(x, b0, j, P, phi_p, sp, cp, phid_c):
     """:class:`Frame` of the roller of row j whose slots start at ``b0``; ``phi_p``, ``sp``,
     ``cp``: the azimuth of its pocket and its sine and cosine, where a kinematic cage puts it (at
@@ -115,7 +115,7 @@ def roller_frame(x, b0, j, P, phi_p, sp, cp, phid_c):
                  lin(rho, er, eta, EY), V, w, lin(tht, et, ths, bx), tht, ths)
 
 
-@kernel
+@kernel(inline="always")
 def roller_rates(x, dx, b0, fr, rec, P, phid_c, J_orb):
     """Newton-Euler of roller ``fr`` (:class:`Frame`, its slots from ``b0``) under the load of
     its record ``rec`` (its weight and its contacts), Eq. (12) in polar form with the orbiting

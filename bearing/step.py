@@ -12,6 +12,7 @@ from axlebox._numba import kernel
 
 from .evaluate import evaluate
 from .implicit import NEWMARK_K, damped_kick
+from .vec import copy3
 from .layout import CAGE_ANGLE, CAGE_RATE, CPHI, FREE_CAGE, KINEMATIC, N_CAGE, N_ROLLER, PHI, RATE, ROWS
 
 EXPLICIT, IMEX, IMEX2 = 0, 1, 2
@@ -56,7 +57,7 @@ def substep(model, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages):
     h_k = NEWMARK_K * h / theta if mode == IMEX2 else 0.0
     evaluate(model, t, x, ring, P, D, w.dx, w.F, w.Qs, w, mode != EXPLICIT, h_k)
     if out:
-        Qc[:, :, :] = w.Qs
+        copy3(Qc, w.Qs)
         cage_outputs(x, w.dx, cages)
     if mode != EXPLICIT:
         damped_kick(x, w.dx, w.blk, w.cblk, w.flag, P, hk, theta, K)

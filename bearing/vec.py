@@ -1,5 +1,5 @@
 """Small vector algebra on 3-tuples for the kernels: nothing is allocated (LLVM keeps the
-tuples in registers)."""
+tuples in registers); and the kernels' array copy."""
 from __future__ import annotations
 
 from axlebox._numba import kernel
@@ -8,6 +8,16 @@ AX, AY, AZ = 0, 1, 2            # the axes of a 3-vector's or a 3 x 3 matrix's i
 ZERO = (0.0, 0.0, 0.0)
 EY = (0.0, 1.0, 0.0)
 ZERO6 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
+
+@kernel(inline="always")
+def copy3(dst, src):
+    """``dst[:, :, :] = src`` for 3-index arrays of one shape, without the temporary numba
+    allocates for a slice assignment (kernels run without reference counting, axlebox/_numba.py)."""
+    for i in range(dst.shape[0]):
+        for j in range(dst.shape[1]):
+            for k in range(dst.shape[2]):
+                dst[i, j, k] = src[i, j, k]
 
 
 @kernel

@@ -40,7 +40,7 @@ from axlebox.bearing.advance import advance
 from axlebox.bearing.layout import (CAGES, F_X, INNER, LOAD, M_X, OUTER, Q_O, TH_X,
                                     TH_Y, TH_Z, U_X, U_Y, U_Z, V_X, W_X, W_Y)
 from axlebox.bearing.step import cage_outputs
-from axlebox.bearing.vec import AX, AY, AZ
+from axlebox.bearing.vec import AX, AY, AZ, copy3
 
 from .exchange import FIRST, HELD, JACOBIAN, LAST, THIS
 from .kernel_body import BI_POS, BI_VEL, SPIN_ANGLE, SPIN_RATE
@@ -123,7 +123,7 @@ def _exchange(B, X, t, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout):
         _ring_motions(B, y, bi, mkp, mkv, mkR, mkw)
         _all_advances(B.tag, B.idx, B.P, B.D, X.ring, B.ring, B.F, B.Qc, B.cages, B.work, B.kick, t, y,
                       X.h, X.n, X.flags[FIRST] != 0, X.mode)
-        X.ring[:, :, :] = B.ring
+        copy3(X.ring, B.ring)
         X.flags[FIRST] = 0
         _all_loads_back(B, mkF, mkM, elout)
         if X.m > 1:                                 # the co-simulation's held loads
@@ -158,8 +158,8 @@ def _held(B, X, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, u):
 def _hold(B, X):
     """This exchange's and the last one's ring loads kept for the co-simulation's hold, and
     each outer ring's place at it (the "jacobian" hold's reference)."""
-    X.held[LAST] = X.held[THIS] if X.flags[HELD] != 0 else B.F
-    X.held[THIS] = B.F
+    copy3(X.held[LAST], X.held[THIS] if X.flags[HELD] != 0 else B.F)
+    copy3(X.held[THIS], B.F)
     X.flags[HELD] = 1
     for k in range(B.idx.shape[0]):
         for a in range(3):
@@ -181,7 +181,7 @@ def _all_loads_back(B, mkF, mkM, elout):
 
 # the parallel loops take their arguments flat (numba's parallel loops take arrays, numbers, an
 # empty tag and flat named tuples of arrays, not tuples of tuples)
-@kernel(parallel=True)
+@kernel(parallel=True, allocates=True)
 def _all_rates(tag, idx, P, D, ring, F, Qc, cages, work, t, y, dy):
     """Every bearing's rates (bearing/evaluate.py), in parallel (numba threads): each writes only
     its own states and scratch, so the result does not depend on the number of threads."""
@@ -193,7 +193,7 @@ def _all_rates(tag, idx, P, D, ring, F, Qc, cages, work, t, y, dy):
         cage_outputs(y[off:off + n], dy[off:off + n], cages[k])
 
 
-@kernel(parallel=True)
+@kernel(parallel=True, allocates=True)
 def _all_advances(tag, idx, P, D, ring_last, ring, F, Qc, cages, work, kick, t, y, h, n, first, mode):
     """:func:`axlebox.bearing.advance.advance` of every bearing, in parallel with no
     synchronisation inside an exchange: each works on its own states and scratch alone."""

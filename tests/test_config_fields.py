@@ -90,7 +90,8 @@ def test_speed_kmh_says_it_is_in_kmh():
 
 @pytest.mark.parametrize("rows, expected", [
     (config_reference.bearing_rows, ["type"] + [f.name for f in dataclasses.fields(BearingParams)]),
-    (lambda: config_reference.bearing_rows("dcrb"), ["type"] + [f.name for f in dataclasses.fields(DcrbParams)]),
+    (lambda: config_reference.bearing_rows("dcrb"),
+     ["type"] + [f.name for f in dataclasses.fields(DcrbParams)]),
     (config_reference.defect_rows, list(DEFECT_PLACE) + [f.name for f in dataclasses.fields(Defect)]
      + ["angle_deg"]),
     (config_reference.wheel_defect_rows, list(WHEEL_DEFECT)),
