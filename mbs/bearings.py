@@ -104,7 +104,7 @@ def place_axleboxes(model, y, start_states: dict) -> np.ndarray:
     bearings' roller and cage states."""
     nb = model.n_body_states
     y = np.concatenate([np.asarray(y, float)[:nb]] + [start_states[_key(n)].y0 for n in model.bearing_names])
-    model.rhs(0.0, y)
+    model.kinematics(0.0, y)                  # the markers' places (the bearings' rates unused)
     mkp = model.W.mkp
     idx = model.B.idx
     bi = model.S.bi

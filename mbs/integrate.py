@@ -225,11 +225,14 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
         tk = t0 + k * s.n_sub * h
         base = 0 if sink is None else k
         try:
-            if s.method in ("rk4", "leapfrog", "imex", "imex2"):
-                status, k_done, bad = ki.run_explicit(s.method != "rk4", y, tk, h, s.n_sub, k1, k,
-                                                      n_out - 1, S, W, model.B, X, model.nq, nend, s.vmax,
-                                                      out_t, out_sens, out_wh, out_el, out_y, se,
-                                                      k == 0 and not continued, base)
+            if s.method == "rk4":
+                status, k_done, bad = ki.run_rk4(y, tk, h, s.n_sub, k1, k, n_out - 1, S, W, model.B,
+                                                 model.nq, nend, s.vmax, out_t, out_sens, out_wh, out_el,
+                                                 out_y, se, base)
+            elif s.method in ("leapfrog", "imex", "imex2"):
+                status, k_done, bad = ki.run_leapfrog(y, tk, h, s.n_sub, k1, k, n_out - 1, S, W, model.B,
+                                                      X, model.nq, nend, s.vmax, out_t, out_sens, out_wh,
+                                                      out_el, out_y, se, k == 0 and not continued, base)
             else:
                 status, k_done, bad = ki.run_galpha(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S,
                                                     W, model.B, model.nq, nend, s.vmax, out_t, out_sens,

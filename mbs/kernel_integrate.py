@@ -1,7 +1,7 @@
 """Fixed-step integrators over :func:`axlebox.mbs.kernel_system.rhs`, whole runs in numba.
 
-* ``run_explicit``: classical Runge-Kutta 4, or the explicit central-difference (leapfrog) step
-  of explicit finite elements and discrete elements, one right-hand side a step (Belytschko,
+* ``run_rk4``: classical Runge-Kutta 4; ``run_leapfrog``: the explicit central-difference
+  (leapfrog) step of explicit finite elements and discrete elements, one right-hand side a step (Belytschko,
   Liu and Moran, Nonlinear Finite Elements for Continua and Structures, 2000, sec. 6.2.1,
   Box 6.1), in its kick-drift form::
 
@@ -125,56 +125,68 @@ def _kick_drift(y, a, hk, h, S, W):
 
 
 @njit(cache=True)
-def run_explicit(leapfrog, y, t0, h, n_sub, n_out, k0, k_last, S, W, B, X, nq, nend, vmax, out_t,
-                 out_sens, out_wh, out_el, out_y, state_every, start, base):
-    """Advance ``y`` in place through outputs ``k0 .. n_out - 1`` by RK4 or (``leapfrog``) the
-    leapfrog; output ``k`` is at ``t0 + (k - k0) n_sub h``, recorded from the step's first
-    evaluation there; no step follows the output ``k_last``.
+def run_rk4(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, nq, nend, vmax, out_t, out_sens, out_wh,
+            out_el, out_y, state_every, base):
+    """Advance ``y`` in place through outputs ``k0 .. n_out - 1`` by RK4; output ``k`` is at
+    ``t0 + (k - k0) n_sub h``, recorded from the step's first evaluation there; no step follows
+    the output ``k_last``.  ``base``: the output the buffers' first row holds (:func:`_output`).
+    (Apart from :func:`run_leapfrog` so that a run compiles only its own method.)"""
+    N = y.shape[0]
+    k1, k2, k3, k4, yt = np.empty(N), np.empty(N), np.empty(N), np.empty(N), np.empty(N)
+    for k in range(k0, n_out):
+        for j in range(n_sub):
+            t = t0 + ((k - k0) * n_sub + j) * h
+            rhs(t, y, k1, S, W, B)
+            if j == 0:
+                st, i = _output(k, base, t, y, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el,
+                                out_y, state_every)
+                if st != OK:
+                    return st, k, i
+                if k == k_last:
+                    break
+            _rk4_step(t, y, k1, k2, k3, k4, yt, h, S, W, B)
+            _normalise(y, S.bi)
+    return OK, n_out, -1
 
-    Leapfrog: with ``start`` the velocities in ``y`` are ``u_0`` and the first kick is by
-    ``h / 2``; after that they are ``u_{n-1/2}``, half a step behind the positions, and a run
-    continued from ``y`` (``start`` False) goes on exactly as if it had not stopped.  Its
-    bearings exchange with the bodies every step (``X``: :class:`.exchange.Exchange`), and
-    between exchanges the bodies take ``X.m`` steps of ``h / X.m`` with the loads held.
-    ``base``: the output the buffers' first row holds (:func:`_output`)."""
+
+@njit(cache=True)
+def run_leapfrog(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, X, nq, nend, vmax, out_t, out_sens,
+                 out_wh, out_el, out_y, state_every, start, base):
+    """:func:`run_rk4`'s contract by the leapfrog: with ``start`` the velocities in ``y`` are
+    ``u_0`` and the first kick is by ``h / 2``; after that they are ``u_{n-1/2}``, half a step
+    behind the positions, and a run continued from ``y`` (``start`` False) goes on exactly as if
+    it had not stopped.  Its bearings exchange with the bodies every step (``X``:
+    :class:`.exchange.Exchange`), and between exchanges the bodies take ``X.m`` steps of
+    ``h / X.m`` with the loads held."""
     N = y.shape[0]
     k1 = np.empty(N)
-    m = 0 if leapfrog else N                  # RK4's stages
-    k2, k3, k4, yt = np.empty(m), np.empty(m), np.empty(m), np.empty(m)
-    ys = np.empty(N if leapfrog else 0)       # the state an output's evaluation was made at
+    ys = np.empty(N)                          # the state an output's evaluation was made at
     rs = np.empty_like(X.ring)
     for k in range(k0, n_out):
         for j in range(n_sub):
             t = t0 + ((k - k0) * n_sub + j) * h
-            if leapfrog:
-                if j == 0 and (k % state_every == 0 or k == k_last):
-                    ys[:] = y                 # the exchange moves the bearings' states on
-                    rs[:] = X.ring
-                    first = X.flags[FIRST]
-                rhs_exchange(t, y, k1, S, W, B, X)
-            else:
-                rhs(t, y, k1, S, W, B)
+            if j == 0 and (k % state_every == 0 or k == k_last):
+                ys[:] = y                     # the exchange moves the bearings' states on
+                rs[:] = X.ring
+                first = X.flags[FIRST]
+            rhs_exchange(t, y, k1, S, W, B, X)
             if j == 0:
-                st, i = _output(k, base, t, ys if leapfrog else y, y, W, nq, nend, vmax, out_t,
-                                out_sens, out_wh, out_el, out_y, state_every)
+                st, i = _output(k, base, t, ys, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el,
+                                out_y, state_every)
                 if st != OK:
                     return st, k, i
-                if k == k_last:
-                    if leapfrog:              # the run ends at the state this output was made
-                        y[:] = ys             # at: a run continued from it makes this exchange
-                        X.ring[:] = rs        # again
-                        X.flags[FIRST] = first
+                if k == k_last:               # the run ends at the state this output was made
+                    y[:] = ys                 # at: a run continued from it makes this exchange
+                    X.ring[:] = rs            # again
+                    X.flags[FIRST] = first
                     break
-            if leapfrog:
-                first = start and k == k0 and j == 0
-                hb = h / X.m                  # the bodies' step (co-simulation: X.m > 1)
-                _kick_drift(y, k1, 0.5 * hb if first else hb, hb, S, W)
-                for i in range(1, X.m):
-                    _normalise(y, S.bi)
-                    rhs_held(t + i * hb, y, k1, S, W, B, X, i / X.m if X.hold == LINEAR else 0.0)
-                    _kick_drift(y, k1, hb, hb, S, W)
-            else:
-                _rk4_step(t, y, k1, k2, k3, k4, yt, h, S, W, B)
+            first = start and k == k0 and j == 0
+            hb = h / X.m                      # the bodies' step (co-simulation: X.m > 1)
+            _kick_drift(y, k1, 0.5 * hb if first else hb, hb, S, W)
+            for i in range(1, X.m):
+                _normalise(y, S.bi)
+                rhs_held(t + i * hb, y, k1, S, W, B, X, i / X.m if X.hold == LINEAR else 0.0)
+                _kick_drift(y, k1, hb, hb, S, W)
             _normalise(y, S.bi)
     return OK, n_out, -1
 

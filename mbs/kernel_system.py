@@ -36,7 +36,7 @@ Work = namedtuple("Work", ["Ab", "rb", "vb", "omb", "omfb", "mku", "mkp", "mkv",
 @njit(cache=True)
 def rhs(t, y, dy, S, W, B):
     """``dy = F(t, y)``, the bearings' rates included (:func:`.kernel_bearings.bearing_forces`)."""
-    _kinematics(t, y, dy, S, W)
+    kinematics(t, y, dy, S, W)
     bearing_forces(B, t, y, dy, S.bi, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.elout)
     _dynamics(t, y, dy, S, W)
 
@@ -46,7 +46,7 @@ def rhs_exchange(t, y, dy, S, W, B, X):
     """The bodies' ``dy`` at ``t`` with the bearings exchanged (:func:`.kernel_bearings.bearing_exchange`:
     their states advanced to ``t``, their mean ring loads on the markers); the bearings' rows
     of ``dy`` are left as they were."""
-    _kinematics(t, y, dy, S, W)
+    kinematics(t, y, dy, S, W)
     bearing_exchange(B, X, t, y, S.bi, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.elout)
     _dynamics(t, y, dy, S, W)
 
@@ -55,13 +55,13 @@ def rhs_exchange(t, y, dy, S, W, B, X):
 def rhs_held(t, y, dy, S, W, B, X, u):
     """The bodies' ``dy`` at ``t`` between exchanges of a co-simulation: the bearings' loads
     those of the last exchange, carried ``u`` exchange steps on (:func:`.kernel_bearings.held_loads`)."""
-    _kinematics(t, y, dy, S, W)
+    kinematics(t, y, dy, S, W)
     held_loads(B, X, y, S.bi, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, u)
     _dynamics(t, y, dy, S, W)
 
 
 @njit(cache=True)
-def _kinematics(t, y, dy, S, W):
+def kinematics(t, y, dy, S, W):
     """Frames, position rates and marker kinematics; the element forces on the markers."""
     bi = S.bi
     for b in range(bi.shape[0]):

@@ -343,6 +343,12 @@ class Model:
         rhs(float(t), np.ascontiguousarray(y, float), dy, self.S, self.W, self.B)
         return dy
 
+    def kinematics(self, t: float, y: np.ndarray) -> None:
+        """The frames, markers and element forces at ``(t, y)`` into ``self.W`` (the first part
+        of :meth:`rhs`, without the bearings' rates or the bodies' accelerations)."""
+        from .kernel_system import kinematics
+        kinematics(float(t), np.ascontiguousarray(y, float), np.zeros(y.size), self.S, self.W)
+
     def body_state(self, k: int, y: np.ndarray) -> dict:
         """Unpacked state of body ``k``: r, p, A, beta, q, v, omega, qd."""
         bi = self.S.bi
