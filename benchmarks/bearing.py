@@ -2,7 +2,7 @@
 
 Prints: the numba right-hand side's time per call at the quasi-static start and in the running
 rig (where centrifugal force keeps every roller on the cup, so more contacts are active), the
-plain-numpy twin's time at the same states and the speed-up; IEEE against fastmath; simulated
+plain-numpy twin's time at the same states and the speed-up; simulated
 seconds per wall second of the rig by each integrator (RK4, the leapfrog, imex2 at several steps,
 1 s, the 2 mm defect and healthy) with the outer ring's RMS and BPFO envelope line against RK4 at
 1e-5 s; the implicit kick's order on the calibrated bearing (steps and weights theta against the
@@ -12,18 +12,16 @@ Run: ``python benchmarks/bearing.py``.
 """
 from __future__ import annotations
 
-import importlib.util
 import platform
 import resource
-import sys
-import tempfile
 import time
-from pathlib import Path
 
 import numpy as np
 
-from axlebox.bearing import contact, equilibrium, kernel, layout, stiffness
+from axlebox.bearing import equilibrium, layout, models, stiffness
 from axlebox.bearing.defects import Defect
+from axlebox.bearing.evaluate import evaluate, work
+from axlebox.bearing.implicit import scratch
 from axlebox.bearing.integrate import run_leapfrog, run_rk4
 from axlebox.bearing.kernel_numpy import dtrb_rhs_numpy
 from axlebox.bearing.params import BearingParams
@@ -48,8 +46,8 @@ def rig_states():
     Yr = Y.copy()
     every = cfg.fs_out_every
     m = 10000 // every
-    run_rk4(Yr, 0.0, cfg.dt, 10000, every, P, D, rig, np.zeros((10000, 3)), np.zeros((m, 2, 6)),
-            np.zeros((m, 2, p.Z, 6)), np.zeros((m, 2, 2)))
+    run_rk4(models.tag(p), Yr, 0.0, cfg.dt, 10000, every, P, D, rig, work(p.Z, Y.size),
+            np.zeros((10000, 3)), np.zeros((m, 2, 6)), np.zeros((m, 2, p.Z, 6)), np.zeros((m, 2, 2)))
     states = []
     for name, Ys in (("quasi-static start", Y), ("running rig, t = 0.1 s", Yr)):
         ring = equilibrium.ring_motion(cfg.omega_w, Ys[n:n + 3])
@@ -61,55 +59,14 @@ def rig_states():
 def rhs_timings():
     P, D, states = rig_states()
     Z = int(P[layout.Z])
+    tag = models.tag(BearingParams())
     rows = []
     for name, y, ring in states:
-        yd, F, Q = np.zeros(y.size), np.zeros((2, 6)), np.zeros((2, Z, 6))
-        t_nb = per_call(kernel.dtrb_rhs, 20000, 0.0, y, ring, P, D, yd, F, Q)
+        yd, F, Q, w = np.zeros(y.size), np.zeros((2, 6)), np.zeros((2, Z, 6)), work(Z, y.size)
+        t_nb = per_call(evaluate, 20000, tag, 0.0, y, ring, P, D, yd, F, Q, w, False, 0.0)
         t_np = per_call(dtrb_rhs_numpy, 300, 0.0, y, ring, P, D)
-        kernel.dtrb_rhs(0.0, y, ring, P, D, yd, F, Q)
         rows.append((name, int((Q > 0).sum()), t_nb * 1e6, t_np * 1e6, t_np / t_nb))
     return rows
-
-
-def fastmath_kernel():
-    """The shipped kernel's source compiled again with ``fastmath=True`` (what it was before
-    the in-process / cached bit difference, bearing/kernel.py's docstring), as sibling modules
-    (the kernel and its contact laws, bearing/contact.py) so that both run side by side in this
-    process."""
-    folder = Path(tempfile.mkdtemp())
-    mods = {}
-    for name in ("contact", "kernel"):
-        src = Path((kernel if name == "kernel" else contact).__file__).read_text()
-        src = src.replace('@njit(inline="always")', '@njit(inline="always", fastmath=True)')
-        src = src.replace("@njit(cache=True)", "@njit(fastmath=True)")
-        src = src.replace("from .contact import", "from axlebox.bearing.contact_fastmath import")
-        path = folder / f"{name}_fastmath.py"
-        path.write_text(src)
-        full = f"axlebox.bearing.{name}_fastmath"
-        spec = importlib.util.spec_from_file_location(full, path)
-        mods[name] = importlib.util.module_from_spec(spec)
-        sys.modules[full] = mods[name]
-        spec.loader.exec_module(mods[name])
-    return mods["kernel"]
-
-
-def fastmath_cost(repeats=7, n=20000):
-    """Best of ``repeats`` timings of ``n`` calls at the running state, IEEE against fastmath,
-    interleaved so that the shared machine's load falls on both alike."""
-    P, D, states = rig_states()
-    _, y, ring = states[1]                    # the running rig
-    Z = int(P[layout.Z])
-    fm = fastmath_kernel()
-    best = {"IEEE (shipped)": np.inf, "fastmath": np.inf}
-    out = {}
-    for _ in range(repeats):
-        for label, mod in (("IEEE (shipped)", kernel), ("fastmath", fm)):
-            yd, F, Q = np.zeros(y.size), np.zeros((2, 6)), np.zeros((2, Z, 6))
-            best[label] = min(best[label], per_call(mod.dtrb_rhs, n, 0.0, y, ring, P, D, yd, F, Q))
-            out[label] = yd
-    diff = np.max(np.abs(out["fastmath"] - out["IEEE (shipped)"]) /
-                  (np.abs(out["IEEE (shipped)"]) + 1e-300))
-    return best, diff
 
 
 def bpfo_line(res, t0=0.05) -> tuple[float, float]:
@@ -159,12 +116,14 @@ def implicit_order(duration=0.3):
                             (1, 2e-5, 1.0), (1, 2.5e-6, 0.5), (1, 5e-6, 0.5), (1, 1e-4 / 15, 0.5),
                             (1, 1e-5, 0.5), (1, 1e-4 / 15, 0.6), (1, 1e-5, 0.6), (1, 1e-5, 0.8)):
         Y, P, D, rig = initial_state(cfg)
+        Z = int(P[layout.Z])
         n, every = int(round(duration / dt)), int(round(1e-4 / dt))
         acc = np.zeros((n, 3))
         m = n // every
         t = time.perf_counter()
-        ok = run_leapfrog(Y, 0.0, dt, n, every, P, D, rig, acc, np.zeros((m, 2, 6)),
-                          np.zeros((m, 2, int(P[layout.Z]), 6)), np.zeros((m, 2, 2)), mode, True, theta)
+        ok = run_leapfrog(models.tag(cfg.bearing), Y, 0.0, dt, n, every, P, D, rig, work(Z, Y.size),
+                          scratch(Z), acc, np.zeros((m, 2, 6)), np.zeros((m, 2, Z, 6)),
+                          np.zeros((m, 2, 2)), mode, True, theta)
         wall = time.perf_counter() - t
         a = resample_poly(acc[:, 2], 1, every) if every > 1 else acc[:, 2]
 
@@ -206,12 +165,6 @@ def main():
           "| --- | --- | --- | --- | --- |")
     for name, nc, a, b, s in rhs_timings():
         print(f"| {name} | {nc} | {a:.1f} | {b:.0f} | {s:.0f}x |")
-    best, diff = fastmath_cost()
-    print("\n| kernel flags (running rig, t = 0.1 s) | us/call, best of 7 |\n| --- | --- |")
-    for label, t in best.items():
-        print(f"| {label} | {t * 1e6:.2f} |")
-    print(f"fastmath / IEEE: {best['fastmath'] / best['IEEE (shipped)']:.3f}; "
-          f"largest relative difference of the state derivative {diff:.1e}")
     dur = 1.0
     print(f"\n| rig, {dur:g} s | method | dt s | wall s | simulated s per wall s | RMS m/s^2 | "
           "vs RK4 1e-5 | BPFO line m/s^2 | vs RK4 1e-5 |\n" + "| --- " * 9 + "|")

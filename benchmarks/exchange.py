@@ -17,8 +17,11 @@ import time
 import numba
 import numpy as np
 
-from axlebox.bearing import defects, equilibrium, layout
-from axlebox.bearing.advance import MODES, advance, scratch
+from axlebox.bearing import defects, equilibrium, models
+from axlebox.bearing.advance import MODES, advance
+from axlebox.bearing.evaluate import work
+from axlebox.bearing.implicit import scratch
+from axlebox.bearing.quasidynamic import QD_WIDTH
 from axlebox.bearing.params import BearingParams
 from axlebox.mbs import integrate
 
@@ -29,19 +32,21 @@ OMEGA = 48 / 3.6 / 0.42
 
 def substep_us(mode: int, n: int = 4, calls: int = 500, repeats: int = 5) -> float:
     p = BearingParams(damping="stiffness", beta=1e-4)
-    P = layout.pack(p)
+    P, tag = models.pack(p), models.tag(p)
     D = defects.table((defects.Defect(W=2e-3),), p)
     y, uo = equilibrium.static_state(p, P, D, (0.0, 0.0, -54e3), OMEGA)
     ring = equilibrium.ring_motion(OMEGA, uo)
-    Z = int(P[layout.Z])
-    out = (np.zeros((2, 6)), np.zeros((2, Z, 6)), np.zeros(4))
-    sc = scratch(P, y.size, mode)
-    advance(y, ring, ring, P, D, 0.0, 5e-6, n, False, mode, *out, *sc)     # compile
+    sc = (work(p.Z, y.size, QD_WIDTH), scratch(p.Z))
+    out = (np.zeros((2, 6)), np.zeros((2, p.Z, 6)), np.zeros(4))
+
+    def step():
+        advance(tag, y, ring, ring, P, D, *sc, 0.0, 5e-6, n, False, mode, 1.0, *out)
+    step()                                                                  # compile
     best = float("inf")
     for _ in range(repeats):
         t0 = time.perf_counter()
         for _ in range(calls):
-            advance(y, ring, ring, P, D, 0.0, 5e-6, n, False, mode, *out, *sc)
+            step()
         best = min(best, (time.perf_counter() - t0) / (calls * n) * 1e6)
     return best
 
