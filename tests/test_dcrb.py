@@ -132,7 +132,8 @@ def test_the_dcrb_declares_its_methods_and_steps():
     with pytest.raises(ParameterError, match=r"RigConfig\.dt"):
         RigConfig(bearing=DcrbParams(), method="leapfrog", dt=2 * DT_MAX["leapfrog"])
     assert isinstance(models.from_table({"type": "dcrb", "Z": 16}), DcrbParams)
-    with pytest.raises(ParameterError, match=r"bearing\.type = 'crb' is not allowed: expected one of dtrb, dcrb"):
+    with pytest.raises(ParameterError,
+                       match=r"bearing\.type = 'crb' is not allowed: expected one of dtrb, dcrb"):
         models.from_table({"type": "crb"})
     entry = catalogue.lookup("dcrb")
     assert entry.bore == 0.130 and entry.orders == models.orders(DcrbParams())
