@@ -91,7 +91,7 @@ def _cmd_configs(a) -> None:
 
 def _cmd_demo(a) -> None:
     from .demo import DURATION, demo
-    demo(a.out, duration=DURATION if a.duration is None else a.duration)
+    demo(a.out, duration=DURATION if a.duration is None else a.duration, config=a.config)
 
 
 def _cmd_bearing_simulate(a) -> None:
@@ -328,6 +328,9 @@ def parser() -> argparse.ArgumentParser:
     d.add_argument("--duration", type=float, default=None, metavar="S",
                    help="simulated time of the validation case (default 1.6, at least 1.41: "
                         "the track's fade-in and two cage periods)")
+    d.add_argument("--config", default="validation_48kmh", metavar="NAME",
+                   help="the case to run (default validation_48kmh; dcrb_48kmh: the same car on "
+                        "double-row cylindrical roller bearings)")
     d.set_defaults(func=_cmd_demo)
 
     cf = sub.add_parser("configs", help="the shipped configs: list them, or show one to copy and edit",

@@ -157,3 +157,17 @@ def test_car_one_sided_outer_defect_is_real_on_its_side_and_pseudo_across(tmp_pa
     _, _, pair = analyse_file(out)
     print(pair.verdict.words, pair.verdict.rule, pair.verdicts)
     assert (pair.verdicts["right"][0], pair.verdicts["left"][0]) == ("real fault", "pseudo-fault")
+    assert cli.main(["report", str(out), "--out", str(tmp_path / "report")]) == 0
+    page = (tmp_path / "report" / "index.html").read_text()
+    assert "real fault" in page and "pseudo-fault" in page
+
+
+def test_the_demo_takes_the_dcrb_case_and_its_own_shortest_run(capsys):
+    """``axlebox demo --config dcrb_48kmh``: the shortest run is the DCRB's (the fade-in and two
+    periods of its 2.14 Hz FTF line: 1.44 s against the DTRB's 1.41 s), refused below it by name
+    before anything is built."""
+    from axlebox.pipelines import cli
+    from axlebox.pipelines.demo import min_duration
+    assert (min_duration(), min_duration("dcrb_48kmh")) == (1.41, 1.44)
+    assert cli.main(["demo", "--config", "dcrb_48kmh", "--duration", "1.42", "--out", "unused"]) == 2
+    assert "--duration = 1.42 is not allowed: expected at least 1.44 s" in capsys.readouterr().err
