@@ -12,8 +12,8 @@ from axlebox._numba import kernel
 
 from .evaluate import evaluate
 from .implicit import NEWMARK_K, damped_kick
-from .vec import copy3
 from .layout import CAGE_ANGLE, CAGE_RATE, CPHI, FREE_CAGE, KINEMATIC, N_CAGE, N_ROLLER, PHI, RATE, ROWS
+from .vec import copy3
 
 EXPLICIT, IMEX, IMEX2 = 0, 1, 2
 MODES = {"leapfrog": EXPLICIT, "imex": IMEX, "imex2": IMEX2}

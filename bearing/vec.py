@@ -1,5 +1,5 @@
 """Small vector algebra on 3-tuples for the kernels: nothing is allocated (LLVM keeps the
-tuples in registers); and the kernels' array copy."""
+tuples in registers); and the kernels' array copies."""
 from __future__ import annotations
 
 from axlebox._numba import kernel
@@ -10,10 +10,28 @@ EY = (0.0, 1.0, 0.0)
 ZERO6 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 
+# the kernels' array copies: by loop, since numba's slice assignment (``dst[:] = src``) allocates a
+# temporary where the two might overlap (the kernels run without reference counting,
+# axlebox/_numba.py) and compiles a shape check with its error message (seconds of a cold start,
+# benchmarks/README.md "The bearing core")
+@kernel(inline="always")
+def copy1(dst, src):
+    """``dst[:] = src`` for 1-index arrays of one length."""
+    for i in range(dst.shape[0]):
+        dst[i] = src[i]
+
+
+@kernel(inline="always")
+def copy2(dst, src):
+    """``dst[:, :] = src`` for 2-index arrays of one shape."""
+    for i in range(dst.shape[0]):
+        for j in range(dst.shape[1]):
+            dst[i, j] = src[i, j]
+
+
 @kernel(inline="always")
 def copy3(dst, src):
-    """``dst[:, :, :] = src`` for 3-index arrays of one shape, without the temporary numba
-    allocates for a slice assignment (kernels run without reference counting, axlebox/_numba.py)."""
+    """``dst[:, :, :] = src`` for 3-index arrays of one shape."""
     for i in range(dst.shape[0]):
         for j in range(dst.shape[1]):
             for k in range(dst.shape[2]):

@@ -45,7 +45,7 @@ import math
 import numpy as np
 from numba import njit
 
-from axlebox.bearing.vec import copy3
+from axlebox.bearing.vec import copy1, copy2, copy3
 
 from .exchange import FIRST, LINEAR
 from .kernel_body import BI_N, BI_POS, BI_SPIN, BI_VEL, frame_kinematics, position_rates
@@ -67,33 +67,17 @@ def _check(y, nq, nend, vmax):
 
 
 @njit(cache=True)
-def _copy(dst, src):
-    """``dst[:] = src`` by a loop: numba's slice assignment compiles a shape check with its
-    error message (seconds of a cold start, benchmarks/README.md "The bearing core")."""
-    for i in range(dst.shape[0]):
-        dst[i] = src[i]
-
-
-@njit(cache=True)
-def _copy2(dst, src):
-    """:func:`_copy` of a 2-index array."""
-    for i in range(dst.shape[0]):
-        for j in range(dst.shape[1]):
-            dst[i, j] = src[i, j]
-
-
-@njit(cache=True)
 def _output(k, base, t, ys, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y,
             state_every):
     """Record output ``k`` from the evaluation just made at (t, ``ys``: the state it was made
     at) in row ``k - base`` (the buffers hold outputs ``base ..``: all of the run, or one
     streamed chunk); then check the state ``y``."""
     out_t[k - base] = t
-    _copy2(out_sens[k - base], W.sensout)
-    _copy2(out_wh[k - base], W.whout)
-    _copy2(out_el[k - base], W.elout)
+    copy2(out_sens[k - base], W.sensout)
+    copy2(out_wh[k - base], W.whout)
+    copy2(out_el[k - base], W.elout)
     if k % state_every == 0:
-        _copy(out_y[k // state_every - (base + state_every - 1) // state_every], ys)
+        copy1(out_y[k // state_every - (base + state_every - 1) // state_every], ys)
     return _check(y, nq, nend, vmax)
 
 
@@ -184,7 +168,7 @@ def run_leapfrog(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, X, nq, nend, vmax,
         for j in range(n_sub):
             t = t0 + ((k - k0) * n_sub + j) * h
             if j == 0 and (k % state_every == 0 or k == k_last):
-                _copy(ys, y)                  # the exchange moves the bearings' states on
+                copy1(ys, y)                  # the exchange moves the bearings' states on
                 copy3(rs, X.ring)
                 first = X.flags[FIRST]
             rhs_exchange(t, y, k1, S, W, B, X)
@@ -194,7 +178,7 @@ def run_leapfrog(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, X, nq, nend, vmax,
                 if st != OK:
                     return st, k, i
                 if k == k_last:               # the run ends at the state this output was made
-                    _copy(y, ys)              # at: a run continued from it makes this exchange
+                    copy1(y, ys)              # at: a run continued from it makes this exchange
                     copy3(X.ring, rs)         # again
                     X.flags[FIRST] = first
                     break

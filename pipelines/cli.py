@@ -90,8 +90,9 @@ def _cmd_configs(a) -> None:
 
 
 def _cmd_demo(a) -> None:
-    from .demo import DURATION, demo
-    demo(a.out, duration=DURATION if a.duration is None else a.duration, config=a.config)
+    from .demo import CONFIG, DURATION, demo
+    demo(a.out, duration=DURATION if a.duration is None else a.duration,
+         config=CONFIG if a.config is None else a.config)
 
 
 def _cmd_bearing_simulate(a) -> None:
@@ -328,7 +329,7 @@ def parser() -> argparse.ArgumentParser:
     d.add_argument("--duration", type=float, default=None, metavar="S",
                    help="simulated time of the validation case (default 1.6, at least 1.41: "
                         "the track's fade-in and two cage periods)")
-    d.add_argument("--config", default="validation_48kmh", metavar="NAME",
+    d.add_argument("--config", default=None, metavar="NAME",
                    help="the case to run (default validation_48kmh; dcrb_48kmh: the same car on "
                         "double-row cylindrical roller bearings)")
     d.set_defaults(func=_cmd_demo)
