@@ -26,26 +26,124 @@ def choice(default: str, choices, doc: str = ""):
     return dataclasses.field(default=default, metadata={"choices": tuple(choices), "doc": doc})
 
 
+def flag(default: bool, doc: str = ""):
+    """A true/false dataclass field."""
+    return dataclasses.field(default=default, metadata={"flag": True, "doc": doc})
+
+
+def text(default: str, doc: str = ""):
+    """A dataclass field that takes any string (a name, a path)."""
+    return dataclasses.field(default=default, metadata={"text": True, "doc": doc})
+
+
+def vector(default, lo: float, hi: float, unit: str = "", doc: str = ""):
+    """A dataclass field of ``len(default)`` numbers, each in ``[lo, hi]`` (a tuple)."""
+    return dataclasses.field(default=tuple(float(v) for v in default),
+                             metadata={"range": (lo, hi), "length": len(default), "unit": unit,
+                                       "doc": doc})
+
+
+def numbers(default, lo: float, hi: float, unit: str = "", doc: str = ""):
+    """A dataclass field of any number of numbers, each in ``[lo, hi]`` (a tuple)."""
+    return dataclasses.field(default=tuple(float(v) for v in default),
+                             metadata={"range": (lo, hi), "numbers": True, "unit": unit, "doc": doc})
+
+
+def members(default, allowed, doc: str = "", at_least: int = 1):
+    """A dataclass field of distinct items of ``allowed`` (names or numbers), ``at_least`` of
+    them (a tuple)."""
+    return dataclasses.field(default=tuple(default), metadata={"members": tuple(allowed),
+                                                               "at_least": at_least, "doc": doc})
+
+
+def like(cls, name: str, doc: str | None = None):
+    """The field ``name`` of dataclass ``cls`` again: its default, range or choices and unit
+    (declared there, once), with ``doc`` saying what it means here."""
+    f = next(f for f in dataclasses.fields(cls) if f.name == name)
+    md = dict(f.metadata)
+    if doc is not None:
+        md["doc"] = doc
+    return dataclasses.field(default=f.default, metadata=md)
+
+
+def section(name: str):
+    """A config section ``[name]``: a frozen dataclass whose fields are checked on construction
+    (:func:`check_ranges`, refusals naming ``name.field``)."""
+    def wrap(cls):
+        cls.SECTION = name
+        if "__post_init__" not in cls.__dict__:
+            cls.__post_init__ = check_ranges
+        return dataclasses.dataclass(frozen=True)(cls)
+    return wrap
+
+
+def _label(obj) -> str:
+    return getattr(obj, "SECTION", type(obj).__name__)
+
+
+def _is_number(v) -> bool:
+    return not isinstance(v, bool) and isinstance(v, (int, float)) and math.isfinite(v)
+
+
+def _check_field(where: str, f, value) -> None:
+    """Refuse ``value`` of field ``f`` unless its declaration allows it."""
+    md = f.metadata
+    if "choices" in md:
+        if not isinstance(value, str) or value not in md["choices"]:
+            raise ParameterError(f"{where} = {value!r} is not allowed: expected one of "
+                                 f"{', '.join(md['choices'])}")
+    elif "flag" in md:
+        if not isinstance(value, bool):
+            raise ParameterError(f"{where} = {value!r} is not allowed: expected true or false")
+    elif "text" in md:
+        if not isinstance(value, str):
+            raise ParameterError(f"{where} = {value!r} is not allowed: expected a string")
+    elif "members" in md:
+        allowed = md["members"]
+        n = md["at_least"]
+        if (not isinstance(value, tuple) or len(value) < n
+                or not all(type(v) is type(allowed[0]) and v in allowed for v in value)
+                or len(set(value)) != len(value)):
+            raise ParameterError(f"{where} = {list(value) if isinstance(value, tuple) else value!r} "
+                                 "is not allowed: expected distinct items of "
+                                 f"{', '.join(map(str, allowed))}" + (f", at least {n}" if n else ""))
+    elif "range" in md:
+        lo, hi = md["range"]
+        unit = md.get("unit", "")
+        if "length" in md or "numbers" in md:
+            n = md.get("length")
+            if (not isinstance(value, tuple) or (n is not None and len(value) != n)
+                    or not all(_is_number(v) and lo <= v <= hi for v in value)):
+                count = f"{n} numbers" if n is not None else "a list of numbers"
+                raise ParameterError(f"{where} = {list(value) if isinstance(value, tuple) else value!r}"
+                                     f" is not allowed: expected {count} in [{lo:g}, {hi:g}] {unit}"
+                                     .rstrip())
+            return
+        integer = f.type in ("int", int)
+        if not _is_number(value) or not lo <= value <= hi or (integer and not isinstance(value, int)):
+            what = "an integer" if integer else "a number"
+            raise ParameterError(f"{where} = {value!r} is not allowed: expected {what} in "
+                                 f"[{lo:g}, {hi:g}] {unit}".rstrip())
+
+
 def check_ranges(obj) -> None:
-    """Refuse any field whose value is not finite or lies outside its range, or is not one of
-    its choices."""
-    name = type(obj).__name__
+    """Refuse any field whose value its declaration does not allow (a number outside its range
+    or not finite, a string not among its choices, ...), naming ``section.field`` (or
+    ``Class.field``), the value and what is allowed."""
+    name = _label(obj)
     for f in dataclasses.fields(obj):
-        value = getattr(obj, f.name)
-        options = f.metadata.get("choices")
-        if options is not None and (not isinstance(value, str) or value not in options):
-            raise ParameterError(f"{name}.{f.name} = {value!r} is not allowed: expected one of "
-                                 f"{', '.join(options)}")
-        rng = f.metadata.get("range")
-        if rng is None:
-            continue
-        lo, hi = rng
-        unit = f.metadata.get("unit", "")
-        if isinstance(value, bool) or not isinstance(value, (int, float)) \
-                or not math.isfinite(value) or not lo <= value <= hi:
-            raise ParameterError(
-                f"{name}.{f.name} = {value!r} is not allowed: "
-                f"expected a number in [{lo:g}, {hi:g}] {unit}".rstrip())
+        _check_field(f"{name}.{f.name}", f, getattr(obj, f.name))
+
+
+def _coerce(f, value):
+    """A value as read from a file (TOML) in its field's Python form: a list as a tuple, an
+    integer as a float where the field is a float."""
+    if isinstance(value, list):
+        return tuple(float(v) if ("length" in f.metadata or "numbers" in f.metadata) and _is_number(v)
+                     else v for v in value)
+    if f.type in ("float", float) and isinstance(value, int) and not isinstance(value, bool):
+        return float(value)
+    return value
 
 
 def from_table(cls, fields, where: str, **objects):
@@ -59,6 +157,8 @@ def from_table(cls, fields, where: str, **objects):
         if k not in known:
             raise ParameterError(f"{where}.{k} is not a field of [{where}]: expected one of "
                                  f"{', '.join(known)}")
+    types = {f.name: f for f in dataclasses.fields(cls)}
+    fields = {k: _coerce(types[k], v) for k, v in fields.items()}
     try:
         return cls(**fields, **objects)
     except TypeError as err:

@@ -1,10 +1,11 @@
 """The simulation result file (``format = "axlebox-result"``), shared by the bearing rig and,
 later, the vehicle: writing through a temporary name, reading with a version check.
 
-Layout (as on the documentation's design page): attrs ``format``, ``version``, ``config`` (TOML
-text, SI units), ``seed``; ``time`` (t,) s; ``signals/<sensor>/acceleration`` (t, 3) m/s^2 with
-attr ``fs_hz``; further channels under ``signals/<sensor>/`` and model internals under other
-groups.
+Layout (as on the documentation's design page): attrs ``format``, ``version``, ``config``
+(TOML text, SI units: the whole validated config, every default filled in), ``seed``,
+``package_version`` (the axlebox that wrote it); ``time`` (t,) s;
+``signals/<sensor>/acceleration`` (t, 3) m/s^2 with attr ``fs_hz``; further channels under
+``signals/<sensor>/`` and model internals under other groups.
 """
 from __future__ import annotations
 
@@ -38,6 +39,15 @@ def _array(item):
     return data
 
 
+def package_version() -> str:
+    """The installed axlebox's version (stored in every result: which code made it)."""
+    from importlib.metadata import PackageNotFoundError, version
+    try:
+        return version("axlebox")
+    except PackageNotFoundError:
+        return "unknown"
+
+
 def write(path, *, config_toml: str, seed: int, time: np.ndarray, fs_hz: float,
           signals: dict, groups: dict | None = None, attrs: dict | None = None) -> Path:
     """Write ``signals`` (sensor -> {channel: array}) and ``groups`` (name -> {dataset: array or
@@ -49,7 +59,8 @@ def write(path, *, config_toml: str, seed: int, time: np.ndarray, fs_hz: float,
     arrays = [time, *(a for ch in signals.values() for a in ch.values()),
               *(_array(i) for g in (groups or {}).values() for i in g.values())]
     with h5_written(path, h5_bound(arrays)) as f:
-        f.attrs.update(format=FORMAT, version=VERSION, config=config_toml, seed=int(seed))
+        f.attrs.update(format=FORMAT, version=VERSION, config=config_toml, seed=int(seed),
+                       package_version=package_version())
         f.attrs.update(attrs or {})
         f.create_dataset("time", data=time)
         for sensor, channels in signals.items():

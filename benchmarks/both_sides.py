@@ -12,20 +12,17 @@ relative criterion's verdicts and the rule that decided.
 from __future__ import annotations
 
 import sys
-import tomllib
 from pathlib import Path
 
-from axlebox.bearing import resultfile
+from axlebox.pipelines.readers import result_config
 from axlebox.bearing.diagnostics.criterion import Criterion
 from axlebox.pipelines.diagnose import analyse_file
 
 
 def defects(path) -> dict:
-    with resultfile.open_result(path) as f:
-        cfg = tomllib.loads(str(f.attrs.get("config", "")))
     out = {"L": "-", "R": "-"}
-    for d in cfg.get("defects", []):
-        out[d.get("side", "R")] = f"{d.get('kind', 'outer')} {1e3 * d.get('W', 2e-3):g} mm"
+    for d in result_config(path).defects:
+        out[d.side] = f"{d.defect.kind} {1e3 * d.defect.W:g} mm"
     return out
 
 
@@ -45,7 +42,7 @@ def main(paths):
         print(f"| {Path(p).stem} | {d['L']} / {d['R']} | {r.left.rms:.2f} / {r.right.rms:.2f} | "
               f"{','.join(r.left.detected) or '-'} / {','.join(r.right.detected) or '-'} | {tim} | "
               f"{votes} | {lead} {r.lag.lag_s * 1e3:.2g} ms ({100 * r.lag.agreement:.0f} %) | "
-              f"{r.verdicts['left'][0]} / {r.verdicts['right'][0]} | {r.verdict.rule} |")
+              f"{r.verdict.words['left']} / {r.verdict.words['right']} | {r.verdict.rule} |")
 
 
 if __name__ == "__main__":

@@ -15,7 +15,7 @@ dotted.
 from __future__ import annotations
 
 import argparse
-import tomllib
+from axlebox.mbs import config as vconfig
 from pathlib import Path
 
 
@@ -27,10 +27,9 @@ FAULTY = ("real fault", "pseudo-fault", "faults on both sides")
 
 def case_of(path: Path) -> tuple[float, bool, str]:
     with resultfile.reading(path) as f:
-        cfg = tomllib.loads(str(f.attrs["config"]))
-    wd = cfg.get("wheel_defects", [])
-    return (cfg["run"]["speed_kmh"], bool(cfg.get("defects")),
-            wd[0].get("name", wd[0]["kind"]) if wd else "none")
+        cfg = vconfig.loads(str(f.attrs["config"]), str(path))
+    wd = cfg.wheel_defects
+    return (cfg.run.speed_kmh, bool(cfg.defects), (wd[0].name or wd[0].kind) if wd else "none")
 
 
 def blanked(g) -> str:

@@ -82,9 +82,9 @@ from axlebox import configs
 from axlebox.mbs import integrate
 from axlebox.pipelines import simulate as psim
 T = float(sys.argv[1])
-cfg, _ = psim.load_config(configs.path("validation_48kmh"), duration=T)
+cfg = psim.load_config(configs.path("validation_48kmh"), duration=T)
 model, y0 = psim.build_model(cfg, log=lambda *_: None)
-s = psim.settings(cfg)
+s = cfg.settings()
 integrate.simulate(model, 0.002, s, y0=y0)                   # loads (or compiles) the kernels
 print(json.dumps(min(integrate.simulate(model, T, s, y0=y0).wall_s for _ in range(2)) / T))
 """

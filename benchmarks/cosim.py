@@ -45,7 +45,7 @@ def row(path: Path) -> str:
     for p in (pair, band):
         higher = "yes" if p.left.VF > p.right.VF else "no"
         cells += [f"{p.right.VF / 1e4:.2f} / {p.left.VF / 1e4:.2f}", higher,
-                  f"{SHORT[p.verdicts['right'][0]]} / {SHORT[p.verdicts['left'][0]]}"]
+                  f"{SHORT[p.verdict.words['right']]} / {SHORT[p.verdict.words['left']]}"]
     return " | ".join(cells)
 
 

@@ -114,7 +114,7 @@ def bpfo_line(x, fs: float, bpfo: float) -> float:
 
 def variant(body_dir: str, over: dict):
     over = {**over, "bodies": {**over.get("bodies", {}), "dir": body_dir}}
-    cfg, _ = psim.load_config(configs.path("validation_48kmh"), overrides=over)
+    cfg = psim.load_config(configs.path("validation_48kmh"), overrides=over)
     return psim.build_model(cfg, log=lambda *_: None)
 
 

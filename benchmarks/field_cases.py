@@ -55,8 +55,8 @@ def main():
         print(f"{speed:g} km/h: RMS defect / healthy {rec.right.std():.2f} / {rec.left.std():.2f} m/s^2; "
               f"VF over 0-1 kHz {band.right.VF:.3g} / {band.left.VF:.3g}, difference {band.vf_diff:.3g}; "
               f"whole record {pair.right.VF:.3g} / {pair.left.VF:.3g}, difference {pair.vf_diff:.3g} "
-              f"(the paper's difference {PAPER[speed]:.3g}); verdicts R / L {pair.verdicts['right'][0]} / "
-              f"{pair.verdicts['left'][0]}")
+              f"(the paper's difference {PAPER[speed]:.3g}); verdicts R / L {pair.verdict.words['right']} / "
+              f"{pair.verdict.words['left']}")
     axes[1, 0].set_xlabel("s")
     axes[1, 1].set_xlabel("Hz")
     fig.tight_layout()

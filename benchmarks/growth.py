@@ -52,7 +52,6 @@ def one(case: str, duration: float, bodies: str) -> dict:
         states = None
     else:
         from axlebox import configs
-        from axlebox.mbs import config as vconfig
         from axlebox.mbs import integrate
         from axlebox.pipelines import simulate as psim
         over = {"bodies": {"dir": bodies}}
@@ -66,11 +65,10 @@ def one(case: str, duration: float, bodies: str) -> dict:
             name = "vehicle"
             over["bodies"]["flexible"] = ["frame1", "ws1", "ws2", "ab1L", "ab1R", "ab2L", "ab2R"]
         # the track as long as the run needs (the shipped configs' 400 m hold about 28 s)
-        short, _ = psim.load_config(configs.path(name), overrides=over)
-        over["track"] = {"length": max(short["track"]["length"],
-                                       math.ceil(vconfig.track_needed(short, duration)))}
-        cfg, _ = psim.load_config(configs.path(name), duration=duration, overrides=over)
-        s = psim.settings(cfg)
+        short = psim.load_config(configs.path(name), overrides=over)
+        over["track"] = {"length": max(short.track.length, math.ceil(short.track_needed(duration)))}
+        cfg = psim.load_config(configs.path(name), duration=duration, overrides=over)
+        s = cfg.settings()
         if case == CASES[5]:              # the command: outputs streamed, acquisition, file
             import tempfile
             with tempfile.TemporaryDirectory() as tmp:

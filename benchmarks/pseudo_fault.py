@@ -13,7 +13,7 @@ side's.  The lag: `impulse_lag` at the line's period (the defect side given firs
 from __future__ import annotations
 
 import argparse
-import tomllib
+from axlebox.mbs import config as vconfig
 
 import numpy as np
 
@@ -45,11 +45,11 @@ def main():
     ap.add_argument("--right", default="ws2_R", help="the defect side")
     a = ap.parse_args()
     with open_result(a.result) as f:
-        cfg = tomllib.loads(f.attrs["config"])
+        cfg = vconfig.loads(str(f.attrs["config"]), a.result)
         fs = float(f.attrs.get("fs_hz", 1e4))
         t = f["time"][:]
         sig = {n: f[f"signals/{n}/acceleration"][:, 2][t >= TRACK_FADE_IN_S] for n in (a.left, a.right)}
-    f_s = shaft_hz(cfg["run"]["speed_kmh"], cfg.get("wheelset", {}).get("r0", 0.42))   # as readers.py
+    f_s = shaft_hz(cfg.run.speed_kmh, cfg.wheelset.r0)
     f0 = orders(BearingParams()).at(f_s)[a.line]
     print(f"{a.result}: {a.line} {f0:.2f} Hz, shaft {f_s:.2f} Hz, defect side {a.right}, "
           f"{sig[a.right].size / fs:g} s read")

@@ -25,9 +25,9 @@ side's spectra against the contact damping.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import time
-import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -36,6 +36,7 @@ from scipy.signal import welch
 from axlebox import configs
 from axlebox.bearing.diagnostics.criterion import VF_BAND_PAPER, Criterion
 from axlebox.bearing.diagnostics.envelope import envelope_spectrum
+from axlebox.mbs import config as vconfig
 from axlebox.pipelines import simulate as psim
 from axlebox.pipelines.diagnose import analyse_file
 
@@ -47,8 +48,9 @@ SPECTRA = ("shipped", "ratio0.1", "ratio2", "beta5e-5", "beta1e-3", "guyan")   #
 
 def edges(r_e: float) -> dict:
     """The validation defect with the roller's path over its edges (bearing/defects.py)."""
-    d = tomllib.loads(configs.path("validation_48kmh").read_text())["defects"][0]
-    return {"defects": [{**d, "profile": "edges", "edge_radius": r_e}]}
+    d = vconfig.load(configs.path("validation_48kmh")).defects[0]
+    return {"defects": [dataclasses.replace(d, shape=dataclasses.replace(d.shape, profile="edges",
+                                                                         edge_radius=r_e))]}
 
 
 def cosim(hold: str) -> dict:
@@ -143,12 +145,12 @@ def run_variant(name: str, over: dict, duration: float, out: Path) -> dict:
            "lag_ms": pair.lag.delay_b_samples / rec.fs * -1e3,       # healthy (left) behind defect
            "leading": {"a": "ws2_L", "b": "ws2_R"}.get(pair.lag.leading, "none"),
            "agreement": pair.lag.agreement, "vf_diff": pair.vf_diff,
-           "absolute": {s: v[0] for s, v in pair.verdicts.items()},
-           "relative": {s: v[0] for s, v in rel.verdicts.items()}}
+           "absolute": dict(pair.verdict.words),
+           "relative": dict(rel.verdict.words)}
     band = pair.in_vf_band(VF_BAND_PAPER)           # the paper's band (criterion.py)
     row["band"] = {"defect": {"FC": band.right.FC, "VF": band.right.VF},
                    "healthy": {"FC": band.left.FC, "VF": band.left.VF}, "vf_diff": band.vf_diff,
-                   "absolute": {s: v[0] for s, v in band.verdicts.items()}}
+                   "absolute": dict(band.verdict.words)}
     h5.unlink(missing_ok=True)                       # the figures are what is kept
     return row
 

@@ -34,10 +34,8 @@ def main():
     a = ap.parse_args()
     rows = []
     for label, flex in (("rigid", []), ("flexible front", None)):
-        cfg, _ = vconfig.load(configs.path("vehicle"))
-        cfg["bodies"]["dir"] = a.bodies
-        if flex is not None:
-            cfg["bodies"]["flexible"] = flex
+        cfg = vconfig.load(configs.path("vehicle"))
+        cfg = cfg.replace(bodies={"dir": a.bodies, **({"flexible": flex} if flex is not None else {})})
         model, y0 = psim.build_model(cfg, log=lambda *_: None)
         model.rhs(0.0, y0)                   # the first call loads the kernels: not timed
         rhs_us = float("inf")

@@ -24,19 +24,14 @@ def run(length: float, speed: float, track: str, shape: str) -> dict:
     from axlebox.mbs.kernel_wheels import G_RAMP
     from axlebox.mbs.wheelrail import element_kernel as ek
     from axlebox.pipelines import simulate as psim
-    base, _ = vconfig.load(configs.path("vehicle"))
-    user = {sec: dict(v) for sec, v in base.items() if isinstance(v, dict) and sec != "bearing"}
-    user["run"]["speed_kmh"] = speed
-    user["track"]["irregularity"] = False
-    user["track"]["model"] = track
-    user["wheel_defects"] = [{"wheelset": 2, "side": "R", "kind": "flat", "length": length,
-                              "shape": shape}]
-    cfg = vconfig.validate(user)
+    cfg = vconfig.load(configs.path("vehicle")).replace(
+        run={"speed_kmh": speed}, track={"irregularity": False, "model": track},
+        wheel_defects=[{"wheelset": 2, "side": "R", "kind": "flat", "length": length, "shape": shape}])
     model, y0 = psim.build_model(cfg, log=lambda *_: None)
     model.S.glob[G_RAMP] = 0.02
-    turn = 2 * math.pi * cfg["wheelset"]["r0"] / (speed / 3.6)
+    turn = 2 * math.pi * cfg.wheelset.r0 / (speed / 3.6)
     t0 = time.perf_counter()
-    r = integrate.simulate(model, 0.02 + 3 * turn, psim.settings(cfg), y0=y0)
+    r = integrate.simulate(model, 0.02 + 3 * turn, cfg.settings(), y0=y0)
     wall = time.perf_counter() - t0
     w = model.wheel_names.index("ws2_R")
     N = r.wheels[:, w, ek.OUT_N]

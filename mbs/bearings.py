@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections import namedtuple
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -35,19 +36,22 @@ from .kernel_markers import MK_BODY
 from .kernel_body import BI_POS
 from .vehicle import SIDES
 
+if TYPE_CHECKING:
+    from .config import CarConfig
+
 #: one bearing's start (:func:`start`): its kernel tag, parameter vector and defect table, its
 #: roller and cage states and the outer ring's displacement from the inner ring's centre
 Start = namedtuple("Start", ["tag", "P", "D", "y0", "uo"])
 
 
-def params(cfg: dict):
-    """The bearings' parameters of a validated config (bearing/models.py ``from_table``)."""
-    return models.from_table(cfg["bearing"])
+def params(cfg: CarConfig):
+    """The bearings' parameters of a config (its model's ``Params``)."""
+    return cfg.bearing
 
 
-def defect_table(cfg: dict, k: int, side: str, p) -> np.ndarray:
+def defect_table(cfg: CarConfig, k: int, side: str, p) -> np.ndarray:
     """Defect table of the bearing of wheelset ``k`` on ``side`` (rows mirrored on the right)."""
-    mine = [e["defect"] for e in cfg["defects"] if e["wheelset"] == k and e["side"] == side]
+    mine = [e.defect for e in cfg.defects if e.wheelset == k and e.side == side]
     if side == "R":
         mine = [dataclasses.replace(d, row=3 - d.row) for d in mine]
     return bdefects.table(mine, p)
@@ -67,7 +71,7 @@ def joint_loads(model, y) -> dict:
     return loads
 
 
-def start(cfg: dict, loads: dict, omega_w: float, log=print) -> dict:
+def start(cfg: CarConfig, loads: dict, omega_w: float, log=print) -> dict:
     """``(k, side) -> Start``: each bearing's kernel tag and arrays, its equilibrium roller and
     cage states under ``loads`` and the outer ring's displacement from the inner ring's
     centre."""
@@ -90,7 +94,7 @@ def start(cfg: dict, loads: dict, omega_w: float, log=print) -> dict:
     return out
 
 
-def stiffness(cfg: dict, loads: dict, names) -> np.ndarray:
+def stiffness(cfg: CarConfig, loads: dict, names) -> np.ndarray:
     """Each named bearing's tangent stiffness (n, 3) along x, y (axial), z (N/m) at its static
     load (its model's ``ring_stiffness``): the interface Jacobian of a co-simulation's
     "jacobian" hold (mbs/exchange.py)."""

@@ -1,357 +1,670 @@
-"""The vehicle run configuration (TOML): schema, defaults, validation.
+"""The car's run configuration: each section declared once, the whole config, its checks, its file.
 
-Every field has a default (the values of ``configs/vehicle.toml``), a type and an allowed range;
-a user file overrides what it names.  An unknown section or field, a value of the wrong type or
-out of range is refused with :class:`~axlebox._params.ParameterError` naming ``section.field``,
-the value and what is allowed (the CLI turns it into one line and exit status 2).
+Each ``[section]`` of the TOML file is a frozen dataclass here (:func:`axlebox._params.section`):
+every field's type, default, allowed range or choices, unit and one-line meaning are declared
+once, in the field.  Where the code below the config takes the same quantity (the integrator's
+:class:`~axlebox.mbs.integrate.Settings`, the track's
+:class:`~axlebox.mbs.track.IrregularityParams`, the wheel-rail
+:class:`~axlebox.mbs.wheelrail.geometry.TrackLayout` and
+:class:`~axlebox.mbs.wheelrail.element.WheelRailParams`), the section's field is that class's
+field again (:func:`~axlebox._params.like`), so a default cannot differ between the two.  The
+config reference (docs) is generated from these declarations
+(:mod:`axlebox.pipelines.config_reference`).
+
+:class:`CarConfig` is the whole config: the sections, the bearing model's parameters and the
+defects; its cross-field checks run once, on construction, and build the classes the run uses
+(their own checks included).  :meth:`CarConfig.to_toml` writes it with every default filled in
+(what a result file stores); :func:`loads` / :func:`load` read a file through
+:func:`validate`.  An unknown section or field, a value of the wrong type or out of range is
+refused with :class:`~axlebox._params.ParameterError` naming ``section.field``, the value and
+what is allowed (the CLI turns it into one line and exit status 2).
 """
 from __future__ import annotations
 
-import copy
+import dataclasses
 import math
 import tomllib
+from dataclasses import dataclass, field
 from pathlib import Path
 
-from axlebox._params import ParameterError
-from axlebox.mbs.integrate import METHODS
+import tomli_w
+
+from axlebox._params import (ParameterError, choice, flag, from_table, like, members, numbers, param,
+                             section, text, vector)
+from axlebox._params import check_ranges as _check_fields
+from axlebox.bearing import models
+from axlebox.bearing.defects import Defect
+from axlebox.mbs.integrate import Settings
+from axlebox.mbs.track import IrregularityParams
 from axlebox.mbs.trackbed import MODELS as TRACK_MODELS
+from axlebox.mbs.wheelrail.element import WheelRailParams
+from axlebox.mbs.wheelrail.geometry import TrackLayout
 
 BODY_NAMES = (["carbody", "frame1", "frame2"] + [f"ws{i}" for i in range(1, 5)]
               + [f"ab{i}{s}" for i in range(1, 5) for s in "LR"] + [f"gb{i}" for i in range(1, 5)])
 # the bodies that have a reduced (FE) body to be flexible with: frames, wheelsets, axle-boxes
-FLEXIBLE_NAMES = [n for n in BODY_NAMES if not n.startswith(("carbody", "gb"))]
-
+FLEXIBLE_NAMES = tuple(n for n in BODY_NAMES if not n.startswith(("carbody", "gb")))
 BODY_KINDS = ("wheelset", "axlebox", "frame")
-F, I, S, B, L, N = "float", "int", "str", "bool", "list", "numbers"
-INF = math.inf
-# section -> field -> (kind, default, lo, hi | choices)
-SCHEMA: dict[str, dict[str, tuple]] = {
-    "run": {"duration": (F, 5.0, 1e-4, 1e4), "speed_kmh": (F, 48.0, 1.0, 200.0),
-            "seed": (I, 0, 0, 2**31 - 1)},
-    "integrator": {"method": (S, "leapfrog", METHODS),
-                   "dt": (F, 5e-5, 1e-7, 1e-3),
-                   "output_rate_hz": (F, 1e4, 1.0, 1e6), "state_rate_hz": (F, 500.0, 0.1, 1e6),
-                   "rho_inf": (F, 0.8, 0.0, 1.0)},
-    # the bodies' step and their exchange with the bearings (mbs/exchange.py): a whole multiple
-    # of integrator.dt, which is then the bearings' sub-step; 0: every step (single rate)
-    "coupling": {"exchange_dt": (F, 0.0, 0.0, 1e-3), "body_substeps": (I, 1, 1, 1000),
-                 "hold": (S, "zoh", ("zoh", "linear", "jacobian"))},
-    "track": {"fra_class": (I, 5, 1, 6), "lambda_min": (F, 1.0, 0.5, 100.0),
-              "lambda_max": (F, 80.0, 1.0, 1000.0), "length": (F, 400.0, 10.0, 1e5),
-              "irregularity": (B, True),
-              "rail_roughness": (S, "none", ("none", "iso3095", "network")),
-              "wheel_roughness": (S, "none", ("none", "cast-iron", "composite", "disc")),
-              "contact_filter": (B, True), "roughness_lambda_min": (F, 0.003, 0.001, 0.1),
-              # the track under each wheel (mbs/trackbed.py); per rail seat, SI
-              "model": (S, "rigid", TRACK_MODELS),
-              "rail_mass": (F, 60.64, 10.0, 200.0), "rail_EI": (F, 6.624e6, 1e5, 1e8),
-              "sleeper_spacing": (F, 0.6, 0.3, 1.5), "pad_k": (F, 6.5e7, 1e6, 1e10),
-              "pad_c": (F, 7.5e4, 0.0, 1e7), "sleeper_mass": (F, 125.5, 10.0, 2000.0),
-              "ballast_mass": (F, 531.4, 0.0, 5000.0), "ballast_k": (F, 1.3775e8, 1e6, 1e10),
-              "ballast_c": (F, 5.88e4, 0.0, 1e7), "subgrade_k": (F, 7.75e7, 1e6, 1e10),
-              "subgrade_c": (F, 3.115e4, 0.0, 1e7)},
-    "wheelrail": {"wheel": (S, "S1002", None), "rail": (S, "UIC60", None),
-                  "gauge": (F, 1.435, 0.9, 1.7), "back_to_back": (F, 1.360, 0.9, 1.6),
-                  "cant": (F, 0.025, 0.0, 0.1), "mu": (F, 0.3, 0.0, 1.0),
-                  "law": (S, "fastsim", ("fastsim", "kalker", "she")), "fastsim_grid": (I, 8, 2, 64),
-                  "fastsim_update": (S, "cutback", ("cutback", "rotate")),
-                  "smooth_y": (F, 1.0e-3, 0.0, 0.005)},
-    "bodies": {"dir": (S, "", None), "modes": (I, 12, 1, 100),
-               "fmax_wheelset_hz": (F, 1500.0, 1.0, 1e5), "fmax_axlebox_hz": (F, 2500.0, 1.0, 1e5),
-               "fmax_frame_hz": (F, 600.0, 1.0, 1e5),
-               **{f"method_{k}": (S, "craig-bampton", ("craig-bampton", "guyan")) for k in BODY_KINDS},
-               **{f"zeta_{k}": (F, 0.01, 0.0, 0.5) for k in BODY_KINDS},
-               "flexible": (L, ["frame1", "ws1", "ws2", "ab1L", "ab1R", "ab2L", "ab2R"], FLEXIBLE_NAMES)},
-    "carbody": {"mass": (F, 37400.0, 1.0, 1e6), "inertia": (L, [35.3e3, 1447e3, 1435e3], (1e-3, 1e9)),
-                "cg_height": (F, 1.45, 0.3, 5.0)},
-    "frame": {"mass": (F, 3420.0, 1.0, 1e5), "inertia": (L, [1430.0, 1850.0, 2950.0], (1e-3, 1e7)),
-              "cg_height": (F, 0.60, 0.2, 2.0)},
-    "wheelset": {"mass": (F, 1539.0, 1.0, 1e5), "inertia": (L, [801.0, 104.0, 814.0], (1e-3, 1e6)),
-                 "r0": (F, 0.42, 0.2, 0.7)},
-    "axlebox": {"mass": (F, 78.7, 0.1, 1e4), "inertia": (L, [0.75, 2.36, 2.08], (1e-5, 1e4)),
-                "cup_mass": (F, 0.0, 0.0, 1e3), "cover_mass": (F, 0.0, 0.0, 1e3),
-                "adapter_mass": (F, 0.0, 0.0, 1e3)},
-    "gearbox": {"mass": (F, 450.0, 0.0, 1e4), "inertia": (L, [20.0, 30.0, 20.0], (1e-4, 1e5)),
-                "arm": (F, 0.35, 0.0, 1.5), "hanger_arm": (F, 0.6, 0.05, 2.0),
-                "hanger_k": (F, 5e6, 1.0, 1e10), "hanger_c": (F, 2e4, 0.0, 1e8),
-                "side": (S, "R", ("L", "R"))},
-    "geometry": {"bogie_distance": (F, 12.6, 3.0, 30.0), "wheelbase": (F, 2.2, 1.0, 4.0),
-                 "journal_y": (F, 1.0, 0.6, 1.5), "air_spring_y": (F, 1.0, 0.3, 1.5),
-                 "air_spring_height": (F, 0.85, 0.3, 2.0)},
-    "primary": {"kx": (F, 10.6e6, 0.0, 1e10), "ky": (F, 7.8e6, 0.0, 1e10), "kz": (F, 1.7e6, 1.0, 1e10),
-                "cz": (F, 1e4, 0.0, 1e8)},
-    "secondary": {"kx": (F, 0.21e6, 0.0, 1e9), "ky": (F, 0.2e6, 0.0, 1e9), "kz": (F, 0.35e6, 1.0, 1e9),
-                  "cz": (F, 3e4, 0.0, 1e8), "cy": (F, 4e4, 0.0, 1e8), "anti_roll": (F, 1e6, 0.0, 1e9),
-                  "traction_k": (F, 5e6, 0.0, 1e10), "bumpstop_clearance": (F, 0.03, 0.0, 0.2),
-                  "bumpstop_k": (F, 2e6, 0.0, 1e10)},
-    # "bearing": the rolling bearing of [bearing] (any model of bearing/models.py); "dtrb" its
-    # old name, read the same
-    "joint": {"model": (S, "bushing", ("bushing", "bearing", "dtrb")),
-              "wheelsets": (L, [1, 2, 3, 4], (1, 2, 3, 4)),
-              "k_radial": (F, 1e9, 1e3, 1e12), "k_axial": (F, 5e8, 1e3, 1e12), "c": (F, 2e4, 0.0, 1e8)},
-    "sensors": {"node": (S, "sensor_pad", None), "model": (S, "ideal", ("ideal", "accelerometer")),
-                "fs_hz": (F, 1e4, 100.0, 1e6), "resonance_hz": (F, 25e3, 100.0, 1e7),
-                "resonance_q": (F, 30.0, 0.5, 1e3), "highpass_hz": (F, 0.5, 0.0, 1e3),
-                "passband": (F, 0.45, 0.05, 0.49)},
-}
+SIDES = ("L", "R")
+@section("run")
+class Run:
+    """What is run: how long and how fast."""
+
+    duration: float = param(5.0, 1e-4, 10000.0, "s", "simulated time; the track must be long enough "
+                            "(track.length)")
+    speed_kmh: float = param(48.0, 1.0, 200.0, "km/h", "vehicle speed, in km/h by name (the one run field "
+                             "not in SI)")
+    seed: int = like(IrregularityParams, "seed", doc="seed of the track irregularity's random phases and "
+                     "the wheels' roughness")
 
 
-# free-form sections checked by their own classes: [bearing] (axlebox.bearing.params.BearingParams
-# fields, SI) and [[defects]] (axlebox.bearing.defects.Defect fields, the angle in degrees, plus where)
-DEFECT_PLACE = {"wheelset": (I, 2, 1, 4), "side": (S, "R", ("L", "R"))}
+@section("integrator")
+class Integrator:
+    """The car's time integrator (mbs/integrate.py)."""
+
+    method: str = like(Settings, "method", doc="'leapfrog' (explicit central differences), 'imex' / "
+                       "'imex2' (the leapfrog with the bearings' contact damping / stiffness implicit), "
+                       "'rk4' or 'galpha' (generalized-alpha); with bearings (joint.model) one their "
+                       "model accepts (bearing/models.py methods; the config reference lists them)")
+    dt: float = like(Settings, "dt", doc="fixed step, dividing 1/output_rate_hz; with bearings and a "
+                     "leapfrog method their sub-step; with bearings (joint.model) at most their model's "
+                     "step for the method (s, as under method)")
+    output_rate_hz: float = like(Settings, "output_rate_hz", doc="sensor output rate (the field system's 10 "
+                                 "kHz); with sensors.model = 'accelerometer' a whole multiple >= 2 of "
+                                 "sensors.fs_hz")
+    state_rate_hz: float = like(Settings, "state_rate_hz", doc="rate of whole-state snapshots")
+    rho_inf: float = like(Settings, "rho_inf", doc="generalized-alpha spectral radius at infinity (method "
+                          "'galpha' only)")
 
 
-def defaults() -> dict:
-    cfg = {sec: {k: copy.deepcopy(spec[1]) for k, spec in fields.items()}
-           for sec, fields in SCHEMA.items()}
-    cfg["bearing"] = {}
-    cfg["defects"] = []
-    cfg["wheel_defects"] = []
-    return cfg
+@section("coupling")
+class Coupling:
+    """The bodies' step and their exchange with the DTRB bearings (mbs/exchange.py)."""
+
+    exchange_dt: float = like(Settings, "exchange_dt", doc="the bodies' step and their exchange with the "
+                              "DTRBs, a whole multiple of integrator.dt (then the bearings' sub-step); 0: "
+                              "integrator.dt; other than integrator.dt with the leapfrog methods only")
+    body_substeps: int = like(Settings, "body_substeps", doc="the bodies' steps per exchange, the bearings' "
+                              "loads held between (the paper's co-simulation arrangement); 1: one; > 1 "
+                              "needs exchange_dt > 0")
+    hold: str = like(Settings, "hold", doc="how the loads are held between exchanges: 'zoh' (constant), "
+                     "'linear' (extrapolated) or 'jacobian' (plus the bearings' tangent stiffness times the "
+                     "rings' displacement, Kuebler and Schiehlen 2000)")
 
 
-#: ``[[wheel_defects]]`` fields (mbs/wheel_defects.py): where, what, and its shape
-WHEEL_DEFECT = {"wheelset": (I, 1, 1, 4), "side": (S, "R", ("L", "R")),
-                "kind": (S, "flat", ("flat", "polygon")),
-                "length": (F, 0.04, 1e-4, 0.2), "shape": (S, "rounded", ("rounded", "fresh")),
-                "angle_deg": (F, 0.0, -360.0, 360.0), "orders": (N, [20.0], 1.0, 200.0),
-                "amplitudes_um": (N, [50.0], 0.0, 5000.0), "phases_deg": (N, [], -360.0, 360.0),
-                "name": (S, "", None)}
-# name: a label that a sweep's [sweep] wheel_defects picks entries by (pipelines/sweep.py)
-_WHEEL_FIELDS = {"flat": ("wheelset", "side", "kind", "length", "shape", "angle_deg", "name"),
-                 "polygon": ("wheelset", "side", "kind", "orders", "amplitudes_um", "phases_deg",
-                             "name")}
+@section("track")
+class Track:
+    """Track irregularity (FRA spectra, mbs/track.py), roughness (mbs/roughness.py) and the track under
+    each wheel (mbs/trackbed.py; the ballasted seats per rail seat, assumed: Zhai, Wang and Lin, J.
+    Sound Vib. 270 (2004) 673-683, 60 kg/m rail, as tabulated by the open TTB-2D model)."""
+
+    fra_class: int = like(IrregularityParams, "grade", doc="American (FRA) track class of the irregularity, "
+                          "1 (worst) to 6 (best)")
+    lambda_min: float = like(IrregularityParams, "lambda_min", doc="shortest irregularity wavelength; below "
+                             "lambda_max")
+    lambda_max: float = like(IrregularityParams, "lambda_max", doc="longest irregularity wavelength")
+    length: float = like(IrregularityParams, "length", doc="periodic irregularity record; with irregularity "
+                         "at least the distance run plus the car (geometry.bogie_distance + 5 m)")
+    irregularity: bool = flag(True, "false: smooth track (then rail_roughness must be 'none')")
+    rail_roughness: str = choice("none", ["none", "iso3095", "network"], "short-wave rail roughness: "
+                                 "'iso3095' (the ISO 3095:2013 limit) or 'network' (CNOSSOS-EU's average "
+                                 "network); 'none': none")
+    wheel_roughness: str = choice("none", ["none", "cast-iron", "composite", "disc"],
+                                  "each wheel's roughness by brake: 'cast-iron' or 'composite' brake "
+                                  "blocks, or 'disc'; 'none': none")
+    contact_filter: bool = flag(True, "the CNOSSOS-EU contact filter of the roughness at the static wheel "
+                                "load")
+    roughness_lambda_min: float = like(IrregularityParams, "roughness_lambda_min", doc=
+                                       "shortest roughness wavelength (3 mm: 4.4 kHz at 48 km/h)")
+    model: str = choice("rigid", TRACK_MODELS, "the track under each wheel: 'rigid' rails (the "
+                        "paper's car, its calibration and field cases) or 'ballasted' (rail, sleeper and "
+                        "ballast lumped under each wheel)")
+    rail_mass: float = param(60.64, 10.0, 200.0, "kg/m", "rail mass per metre, ballasted track (Zhai et al. "
+                             "2004, 60 kg/m rail)")
+    rail_EI: float = param(6.624e6, 1e5, 1e8, "N m^2", "rail bending stiffness, E 205.9 GPa, I 3217 cm^4 "
+                           "(Zhai et al. 2004)")
+    sleeper_spacing: float = param(0.6, 0.3, 1.5, "m", "rail seat (sleeper) spacing (Zhai et al. 2004)")
+    pad_k: float = param(6.5e7, 1e6, 1e10, "N/m", "rail pad stiffness, per rail seat (Zhai et al. 2004)")
+    pad_c: float = param(75000.0, 0.0, 1e7, "N s/m", "rail pad damping, per rail seat (Zhai et al. 2004)")
+    sleeper_mass: float = param(125.5, 10.0, 2000.0, "kg", "half a sleeper, per rail seat (Zhai et al. 2004)")
+    ballast_mass: float = param(531.4, 0.0, 5000.0, "kg", "the ballast block under a rail seat (Zhai et al. "
+                                "2004)")
+    ballast_k: float = param(1.3775e8, 1e6, 1e10, "N/m", "ballast stiffness, per rail seat (Zhai et al. "
+                             "2004)")
+    ballast_c: float = param(58800.0, 0.0, 1e7, "N s/m", "ballast damping, per rail seat (Zhai et al. 2004)")
+    subgrade_k: float = param(7.75e7, 1e6, 1e10, "N/m", "subgrade stiffness, per rail seat (Zhai et al. "
+                              "2004)")
+    subgrade_c: float = param(31150.0, 0.0, 1e7, "N s/m", "subgrade damping, per rail seat (Zhai et al. "
+                              "2004)")
 
 
-def _wheel_defects(items) -> list[dict]:
-    """Each ``[[wheel_defects]]`` entry, every field checked (defaults from :data:`WHEEL_DEFECT`)."""
-    if not isinstance(items, list) or not all(isinstance(d, dict) for d in items):
-        raise ParameterError(f"wheel_defects = {items!r} is not allowed: expected [[wheel_defects]] tables")
-    out = []
-    for i, d in enumerate(items):
-        sec = f"wheel_defects[{i}]"
-        kind = _check(sec, "kind", d.get("kind", "flat"), WHEEL_DEFECT["kind"])
-        for key in d:
-            if key not in _WHEEL_FIELDS[kind]:
-                raise ParameterError(f"{sec}.{key} is not a field of a {kind} wheel defect: expected one "
-                                     f"of {', '.join(_WHEEL_FIELDS[kind])}")
-        e = {k: _check(sec, k, d.get(k, WHEEL_DEFECT[k][1]), WHEEL_DEFECT[k]) for k in _WHEEL_FIELDS[kind]}
-        if kind == "polygon":
-            n = len(e["orders"])
-            if len(e["amplitudes_um"]) != n or len(e["phases_deg"]) not in (0, n) \
-                    or any(o != round(o) for o in e["orders"]):
-                raise ParameterError(f"{sec}.orders = {e['orders']!r} is not allowed: expected whole "
-                                     "orders, one amplitudes_um (and phases_deg, if given) each")
-        out.append(e)
-    return out
+@section("wheelrail")
+class WheelRail:
+    """Wheel and rail profiles, their layout and the contact (mbs/wheelrail)."""
+
+    wheel: str = text("S1002", "wheel profile: 'S1002' (built in, a stand-in for the LM profile) or a "
+                      "profile file")
+    rail: str = text("UIC60", "rail profile: 'UIC60' (60E1), '60E1' or 'CHN60' (built in) or a profile file")
+    gauge: float = like(TrackLayout, "gauge", doc="track gauge")
+    back_to_back: float = like(TrackLayout, "back_to_back", doc="distance between the wheels' back faces "
+                               "(the S1002/60E1 standard pair; the LM wheelset's is 1.353 m)")
+    cant: float = like(TrackLayout, "cant", doc="rail inclination, the tan of the cant angle (0.025: 1:40)")
+    mu: float = like(WheelRailParams, "mu", doc="wheel-rail friction coefficient")
+    law: str = like(WheelRailParams, "law", doc="creep force law: 'fastsim' (Kalker's FASTSIM), 'kalker' "
+                    "(linear) or 'she' (Shen-Hedrick-Elkins)")
+    fastsim_grid: int = like(WheelRailParams, "nx", doc="FASTSIM elements per semi-axis of the contact patch")
+    fastsim_update: str = like(WheelRailParams, "update", doc="FASTSIM slip step: 'cutback' (Kalker's, "
+                               "continuous in the creepages, as the implicit Newton needs) or 'rotate' "
+                               "(second order, jumps at stick-slip changes)")
+    smooth_y: float = like(WheelRailParams, "smooth_y", doc="lateral displacement the contact tables are "
+                           "smoothed over (the tread contact jump of S1002 on 60E1 1:40); 0: exact tables")
 
 
-def _bearing(fields) -> dict:
-    """``[bearing]``: ``type`` (the model, bearing/models.py) and that model's fields, checked
-    by its parameters' class (which names the field and what is allowed)."""
-    from axlebox.bearing import models
-    models.from_table(fields, "bearing")
-    return dict(fields)
+@section("bodies")
+class Bodies:
+    """The reduced (flexible) bodies: where they come from and what they keep."""
+
+    dir: str = text("", "folder of reduced-body files (axlebox bodies build); empty: built at the coarse "
+                    "mesh into the cache")
+    modes: int = param(12, 1, 100, "-", "Craig-Bampton fixed-interface modes when the bodies are built here "
+                       "(not with dir)")
+    fmax_wheelset_hz: float = param(1500.0, 1.0, 1e5, "Hz", "a flexible wheelset keeps its free-free modes "
+                                    "below this (up past its second bending pair and the 300-800 Hz band); "
+                                    "the stiffest kept mode sets the explicit step")
+    fmax_axlebox_hz: float = param(2500.0, 1.0, 1e5, "Hz", "a flexible axle-box keeps its free-free modes "
+                                   "below this (its lowest modes); the stiffest kept mode sets the explicit "
+                                   "step")
+    fmax_frame_hz: float = param(600.0, 1.0, 1e5, "Hz", "a flexible frame keeps its free-free modes below "
+                                 "this (the frame's own modes); the stiffest kept mode sets the explicit "
+                                 "step")
+    method_wheelset: str = choice("craig-bampton", ["craig-bampton", "guyan"], "reduction of the wheelset "
+                                  "body: Craig-Bampton or Guyan; must match the file in dir")
+    method_axlebox: str = choice("craig-bampton", ["craig-bampton", "guyan"], "reduction of the axle-box "
+                                 "body: Craig-Bampton or Guyan; must match the file in dir")
+    method_frame: str = choice("craig-bampton", ["craig-bampton", "guyan"], "reduction of the frame body: "
+                               "Craig-Bampton or Guyan; must match the file in dir")
+    zeta_wheelset: float = param(0.01, 0.0, 0.5, "-", "modal damping ratio of a flexible wheelset's modes "
+                                 "(replaces the file's)")
+    zeta_axlebox: float = param(0.01, 0.0, 0.5, "-", "modal damping ratio of a flexible axle-box's modes "
+                                "(replaces the file's)")
+    zeta_frame: float = param(0.01, 0.0, 0.5, "-", "modal damping ratio of a flexible frame's modes "
+                              "(replaces the file's)")
+    flexible: tuple = members(["frame1", "ws1", "ws2", "ab1L", "ab1R", "ab2L", "ab2R"], FLEXIBLE_NAMES,
+                              "the bodies made flexible (default: the front bogie); the others are rigid "
+                              "with the same FE mass properties; frames, wheelsets and axle-boxes only (the "
+                              "carbody and gearboxes have no FE body)", at_least=0)
+
+    def __post_init__(self):
+        for v in self.flexible if isinstance(self.flexible, tuple) else ():
+            if v not in FLEXIBLE_NAMES:
+                what = "has no FE body to be flexible with" if v in BODY_NAMES else "is not a body"
+                raise ParameterError(f"bodies.flexible = {list(self.flexible)!r} is not allowed: {v!r} "
+                                     f"{what} (expected names from: {', '.join(FLEXIBLE_NAMES)})")
+        _check_fields(self)
 
 
-def bearing_params(cfg: dict):
-    """The parameters of a validated config's ``[bearing]`` (its model's ``Params``)."""
-    from axlebox.bearing import models
-    return models.from_table(cfg["bearing"], "bearing")
+@section("carbody")
+class Carbody:
+    """The carbody, rigid (Hangzhou Metro Line 1 B-type motor car, Math. Probl. Eng. 2020, 1584624, Table
+    6)."""
+
+    mass: float = param(37400.0, 1.0, 1e6, "kg", "carbody mass, rated load")
+    inertia: tuple = vector((35300.0, 1.447e6, 1.435e6), 0.001, 1e9, "kg m^2", "principal moments: roll, "
+                            "pitch, yaw (about x, y, z)")
+    cg_height: float = param(1.45, 0.3, 5.0, "m", "centre of mass above rail (assumed)")
 
 
-def has_bearings(cfg: dict) -> bool:
-    """Whether the axle-boxes sit on rolling bearings (``joint.model`` not ``"bushing"``)."""
-    return cfg["joint"]["model"] != "bushing"
+@section("frame")
+class Frame:
+    """The bogie frames (two)."""
+
+    mass: float = param(3420.0, 1.0, 1e5, "kg", "frame mass; a flexible frame gets the difference to its FE "
+                        "mass as point masses")
+    inertia: tuple = vector((1430.0, 1850.0, 2950.0), 0.001, 1e7, "kg m^2", "principal moments about x, y, "
+                            "z, used when no reduced body is given")
+    cg_height: float = param(0.6, 0.2, 2.0, "m", "centre of mass above rail (assumed)")
 
 
-def _defects(items) -> list[dict]:
-    """Each ``[[defects]]`` entry: ``wheelset``, ``side`` and the Defect fields, angle in deg."""
-    import dataclasses
+@section("wheelset")
+class Wheelset:
+    """The wheelsets (four)."""
 
-    from axlebox.bearing.defects import Defect
-    if not isinstance(items, list) or not all(isinstance(d, dict) for d in items):
-        raise ParameterError(f"defects = {items!r} is not allowed: expected [[defects]] tables")
-    allowed = list(DEFECT_PLACE) + [f.name for f in dataclasses.fields(Defect) if f.name != "angle"] \
-        + ["angle_deg"]
-    out = []
-    for i, d in enumerate(items):
+    mass: float = param(1539.0, 1.0, 1e5, "kg", "wheelset mass, used when no reduced body is given (and in "
+                        "the static wheel load)")
+    inertia: tuple = vector((801.0, 104.0, 814.0), 0.001, 1e6, "kg m^2", "principal moments about x, y (the "
+                            "axle), z, used when no reduced body is given")
+    r0: float = like(TrackLayout, "r0", doc="nominal wheel rolling radius")
+
+
+@section("axlebox")
+class Axlebox:
+    """The axle-boxes (eight) and the assembly parts their housing mesh lacks."""
+
+    mass: float = param(78.7, 0.1, 10000.0, "kg", "housing mass (the FE housing's), used when no reduced "
+                        "body is given")
+    inertia: tuple = vector((0.75, 2.36, 2.08), 1e-5, 10000.0, "kg m^2", "principal moments about x, y, z, "
+                            "used when no reduced body is given")
+    cup_mass: float = param(0.0, 0.0, 1000.0, "kg", "bearing cup: point masses on the housing's two bore "
+                            "spiders")
+    cover_mass: float = param(0.0, 0.0, 1000.0, "kg", "end cover: a point mass on the outboard (row 2) bore "
+                              "spider")
+    adapter_mass: float = param(0.0, 0.0, 1000.0, "kg", "adapter: point masses on the two spring seats")
+
+
+@section("gearbox")
+class Gearbox:
+    """The gearboxes (four), hung between the axle and the frame; mass 0: none."""
+
+    mass: float = param(450.0, 0.0, 10000.0, "kg", "gearbox mass (assumed); 0: no gearbox")
+    inertia: tuple = vector((20.0, 30.0, 20.0), 1e-4, 1e5, "kg m^2", "principal moments about x, y, z "
+                            "(assumed)")
+    arm: float = param(0.35, 0.0, 1.5, "m", "from the axle to the gearbox centre of mass, towards the bogie "
+                       "centre; below hanger_arm")
+    hanger_arm: float = param(0.6, 0.05, 2.0, "m", "from the axle to the hanger on the frame")
+    hanger_k: float = param(5e6, 1.0, 1e10, "N/m", "hanger link stiffness (assumed)")
+    hanger_c: float = param(20000.0, 0.0, 1e8, "N s/m", "hanger link damping (assumed)")
+    side: str = choice("R", ["L", "R"], "the side the gear sits on (as the wheelset geometry's default: 'R')")
+
+
+@section("geometry")
+class Geometry:
+    """Where the bodies and suspension points sit (track frame: x forward, y left, z up)."""
+
+    bogie_distance: float = param(12.6, 3.0, 30.0, "m", "distance between the bogie centres")
+    wheelbase: float = param(2.2, 1.0, 4.0, "m", "bogie wheelbase")
+    journal_y: float = param(1.0, 0.6, 1.5, "m", "lateral position of the journal centres")
+    air_spring_y: float = param(1.0, 0.3, 1.5, "m", "lateral position of the air springs (assumed)")
+    air_spring_height: float = param(0.85, 0.3, 2.0, "m", "air spring height above rail (assumed)")
+
+
+@section("primary")
+class Primary:
+    """Primary suspension, per axle box: two coil springs, each half of these."""
+
+    kx: float = param(1.06e7, 0.0, 1e10, "N/m", "longitudinal stiffness per axle box")
+    ky: float = param(7.8e6, 0.0, 1e10, "N/m", "lateral stiffness per axle box")
+    kz: float = param(1.7e6, 1.0, 1e10, "N/m", "vertical stiffness per axle box")
+    cz: float = param(10000.0, 0.0, 1e8, "N s/m", "vertical damping per axle box (assumed)")
+
+
+@section("secondary")
+class Secondary:
+    """Secondary suspension: per air spring (two per bogie) and per bogie."""
+
+    kx: float = param(2.1e5, 0.0, 1e9, "N/m", "longitudinal stiffness per air spring")
+    ky: float = param(2e5, 0.0, 1e9, "N/m", "lateral stiffness per air spring (assumed)")
+    kz: float = param(3.5e5, 1.0, 1e9, "N/m", "vertical stiffness per air spring (assumed)")
+    cz: float = param(30000.0, 0.0, 1e8, "N s/m", "vertical damper alongside each air spring (assumed)")
+    cy: float = param(40000.0, 0.0, 1e8, "N s/m", "lateral damper, per bogie (assumed)")
+    anti_roll: float = param(1e6, 0.0, 1e9, "N m/rad", "anti-roll bar, per bogie (assumed)")
+    traction_k: float = param(5e6, 0.0, 1e10, "N/m", "traction rod (longitudinal link), per bogie (assumed)")
+    bumpstop_clearance: float = param(0.03, 0.0, 0.2, "m", "lateral bump stop clearance (assumed)")
+    bumpstop_k: float = param(2e6, 0.0, 1e10, "N/m", "lateral bump stop stiffness (assumed)")
+
+
+@section("joint")
+class Joint:
+    """The wheelset-axle-box joint: row bushings or the DTRB bearings."""
+
+    model: str = choice("bushing", ["bushing", "bearing", "dtrb"], "'bushing': one bushing per bearing row, "
+                        "spin free; 'dtrb': the DTRB model ([bearing]), which [[defects]] need")
+    wheelsets: tuple = members((1, 2, 3, 4), (1, 2, 3, 4), "with model = 'dtrb': the wheelsets whose "
+                               "axle-boxes sit on DTRBs (the rest keep the bushings)")
+    k_radial: float = param(1e9, 1000.0, 1e12, "N/m", "row bushing radial stiffness (order of a DTRB row's)")
+    k_axial: float = param(5e8, 1000.0, 1e12, "N/m", "row bushing axial stiffness")
+    c: float = param(20000.0, 0.0, 1e8, "N s/m", "row bushing damping, each translation")
+
+    def __post_init__(self):
+        _check_fields(self)
+        object.__setattr__(self, "wheelsets", tuple(sorted(self.wheelsets)))
+
+
+@section("sensors")
+class Sensors:
+    """The axle-box accelerometers and the acquisition (pipelines/sensor.py)."""
+
+    node: str = text("sensor_pad", "the housing node the sensor follows; a box without it: a point 0.175 m "
+                     "above its centre")
+    model: str = choice("ideal", ["ideal", "accelerometer"], "'ideal': the model's accelerations as they "
+                        "are; 'accelerometer': the measurement chain")
+    fs_hz: float = param(10000.0, 100.0, 1e6, "Hz", "acquisition rate (the paper's system: 10 kHz); model "
+                         "'accelerometer' only")
+    resonance_hz: float = param(25000.0, 100.0, 1e7, "Hz", "mounted resonance (an industrial IEPE "
+                                "accelerometer, e.g. PCB 603C01: 25 kHz)")
+    resonance_q: float = param(30.0, 0.5, 1000.0, "-", "quality factor of the resonance (assumed)")
+    highpass_hz: float = param(0.5, 0.0, 1000.0, "Hz", "first-order electrical high-pass (the datasheet's "
+                               "-3 dB point); 0: none")
+    passband: float = param(0.45, 0.05, 0.49, "-", "anti-alias filter flat to passband x fs_hz, stopping "
+                            "from fs_hz / 2 (e.g. TI ADS1278: 0.453)")
+
+
+# ---- the entries of [[defects]] and [[wheel_defects]] ------------------------------------------
+
+@dataclass(frozen=True)
+class BearingDefect:
+    """A ``[[defects]]`` entry: where on the car (``wheelset``, ``side``), its centre in degrees
+    from the top (the load zone's middle) and the rest of its shape
+    (:class:`~axlebox.bearing.defects.Defect`, paper Eqs. 14-15)."""
+
+    SECTION = "defects"
+    wheelset: int = param(2, 1, 4, "-", "vehicle only: the wheelset whose bearing has it, one of "
+                          "joint.wheelsets")
+    side: str = choice("R", SIDES, "vehicle only: its bearing's side (the gearbox side is gearbox.side)")
+    angle_deg: float = param(0.0, -360.0, 360.0, "deg", "vehicle only: centre of the defect from the "
+                             "top (the load zone's middle), in degrees by name; the rig's is angle, "
+                             "in rad")
+    shape: Defect = field(default_factory=Defect)
+
+    def __post_init__(self):
+        _check_fields(self)
+
+    @property
+    def defect(self) -> Defect:
+        """The defect as the bearing takes it (its angle in rad)."""
+        return dataclasses.replace(self.shape, angle=math.radians(self.angle_deg))
+
+    @classmethod
+    def from_table(cls, d, where: str) -> BearingDefect:
+        if not isinstance(d, dict):
+            raise ParameterError(f"{where} = {d!r} is not allowed: expected a [[defects]] table")
+        allowed = ["wheelset", "side"] + [f.name for f in dataclasses.fields(Defect)
+                                          if f.name != "angle"] + ["angle_deg"]
         for key in d:
             if key not in allowed:
-                raise ParameterError(f"defects[{i}].{key} is not a field of [[defects]]: expected "
-                                     f"one of {', '.join(allowed)}")
-        e = {k: _check(f"defects[{i}]", k, d.get(k, spec[1]), spec) for k, spec in DEFECT_PLACE.items()}
-        shape = {k: v for k, v in d.items() if k not in DEFECT_PLACE and k != "angle_deg"}
-        # the angle in degrees, checked here: Defect would name its radians
-        shape["angle"] = math.radians(_check(f"defects[{i}]", "angle_deg", d.get("angle_deg", 0.0),
-                                             (F, 0.0, -360.0, 360.0)))
+                raise ParameterError(f"{where}.{key} is not a field of [[defects]]: expected one "
+                                     f"of {', '.join(allowed)}")
+        place = {k: d[k] for k in ("wheelset", "side", "angle_deg") if k in d}
+        shape = {k: v for k, v in d.items() if k not in place}
         try:
-            e["defect"] = Defect(**shape)
+            return from_table(cls, place, where, shape=from_table(Defect, shape, where))
         except ParameterError as err:
-            raise ParameterError(f"defects[{i}]: {err}") from None
-        out.append(e)
-    return out
+            if str(err).startswith(("defects.", "Defect.")):
+                raise ParameterError(f"{where}: {err}") from None
+            raise
+
+    def to_table(self) -> dict:
+        shape = {k: v for k, v in dataclasses.asdict(self.shape).items() if k != "angle"}
+        return {"wheelset": self.wheelset, "side": self.side, "angle_deg": self.angle_deg, **shape}
 
 
-def _check(sec: str, key: str, value, spec) -> object:
-    kind, _default, *rng = spec
-    name = f"{sec}.{key}"
-    if kind == F:
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
-                or not rng[0] <= value <= rng[1]:
-            raise ParameterError(f"{name} = {value!r} is not allowed: expected a number in "
-                                 f"[{rng[0]:g}, {rng[1]:g}]")
-        return float(value)
-    if kind == I:
-        if isinstance(value, bool) or not isinstance(value, int) or not rng[0] <= value <= rng[1]:
-            raise ParameterError(f"{name} = {value!r} is not allowed: expected an integer in "
-                                 f"[{rng[0]}, {rng[1]}]")
-        return value
-    if kind == B:
-        if not isinstance(value, bool):
-            raise ParameterError(f"{name} = {value!r} is not allowed: expected true or false")
-        return value
-    if kind == S:
-        choices = rng[0]
-        if not isinstance(value, str) or (choices is not None and value not in choices):
-            raise ParameterError(f"{name} = {value!r} is not allowed: expected "
-                                 + (f"one of {list(choices)}" if choices else "a string"))
-        return value
-    if kind == N:                           # a list of numbers in [lo, hi], any length
-        lo, hi = rng
-        if not isinstance(value, list) or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
-                                                  and lo <= v <= hi for v in value):
-            raise ParameterError(f"{name} = {value!r} is not allowed: expected a list of numbers in "
-                                 f"[{lo:g}, {hi:g}]")
-        return [float(v) for v in value]
-    # lists: of names (choices) or of 3 positive numbers (range)
-    lim = rng[0]
-    if not isinstance(value, list):
-        raise ParameterError(f"{name} = {value!r} is not allowed: expected a list")
-    if isinstance(lim, tuple) and len(lim) == 2 and not isinstance(lim[0], str):
-        if len(value) != 3 or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
-                                      and lim[0] <= v <= lim[1] for v in value):
-            raise ParameterError(f"{name} = {value!r} is not allowed: expected 3 numbers in "
-                                 f"[{lim[0]:g}, {lim[1]:g}]")
-        return [float(v) for v in value]
-    if not isinstance(lim[0], str):         # wheelset numbers
-        if (not value or not all(type(v) is int and v in lim for v in value)
-                or len(set(value)) != len(value)):
-            raise ParameterError(f"{name} = {value!r} is not allowed: expected distinct wheelset "
-                                 f"numbers from {list(lim)}, at least one")
-        return sorted(value)
-    for v in value:
-        if v not in lim:
-            what = ("has no FE body to be flexible with" if v in BODY_NAMES else "is not a body")
-            raise ParameterError(f"{name} = {value!r} is not allowed: {v!r} {what} "
-                                 f"(expected names from: {', '.join(lim)})")
-    return list(value)
+#: the fields of each kind of wheel defect (the others do not apply to it)
+WHEEL_DEFECT_FIELDS = {"flat": ("wheelset", "side", "kind", "length", "shape", "angle_deg", "name"),
+                       "polygon": ("wheelset", "side", "kind", "orders", "amplitudes_um",
+                                   "phases_deg", "name")}
 
 
-def track_needed(cfg: dict, duration: float) -> float:
-    """Metres of track a validated config's car covers in ``duration`` s: the distance run
-    plus its length (the bogie distance and 5 m)."""
-    return cfg["run"]["speed_kmh"] / 3.6 * duration + cfg["geometry"]["bogie_distance"] + 5.0
+@dataclass(frozen=True)
+class WheelDefect:
+    """A ``[[wheel_defects]]`` entry: a wheel tread defect, a radius deviation turning with its
+    wheel (mbs/wheel_defects.py); each kind takes its fields of :data:`WHEEL_DEFECT_FIELDS`."""
+
+    SECTION = "wheel_defects"
+    wheelset: int = param(1, 1, 4, "-", "the wheelset")
+    side: str = choice("R", SIDES, "its wheel")
+    kind: str = choice("flat", tuple(WHEEL_DEFECT_FIELDS), "'flat' or 'polygon' (mbs/wheel_defects.py)")
+    length: float = param(0.04, 1e-4, 0.2, "m", "the flat's chord (depth about length^2 / (8 r0)); "
+                          "below the wheel radius")
+    shape: str = choice("rounded", ("rounded", "fresh"), "'rounded' (a worn flat's haversine) or "
+                        "'fresh' (the chord, sharp edges)")
+    angle_deg: float = param(0.0, -360.0, 360.0, "deg", "the flat's centre around the rolling circle")
+    orders: tuple = numbers((20.0,), 1.0, 200.0, "-", "whole harmonic orders around the "
+                            "circumference (times the wheel's rate)")
+    amplitudes_um: tuple = numbers((50.0,), 0.0, 5000.0, "µm", "radius amplitude of each order, in "
+                                   "micrometres by name")
+    phases_deg: tuple = numbers((), -360.0, 360.0, "deg", "phase of each order; empty: all 0")
+    name: str = text("", "a label that a sweep's [sweep] wheel_defects picks entries by")
+
+    def __post_init__(self):
+        _check_fields(self)
+        if self.kind == "polygon":
+            n = len(self.orders)
+            if (len(self.amplitudes_um) != n or len(self.phases_deg) not in (0, n)
+                    or any(o != round(o) for o in self.orders)):
+                raise ParameterError(f"wheel_defects.orders = {list(self.orders)!r} is not allowed: "
+                                     "expected whole orders, one amplitudes_um (and phases_deg, if "
+                                     "given) each")
+
+    @classmethod
+    def from_table(cls, d, where: str) -> WheelDefect:
+        if not isinstance(d, dict):
+            raise ParameterError(f"{where} = {d!r} is not allowed: expected a [[wheel_defects]] table")
+        kind = d.get("kind", "flat")
+        if kind not in WHEEL_DEFECT_FIELDS:
+            raise ParameterError(f"{where}.kind = {kind!r} is not allowed: expected one of "
+                                 f"{', '.join(WHEEL_DEFECT_FIELDS)}")
+        for key in d:
+            if key not in WHEEL_DEFECT_FIELDS[kind]:
+                raise ParameterError(f"{where}.{key} is not a field of a {kind} wheel defect: "
+                                     f"expected one of {', '.join(WHEEL_DEFECT_FIELDS[kind])}")
+        try:
+            return from_table(cls, d, where)
+        except ParameterError as err:
+            raise ParameterError(str(err).replace("wheel_defects.", f"{where}.", 1)) from None
+
+    def to_table(self) -> dict:
+        return {k: (list(v) if isinstance(v, tuple) else v)
+                for k, v in dataclasses.asdict(self).items() if k in WHEEL_DEFECT_FIELDS[self.kind]}
 
 
-def validate(user: dict) -> dict:
-    """Defaults overridden by ``user`` (a parsed TOML dict), every value checked."""
-    cfg = defaults()
-    for sec, fields in user.items():
-        if sec == "bearing":
-            cfg[sec] = _bearing(fields)
-            continue
-        if sec == "defects":
-            cfg[sec] = _defects(fields)
-            continue
-        if sec == "wheel_defects":
-            cfg[sec] = _wheel_defects(fields)
-            continue
-        if sec not in SCHEMA:
-            raise ParameterError(f"[{sec}] is not a section of the vehicle config: expected one of "
-                                 f"{', '.join(SCHEMA)}, bearing, defects, wheel_defects")
-        if not isinstance(fields, dict):
-            raise ParameterError(f"{sec} = {fields!r} is not allowed: expected a [{sec}] table")
-        for key, value in fields.items():
-            if key not in SCHEMA[sec]:
-                raise ParameterError(f"{sec}.{key} is not a field of [{sec}]: expected one of "
-                                     f"{', '.join(SCHEMA[sec])}")
-            cfg[sec][key] = _check(sec, key, value, SCHEMA[sec][key])
-    t = cfg["track"]
-    if t["lambda_min"] >= t["lambda_max"]:
-        raise ParameterError(f"track.lambda_min = {t['lambda_min']:g} is not allowed: expected less "
-                             f"than track.lambda_max = {t['lambda_max']:g}")
-    if not t["irregularity"] and t["rail_roughness"] != "none":
-        raise ParameterError(f"track.rail_roughness = {t['rail_roughness']!r} is not allowed with "
+# ---- the whole config --------------------------------------------------------------------------
+
+#: the tables of a car config, by name: each declared section's class
+SECTIONS = {cls.SECTION: cls for cls in (Run, Integrator, Coupling, Track, WheelRail, Bodies, Carbody,
+                                          Frame, Wheelset, Axlebox, Gearbox, Geometry, Primary,
+                                          Secondary, Joint, Sensors)}
+
+
+def _default_bearing():
+    return models.from_table({}, "bearing")
+
+
+@dataclass(frozen=True)
+class CarConfig:
+    """The car's whole run configuration: its sections (one attribute each, named as the TOML
+    tables), ``bearing`` (the bearing model's parameters, bearing/models.py), ``defects`` and
+    ``wheel_defects``.  Built, it has passed every check; :meth:`replace` makes another one
+    (the sweep's cases), :meth:`to_toml` is its file."""
+
+    run: Run = field(default_factory=Run)
+    integrator: Integrator = field(default_factory=Integrator)
+    coupling: Coupling = field(default_factory=Coupling)
+    track: Track = field(default_factory=Track)
+    wheelrail: WheelRail = field(default_factory=WheelRail)
+    bodies: Bodies = field(default_factory=Bodies)
+    carbody: Carbody = field(default_factory=Carbody)
+    frame: Frame = field(default_factory=Frame)
+    wheelset: Wheelset = field(default_factory=Wheelset)
+    axlebox: Axlebox = field(default_factory=Axlebox)
+    gearbox: Gearbox = field(default_factory=Gearbox)
+    geometry: Geometry = field(default_factory=Geometry)
+    primary: Primary = field(default_factory=Primary)
+    secondary: Secondary = field(default_factory=Secondary)
+    joint: Joint = field(default_factory=Joint)
+    sensors: Sensors = field(default_factory=Sensors)
+    bearing: object = field(default_factory=_default_bearing)
+    defects: tuple[BearingDefect, ...] = ()
+    wheel_defects: tuple[WheelDefect, ...] = ()
+
+    def __post_init__(self):
+        _cross_checks(self)
+
+    # -- what the run takes -----------------------------------------------------------------------
+    @property
+    def has_bearings(self) -> bool:
+        """Whether the axle-boxes sit on rolling bearings (``joint.model`` not ``"bushing"``)."""
+        return self.joint.model != "bushing"
+
+    def settings(self) -> Settings:
+        """The integrator's settings: ``[integrator]`` and ``[coupling]``."""
+        return Settings(**dataclasses.asdict(self.integrator), **dataclasses.asdict(self.coupling))
+
+    def layout(self) -> TrackLayout:
+        w = self.wheelrail
+        return TrackLayout(r0=self.wheelset.r0, gauge=w.gauge, back_to_back=w.back_to_back, cant=w.cant)
+
+    def wheelrail_params(self) -> WheelRailParams:
+        w = self.wheelrail
+        return WheelRailParams(mu=w.mu, law=w.law, nx=w.fastsim_grid, ny=w.fastsim_grid,
+                               update=w.fastsim_update, smooth_y=w.smooth_y)
+
+    def irregularity(self, contact_load: float = 0.0) -> IrregularityParams | None:
+        """The track irregularity's parameters (None on smooth track); ``contact_load``: the
+        static wheel load of the roughness's contact filter."""
+        t = self.track
+        if not t.irregularity:
+            return None
+        extra = {}
+        if t.rail_roughness != "none":
+            extra = dict(roughness=True, roughness_spectrum=t.rail_roughness,
+                         roughness_lambda_min=t.roughness_lambda_min, contact_load=contact_load)
+        return IrregularityParams(grade=t.fra_class, lambda_min=t.lambda_min, lambda_max=t.lambda_max,
+                                  length=t.length, seed=self.run.seed, **extra)
+
+    def track_needed(self, duration: float | None = None) -> float:
+        """Metres of track the car covers in ``duration`` s (default: the run's): the distance
+        run plus its length (the bogie distance and 5 m)."""
+        T = self.run.duration if duration is None else duration
+        return self.run.speed_kmh / 3.6 * T + self.geometry.bogie_distance + 5.0
+
+    # -- another one, and the file ----------------------------------------------------------------
+    def replace(self, **changes) -> CarConfig:
+        """A copy with ``changes``: a section's name -> ``{field: value}`` (those fields
+        replaced, checked), ``bearing`` -> a ``[bearing]`` table or parameters, ``defects`` /
+        ``wheel_defects`` -> their entries (tables or objects)."""
+        new = {}
+        for name, value in changes.items():
+            if name in SECTIONS:
+                new[name] = _section(name, {**_table(getattr(self, name)), **value})
+            elif name == "bearing":
+                new[name] = value if not isinstance(value, dict) else models.from_table(value, "bearing")
+            elif name in ("defects", "wheel_defects"):
+                new[name] = _entries(name, value)
+            else:
+                raise ParameterError(f"[{name}] is not a section of the vehicle config: expected one "
+                                     f"of {', '.join(_NAMES)}")
+        return dataclasses.replace(self, **new)
+
+    def to_dict(self) -> dict:
+        """Every table and field, defaults filled in, as plain TOML data."""
+        out = {name: _table(getattr(self, name)) for name in SECTIONS}
+        out["bearing"] = models.to_table(self.bearing)
+        if self.defects:
+            out["defects"] = [d.to_table() for d in self.defects]
+        if self.wheel_defects:
+            out["wheel_defects"] = [d.to_table() for d in self.wheel_defects]
+        return out
+
+    def to_toml(self) -> str:
+        """The whole config as TOML, every default filled in (:func:`loads` reads it back to an
+        equal config)."""
+        return tomli_w.dumps(self.to_dict())
+
+
+_NAMES = (*SECTIONS, "bearing", "defects", "wheel_defects")
+
+
+def _table(obj) -> dict:
+    return {k: (list(v) if isinstance(v, tuple) else v) for k, v in dataclasses.asdict(obj).items()}
+
+
+def _section(name: str, fields):
+    return from_table(SECTIONS[name], fields, name)
+
+
+def _entries(name: str, items) -> tuple:
+    cls = BearingDefect if name == "defects" else WheelDefect
+    if not isinstance(items, (list, tuple)):
+        raise ParameterError(f"{name} = {items!r} is not allowed: expected [[{name}]] tables")
+    return tuple(d if isinstance(d, cls) else cls.from_table(d, f"{name}[{i}]")
+                 for i, d in enumerate(items))
+
+
+#: the config's names of the fields of the classes a run is built from, for their refusals
+_THEIR_NAMES = (("IrregularityParams.grade", "track.fra_class"), ("IrregularityParams.seed", "run.seed"),
+                ("IrregularityParams.", "track."), ("TrackLayout.r0", "wheelset.r0"),
+                ("TrackLayout.", "wheelrail."), ("WheelRailParams.nx", "wheelrail.fastsim_grid"),
+                ("WheelRailParams.update", "wheelrail.fastsim_update"),
+                ("WheelRailParams.", "wheelrail."), ("Settings.", "integrator."))
+
+
+def _cross_checks(c: CarConfig) -> None:
+    """The checks between fields, each once: those of the classes the run is built from
+    (the integrator's steps and rates, the track layout, the irregularity's wavelengths) by
+    building them, then the car's own."""
+    for build in (c.settings, c.layout, c.wheelrail_params, c.irregularity):
+        try:
+            build()
+        except ParameterError as err:       # named as the config names the field
+            msg = str(err)
+            for theirs, ours in _THEIR_NAMES:
+                msg = msg.replace(theirs, ours)
+            raise ParameterError(msg) from None
+    t = c.track
+    if not t.irregularity and t.rail_roughness != "none":
+        raise ParameterError(f"track.rail_roughness = {t.rail_roughness!r} is not allowed with "
                              "track.irregularity = false: expected 'none' (the rails' roughness "
                              "rides on their irregular record)")
-    run = cfg["run"]
-    need = track_needed(cfg, run["duration"])
-    if t["irregularity"] and t["length"] < need:
-        raise ParameterError(f"track.length = {t['length']:g} is not allowed: the car runs "
+    need = c.track_needed()
+    if t.irregularity and t.length < need:
+        raise ParameterError(f"track.length = {t.length:g} is not allowed: the car runs "
                              f"{need:.0f} m (distance plus its length); expected at least that")
-    if has_bearings(cfg):
-        from axlebox.bearing import models
-        ig = cfg["integrator"]
-        models.check_step(bearing_params(cfg), ig["method"], ig["dt"], "integrator.method",
+    if c.has_bearings:
+        models.check_step(c.bearing, c.integrator.method, c.integrator.dt, "integrator.method",
                           "integrator.dt")
-        for d in cfg["defects"]:
-            if d["wheelset"] not in cfg["joint"]["wheelsets"]:
-                raise ParameterError(f"defects: wheelset = {d['wheelset']} is not allowed: its "
+        for d in c.defects:
+            if d.wheelset not in c.joint.wheelsets:
+                raise ParameterError(f"defects: wheelset = {d.wheelset} is not allowed: its "
                                      f"axle-boxes sit on row bushings (joint.wheelsets = "
-                                     f"{cfg['joint']['wheelsets']}); expected one of those")
-    elif cfg["defects"]:
+                                     f"{list(c.joint.wheelsets)}); expected one of those")
+    elif c.defects:
         raise ParameterError("defects need joint.model = 'bearing': with the bushing joint there is "
                              "no bearing to hold them")
-    ig = cfg["integrator"]
-    H = cfg["coupling"]["exchange_dt"]
-    if H > 0.0:
-        n = H / ig["dt"]
-        if ig["method"] not in ("leapfrog", "imex", "imex2") and H != ig["dt"]:
-            raise ParameterError(f"coupling.exchange_dt = {H:g} is not allowed with integrator.method = "
-                                 f"{ig['method']!r}: only the leapfrog methods step the bearings apart "
-                                 f"(expected 0 or integrator.dt = {ig['dt']:g})")
-        if round(n) < 1 or abs(n - round(n)) > 1e-6 * n:
-            raise ParameterError(f"coupling.exchange_dt = {H:g} is not allowed: expected a whole multiple "
-                                 f"of integrator.dt = {ig['dt']:g} s (the bearings' sub-step)")
-    m = cfg["coupling"]["body_substeps"]
-    if m > 1 and (H <= 0.0 or ig["method"] not in ("leapfrog", "imex", "imex2")):
-        raise ParameterError(f"coupling.body_substeps = {m} is not allowed with integrator.method = "
-                             f"{ig['method']!r} and coupling.exchange_dt = {H:g}: the bodies step "
-                             "between exchanges only in a leapfrog run with exchange_dt > 0; expected 1")
-    step, name = (H, "coupling.exchange_dt") if H > 0.0 else (ig["dt"], "integrator.dt")
-    per_output = 1.0 / ig["output_rate_hz"] / step
-    if round(per_output) < 1 or abs(per_output - round(per_output)) > 1e-6 * per_output:
-        raise ParameterError(f"{name} = {step:g} is not allowed: expected the output period "
-                             f"1/integrator.output_rate_hz = {1.0 / ig['output_rate_hz']:g} s over a "
-                             "whole number")
-    sn = cfg["sensors"]
-    if sn["model"] != "ideal":
-        ratio = cfg["integrator"]["output_rate_hz"] / sn["fs_hz"]
+    sn, ig = c.sensors, c.integrator
+    if sn.model != "ideal":
+        ratio = ig.output_rate_hz / sn.fs_hz
         if ratio < 2 or abs(ratio - round(ratio)) > 1e-9:
-            raise ParameterError(f"integrator.output_rate_hz = {cfg['integrator']['output_rate_hz']:g} is "
-                                 f"not allowed with sensors.model = {sn['model']!r}: expected a whole "
-                                 f"multiple, at least 2, of sensors.fs_hz = {sn['fs_hz']:g} (the "
-                                 "acquisition filters and decimates what the run writes)")
-    g = cfg["gearbox"]
-    if g["mass"] > 0 and g["arm"] >= g["hanger_arm"]:
-        raise ParameterError(f"gearbox.arm = {g['arm']:g} is not allowed: expected less than "
-                             f"gearbox.hanger_arm = {g['hanger_arm']:g} (the hanger carries the far end)")
-    return cfg
+            raise ParameterError(f"integrator.output_rate_hz = {ig.output_rate_hz:g} is not allowed "
+                                 f"with sensors.model = {sn.model!r}: expected a whole multiple, at "
+                                 f"least 2, of sensors.fs_hz = {sn.fs_hz:g} (the acquisition filters "
+                                 "and decimates what the run writes)")
+    g = c.gearbox
+    if g.mass > 0 and g.arm >= g.hanger_arm:
+        raise ParameterError(f"gearbox.arm = {g.arm:g} is not allowed: expected less than "
+                             f"gearbox.hanger_arm = {g.hanger_arm:g} (the hanger carries the far end)")
 
 
-def loads(text: str, where: str = "config text") -> tuple[dict, str]:
-    """Validate a config given as TOML text (``where`` names it in a refusal); returns the
-    config and the text."""
+def validate(user: dict) -> CarConfig:
+    """The config of a parsed TOML dict: defaults overridden by what it names, every value
+    checked."""
+    if not isinstance(user, dict):
+        raise ParameterError(f"config = {user!r} is not allowed: expected TOML tables")
+    out = {}
+    for name, fields in user.items():
+        if name in SECTIONS:
+            if not isinstance(fields, dict):
+                raise ParameterError(f"{name} = {fields!r} is not allowed: expected a [{name}] table")
+            out[name] = _section(name, fields)
+        elif name == "bearing":
+            out[name] = models.from_table(fields, "bearing")
+        elif name in ("defects", "wheel_defects"):
+            out[name] = _entries(name, fields)
+        else:
+            raise ParameterError(f"[{name}] is not a section of the vehicle config: expected one of "
+                                 f"{', '.join(_NAMES)}")
+    return CarConfig(**out)
+
+
+def loads(text: str, where: str = "config text") -> CarConfig:
+    """The config of TOML ``text`` (``where`` names it in a refusal)."""
     try:
         user = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise ParameterError(f"{where} is not valid TOML: {err}") from None
-    return validate(user), text
+    return validate(user)
 
 
-def load(path) -> tuple[dict, str]:
-    """Read and validate a config file; returns the config and its text."""
+def load(path) -> CarConfig:
+    """The config of a TOML file."""
     path = Path(path)
     if not path.is_file():
         raise ParameterError(f"config = {str(path)!r} is not allowed: no such file")

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from axlebox._params import ParameterError, check_ranges, param
+from axlebox._params import ParameterError, check_ranges, choice, param
 
 from . import kernel_integrate as ki
 from .exchange import HOLDS, exchange
@@ -24,18 +24,21 @@ METHODS = ("rk4", "leapfrog", "imex", "imex2", "galpha")
 
 @dataclass(frozen=True)
 class Settings:
-    """Integrator settings; ``dt`` must divide the output period."""
+    """Integrator settings: the car config's ``[integrator]`` and ``[coupling]`` fields (declared
+    here, once; mbs/config.py takes them over) and the Newton's; ``dt`` must divide the output
+    period.  Their cross-field checks live here alone (a car config runs them by building its
+    settings)."""
 
-    method: str = field(default="rk4", metadata={"doc": "'rk4', 'leapfrog', 'imex' (the leapfrog with "
-                                                    "the bearings' contact damping implicit), "
-                                                    "'imex2' (their contact stiffness, by Newmark's "
-                                                    "average acceleration, and friction too: "
-                                                    "experimental, benchmarks/README.md) or "
-                                                    "'galpha'"})
-    dt: float = param(2e-5, 1e-8, 1e-2, unit="s", doc="fixed step; with bearings and a leapfrog "
+    method: str = choice("leapfrog", METHODS, doc="'leapfrog' (explicit central differences), "
+                         "'imex' (the leapfrog with the bearings' contact damping implicit), "
+                         "'imex2' (their contact stiffness, by Newmark's average acceleration, "
+                         "and friction too: experimental, benchmarks/README.md), 'rk4' or "
+                         "'galpha'; leapfrog at 5e-5 s: the car's axle-box RMS within 0.1 % of "
+                         "RK4 at 1.25e-5 s, faster than real time")
+    dt: float = param(5e-5, 1e-8, 1e-2, unit="s", doc="fixed step; with bearings and a leapfrog "
                       "method, the bearings' sub-step")
     output_rate_hz: float = param(10_000.0, 1.0, 1e7, unit="Hz", doc="sensor output rate")
-    state_rate_hz: float = param(1_000.0, 0.1, 1e7, unit="Hz", doc="rate of whole-state snapshots")
+    state_rate_hz: float = param(500.0, 0.1, 1e7, unit="Hz", doc="rate of whole-state snapshots")
     rho_inf: float = param(0.8, 0.0, 1.0, unit="", doc="generalized-alpha spectral radius at infinity")
     max_iter: int = param(8, 2, 50, unit="", doc="Newton iterations before the Jacobian is refreshed")
     rtol: float = param(1e-9, 0.0, 1e-2, unit="", doc="Newton relative tolerance on the state")
@@ -44,18 +47,11 @@ class Settings:
                                "with the bearings (mbs/exchange.py), a whole multiple of dt; 0: dt")
     body_substeps: int = param(1, 1, 1000, unit="", doc="the bodies' steps an exchange, the bearings' "
                                "loads held between (a co-simulation, mbs/exchange.py); 1: one")
-    hold: str = field(default="zoh", metadata={"doc": "how the co-simulation holds the bearings' "
-                                                     "loads between exchanges: 'zoh', 'linear' or "
-                                                     "'jacobian'"})
+    hold: str = choice("zoh", HOLDS, doc="how the co-simulation holds the bearings' loads between "
+                       "exchanges: 'zoh', 'linear' or 'jacobian'")
 
     def __post_init__(self):
-        if self.method not in METHODS:
-            raise ParameterError(f"Settings.method = {self.method!r} is not allowed: expected one "
-                                 f"of {METHODS}")
         check_ranges(self)
-        if self.hold not in HOLDS:
-            raise ParameterError(f"coupling.hold = {self.hold!r} is not allowed: expected one of "
-                                 f"{', '.join(HOLDS)}")
         if self.body_substeps > 1 and (self.exchange_dt <= 0.0 or self.method in ("rk4", "galpha")):
             raise ParameterError(f"coupling.body_substeps = {self.body_substeps} is not allowed with "
                                  f"integrator.method = {self.method!r} and coupling.exchange_dt = "
@@ -70,18 +66,19 @@ class Settings:
             if n < 1.0 - 1e-9 or abs(n - round(n)) > 1e-6 * n:
                 raise ParameterError(f"coupling.exchange_dt = {self.exchange_dt:g} is not allowed: "
                                      f"expected a whole multiple of integrator.dt = {self.dt:g} s")
-        step, name = (self.exchange_dt, "coupling.exchange_dt") if self.exchange_dt > 0 else (self.dt, "dt")
+        step, name = ((self.exchange_dt, "coupling.exchange_dt") if self.exchange_dt > 0
+                      else (self.dt, "integrator.dt"))
         ratio = 1.0 / (self.output_rate_hz * step)
         if ratio < 1.0 - 1e-9:
-            raise ParameterError(f"Settings.output_rate_hz = {self.output_rate_hz:g} is not allowed: "
+            raise ParameterError(f"integrator.output_rate_hz = {self.output_rate_hz:g} is not allowed: "
                                  f"above the step rate 1/{name} = {1 / step:g} Hz")
         if abs(ratio - round(ratio)) > 1e-6 * ratio:
-            raise ParameterError(f"{'Settings.dt' if name == 'dt' else name} = {step:g} is not allowed: "
+            raise ParameterError(f"{name} = {step:g} is not allowed: "
                                  f"it must divide the output period 1/{self.output_rate_hz:g} s a "
                                  "whole number of times")
         if self.state_rate_hz > self.output_rate_hz:
-            raise ParameterError(f"Settings.state_rate_hz = {self.state_rate_hz:g} is not allowed: "
-                                 f"at most output_rate_hz = {self.output_rate_hz:g}")
+            raise ParameterError(f"integrator.state_rate_hz = {self.state_rate_hz:g} is not allowed: "
+                                 f"at most integrator.output_rate_hz = {self.output_rate_hz:g}")
 
     @property
     def step(self) -> float:

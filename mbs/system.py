@@ -25,6 +25,10 @@ from .kernel_elements import EL_WIDTH
 from .kernel_system import Arrays, Work
 from .wheelrail.element_kernel import N_OUT
 
+#: s, the track irregularity fades in over this time from the start of a run (so a run's first
+#: TRACK_RAMP_S are left out of what is diagnosed and rated)
+TRACK_RAMP_S = 0.5
+
 
 @dataclass
 class _Init:
@@ -62,7 +66,7 @@ class System:
         self.wheel_tables: tuple[np.ndarray, np.ndarray] | None = None
         self.track = None
         self.wheel_records: dict[str, tuple] = {}   # wheel name -> (values, slopes, ds)
-        self.track_ramp = 0.5          # s, the irregularity fades in over this time
+        self.track_ramp = TRACK_RAMP_S
         self.bearings: list[tuple] = []
         self.bearing_tag = None
 

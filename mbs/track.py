@@ -126,11 +126,11 @@ class IrregularityParams:
     grade: int = param(5, 1, 6, unit="", doc="FRA track class, 1 (worst) to 6 (best)")
     lambda_min: float = param(1.0, 0.5, 1000.0, doc="shortest FRA wavelength")
     lambda_max: float = param(80.0, 0.5, 1000.0, doc="longest FRA wavelength")
-    length: float = param(1000.0, 1.0, 1e6, doc="record length")
+    length: float = param(400.0, 1.0, 1e6, doc="record length")
     seed: int = param(0, 0, 2 ** 63 - 1, unit="", doc="seed of the random phases")
     ds: float | None = field(default=None, metadata={"doc": "grid step; None: shortest wavelength / 10"})
     roughness: bool = field(default=False, metadata={"doc": "add roughness to both rails"})
-    roughness_lambda_min: float = param(0.01, 0.001, 0.4, doc="shortest roughness wavelength")
+    roughness_lambda_min: float = param(0.003, 0.001, 0.4, doc="shortest roughness wavelength")
     roughness_lambda_max: float = param(0.4, 0.001, 0.4, doc="longest roughness wavelength")
     roughness_offset_db: float = param(0.0, -40.0, 40.0, unit="dB", doc="level above the spectrum's")
     roughness_spectrum: str = field(default="iso3095", metadata={

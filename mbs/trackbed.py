@@ -33,7 +33,12 @@ rigid laterally and along the rail.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from dataclasses import dataclass
+
+if TYPE_CHECKING:
+    from .config import Track
 
 MODELS = ("rigid", "ballasted")
 
@@ -58,24 +63,24 @@ class Lumped:
     L: float
 
 
-def _foundation(t: dict) -> tuple[float, float]:
+def _foundation(t: Track) -> tuple[float, float]:
     """``(k_f, beta)``: the Winkler modulus of the seats (three springs in series over the
     spacing, N/m^2) and the rail's wavenumber on it (1/m)."""
-    k_s = 1.0 / (1.0 / t["pad_k"] + 1.0 / t["ballast_k"] + 1.0 / t["subgrade_k"])
-    k_f = k_s / t["sleeper_spacing"]
-    return k_f, (k_f / (4.0 * t["rail_EI"])) ** 0.25
+    k_s = 1.0 / (1.0 / t.pad_k + 1.0 / t.ballast_k + 1.0 / t.subgrade_k)
+    k_f = k_s / t.sleeper_spacing
+    return k_f, (k_f / (4.0 * t.rail_EI)) ** 0.25
 
 
-def lumped(t: dict) -> Lumped:
+def lumped(t: Track) -> Lumped:
     """The lumped track of the ``[track]`` table ``t`` (module docstring)."""
-    a = t["sleeper_spacing"]
+    a = t.sleeper_spacing
     k_f, beta = _foundation(t)
     L = 3.0 / (2.0 * beta)
     s = L / a
-    return Lumped(m_rail=t["rail_mass"] * L, m_sleeper=t["sleeper_mass"] * s,
-                  m_ballast=t["ballast_mass"] * s, k_pad=t["pad_k"] * s, c_pad=t["pad_c"] * s,
-                  k_ballast=t["ballast_k"] * s, c_ballast=t["ballast_c"] * s,
-                  k_subgrade=t["subgrade_k"] * s, c_subgrade=t["subgrade_c"] * s,
+    return Lumped(m_rail=t.rail_mass * L, m_sleeper=t.sleeper_mass * s,
+                  m_ballast=t.ballast_mass * s, k_pad=t.pad_k * s, c_pad=t.pad_c * s,
+                  k_ballast=t.ballast_k * s, c_ballast=t.ballast_c * s,
+                  k_subgrade=t.subgrade_k * s, c_subgrade=t.subgrade_c * s,
                   k_bend=k_f / (2.0 * beta), beta=beta, L=L)
 
 

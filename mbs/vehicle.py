@@ -23,6 +23,8 @@ Track frame: x forward, y left, z up, z = 0 at the crown of the rails.  Suspensi
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from axlebox.fem.bodyfile import ReducedBody
@@ -34,6 +36,9 @@ from . import trackbed
 from .system import System
 from .wheelrail.element_kernel import COL_C0Z, COL_KH, COL_PZ, P_L0
 
+if TYPE_CHECKING:
+    from .config import CarConfig
+
 G = 9.81
 SIDES = (("L", 1.0), ("R", -1.0))
 ROW_OFFSET = 0.04          # m, bearing row centres from the journal centre (160 mm unit / 4)
@@ -43,34 +48,34 @@ def _rotz_pi():
     return np.diag([-1.0, -1.0, 1.0])
 
 
-def _body(name: str, kind: str, cfg: dict, reduced: dict | None, *, spin: bool = False) -> Body:
+def _body(name: str, kind: str, cfg: CarConfig, reduced: dict | None, *, spin: bool = False) -> Body:
     """Flexible or rigid body ``name`` of reduced body ``kind`` (wheelset, axlebox, frame)."""
-    flex = name in cfg["bodies"]["flexible"]
+    flex = name in cfg.bodies.flexible
     rb: ReducedBody | None = (reduced or {}).get(kind)
     if rb is None:
-        sec = cfg[kind]
-        return rigid(name, sec["mass"], sec["inertia"], spin=spin)
+        sec = getattr(cfg, kind)
+        return rigid(name, sec.mass, sec.inertia, spin=spin)
     if not flex:
         return flexible(name, rb, rigid_only=True, spin=spin)
-    body = flexible(name, rb, n_modes=mode_count(rb, cfg["bodies"][f"fmax_{kind}_hz"]), spin=spin)
+    body = flexible(name, rb, n_modes=mode_count(rb, getattr(cfg.bodies, f"fmax_{kind}_hz")), spin=spin)
     # the config's modal damping ratio of this kind of body replaces the file's (the modes are
     # mass-normalised until point masses are added, so D = diag(2 zeta omega))
-    body.D = modal_damping(body.frequencies_hz, cfg["bodies"][f"zeta_{kind}"])
+    body.D = modal_damping(body.frequencies_hz, getattr(cfg.bodies, f"zeta_{kind}"))
     return body
 
 
-def _axlebox_assembly(ab: Body, cfg: dict) -> Body:
+def _axlebox_assembly(ab: Body, cfg: CarConfig) -> Body:
     """The parts of the axle-box assembly its housing mesh lacks, as point masses on the housing's
     nodes: the bearing cup on the two bore spiders, the end cover on the outboard one (row 2),
     the adapter on the two spring seats."""
-    a = cfg["axlebox"]
+    a = cfg.axlebox
     if not ab.nodes:                    # config mass: the parts' masses add at its centre
-        ab.mass += a["cup_mass"] + a["cover_mass"] + a["adapter_mass"]
+        ab.mass += a.cup_mass + a.cover_mass + a.adapter_mass
         return ab
-    return add_point_masses(ab, {"bore_row1": a["cup_mass"] / 2,
-                                 "bore_row2": a["cup_mass"] / 2 + a["cover_mass"],
-                                 "spring_front": a["adapter_mass"] / 2,
-                                 "spring_rear": a["adapter_mass"] / 2})
+    return add_point_masses(ab, {"bore_row1": a.cup_mass / 2,
+                                 "bore_row2": a.cup_mass / 2 + a.cover_mass,
+                                 "spring_front": a.adapter_mass / 2,
+                                 "spring_rear": a.adapter_mass / 2})
 
 
 def _marker(s: System, body: Body, node: str, at, align: bool = False, place: bool = False) -> int:
@@ -84,13 +89,13 @@ def _marker(s: System, body: Body, node: str, at, align: bool = False, place: bo
 TIE_HZ = 300.0              # the track layers' ties along, across and in rotation (unloaded)
 
 
-def _track_under(s: System, cfg: dict, name: str, x: float, y: float, V: float) -> int:
+def _track_under(s: System, cfg: CarConfig, name: str, x: float, y: float, V: float) -> int:
     """The ballasted track under wheel ``name`` (:mod:`.trackbed`): rail, sleeper and ballast
     bodies below the contact at ``(x, y)``, moving with the car, each spring preloaded with the
     weight above it so that the unloaded track rests as built; returns the rail's marker.  The
     ground springs hold nothing along the track (the bodies travel with the wheel); the layers
     are tied along, across and in rotation at :data:`TIE_HZ` (no load reaches those directions)."""
-    m = trackbed.lumped(cfg["track"])
+    m = trackbed.lumped(cfg.track)
     w = 2 * np.pi * TIE_HZ
     # each layer (top down) and the spring under it
     layers = (("rail", m.m_rail, 0.0, m.k_pad, m.c_pad),
@@ -115,13 +120,13 @@ def _track_under(s: System, cfg: dict, name: str, x: float, y: float, V: float) 
     return marks[0]
 
 
-def static_wheel_load(cfg: dict) -> float:
+def static_wheel_load(cfg: CarConfig) -> float:
     """An eighth of the car's weight (N): what each wheel carries at rest on level track."""
-    return G * (cfg["carbody"]["mass"] + 2 * cfg["frame"]["mass"] + 4 * cfg["wheelset"]["mass"]
-                + 8 * cfg["axlebox"]["mass"] + 4 * cfg["gearbox"]["mass"]) / 8
+    return G * (cfg.carbody.mass + 2 * cfg.frame.mass + 4 * cfg.wheelset.mass
+                + 8 * cfg.axlebox.mass + 4 * cfg.gearbox.mass) / 8
 
 
-def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None = None,
+def build(cfg: CarConfig, tables, track=None, reduced: dict[str, ReducedBody] | None = None,
           bearings: dict | None = None) -> System:
     """The car as a :class:`~axlebox.mbs.system.System` (not yet in equilibrium: see mbs.statics).
 
@@ -129,9 +134,9 @@ def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None 
     table, roller and cage states) puts a bearing between wheelset k's journal and its axle-box
     on that side instead of the row bushings (:func:`axlebox.pipelines.simulate.build_model`
     makes them)."""
-    V = cfg["run"]["speed_kmh"] / 3.6
-    geo, prim, sec, gb, jt = cfg["geometry"], cfg["primary"], cfg["secondary"], cfg["gearbox"], cfg["joint"]
-    r0 = cfg["wheelset"]["r0"]
+    V = cfg.run.speed_kmh / 3.6
+    geo, prim, sec, gb, jt = cfg.geometry, cfg.primary, cfg.secondary, cfg.gearbox, cfg.joint
+    r0 = cfg.wheelset.r0
     s = System(gravity=(0.0, 0.0, -G), speed=V)
     s.set_wheel_rail(tables.tab, tables.par)
     if track is not None:
@@ -145,47 +150,47 @@ def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None 
     l0 = float(tables.par[P_L0])                   # nominal wheel centre half distance
     # free rolling: the spin that makes the longitudinal creepage vanish at the loaded contact
     spin = V / (z_ws - float(tables.tab[ic, COL_PZ]))
-    xb = (0.0, -geo["bogie_distance"])
-    a = geo["wheelbase"] / 2
+    xb = (0.0, -geo.bogie_distance)
+    a = geo.wheelbase / 2
 
     # carbody
-    W_cb = cfg["carbody"]["mass"] * G
-    s.add_body(rigid("carbody", cfg["carbody"]["mass"], cfg["carbody"]["inertia"]),
-               r=(xb[1] / 2, 0, cfg["carbody"]["cg_height"] - sink), v=(V, 0, 0))
+    W_cb = cfg.carbody.mass * G
+    s.add_body(rigid("carbody", cfg.carbody.mass, cfg.carbody.inertia),
+               r=(xb[1] / 2, 0, cfg.carbody.cg_height - sink), v=(V, 0, 0))
     # carbody floor sensors (1.1 m above rail, assumed) over each bogie centre and mid-car
     for name, xs in (("carbody_b1", xb[0]), ("carbody_centre", xb[1] / 2), ("carbody_b2", xb[1])):
-        s.sensor(name, s.marker("carbody", at=(xs - xb[1] / 2, 0, 1.1 - cfg["carbody"]["cg_height"])))
-    gear_y = -1.0 if gb["side"] == "R" else 1.0
+        s.sensor(name, s.marker("carbody", at=(xs - xb[1] / 2, 0, 1.1 - cfg.carbody.cg_height)))
+    gear_y = -1.0 if gb.side == "R" else 1.0
     for j in (1, 2):
         fr = _body(f"frame{j}", "frame", cfg, reduced)
         if fr.nodes:                                # equipment the FE frame leaves out
-            extra = max(cfg["frame"]["mass"] - fr.mass, 0.0)
+            extra = max(cfg.frame.mass - fr.mass, 0.0)
             add_point_masses(fr, {"secondary_L": extra / 3, "secondary_R": extra / 3,
                                   "traction_centre": extra / 3})
-        zf = cfg["frame"]["cg_height"] - sink - (fr.mc[2] / fr.mass if fr.nodes else 0.0)
+        zf = cfg.frame.cg_height - sink - (fr.mc[2] / fr.mass if fr.nodes else 0.0)
         fi = s.add_body(fr, r=(xb[j - 1], 0, zf), v=(V, 0, 0))
         W_f = fr.mass * G
-        F_h = gb["mass"] * G * gb["arm"] / gb["hanger_arm"] if gb["mass"] > 0 else 0.0
+        F_h = gb.mass * G * gb.arm / gb.hanger_arm if gb.mass > 0 else 0.0
         P_box = (W_cb / 2 + W_f + 2 * F_h) / 4          # static load on each axle-box's springs
         # secondary suspension
         for side, sg in SIDES:
-            fm = _marker(s, fr, f"secondary_{side}", (0, sg * geo["air_spring_y"], 0.15), align=True)
-            cm = s.marker("carbody", at=(xb[j - 1] - xb[1] / 2, sg * geo["air_spring_y"],
-                                         geo["air_spring_height"] - cfg["carbody"]["cg_height"]))
-            s.add(Bushing(f"air_spring{j}{side}", fm, cm, k=(sec["kx"], sec["ky"], sec["kz"], 0, 0, 0),
-                          c=(0, 0, sec["cz"], 0, 0, 0), preload=(0, 0, W_cb / 4, 0, 0, 0)))
+            fm = _marker(s, fr, f"secondary_{side}", (0, sg * geo.air_spring_y, 0.15), align=True)
+            cm = s.marker("carbody", at=(xb[j - 1] - xb[1] / 2, sg * geo.air_spring_y,
+                                         geo.air_spring_height - cfg.carbody.cg_height))
+            s.add(Bushing(f"air_spring{j}{side}", fm, cm, k=(sec.kx, sec.ky, sec.kz, 0, 0, 0),
+                          c=(0, 0, sec.cz, 0, 0, 0), preload=(0, 0, W_cb / 4, 0, 0, 0)))
         tc = _marker(s, fr, "traction_centre", (0, 0, -0.15), align=True)
         p_tc, _ = s.initial_marker_pose(tc)
         rel = p_tc - s.init[s.index("carbody")].r
         ctc = s.marker("carbody", at=rel)
-        s.add(Bushing(f"anti_roll{j}", tc, ctc, k=(0, 0, 0, sec["anti_roll"], 0, 0)))
-        s.add(BumpStop(f"bumpstop{j}", tc, ctc, axis=1, clearance=sec["bumpstop_clearance"],
-                       k=sec["bumpstop_k"]))
+        s.add(Bushing(f"anti_roll{j}", tc, ctc, k=(0, 0, 0, sec.anti_roll, 0, 0)))
+        s.add(BumpStop(f"bumpstop{j}", tc, ctc, axis=1, clearance=sec.bumpstop_clearance,
+                       k=sec.bumpstop_k))
         crod = s.marker("carbody", at=rel + (0.6, 0, 0))
-        s.add(Spring(f"traction_rod{j}", tc, crod, k=sec["traction_k"]))
+        s.add(Spring(f"traction_rod{j}", tc, crod, k=sec.traction_k))
         dl = s.marker("carbody", at=rel + (0, -0.5, 0))
         df = s.marker(fr.name, at=p_tc - s.init[fi].r + (0, 0.5, 0))
-        s.add(Spring(f"lateral_damper{j}", df, dl, c=sec["cy"]))
+        s.add(Spring(f"lateral_damper{j}", df, dl, c=sec.cy))
 
         for k, xa in ((2 * j - 1, a), (2 * j, -a)):
             x = xb[j - 1] + xa
@@ -194,13 +199,13 @@ def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None 
             for side, sg in SIDES:
                 ab = _axlebox_assembly(_body(f"ab{k}{side}", "axlebox", cfg, reduced), cfg)
                 W_ab = ab.mass * G
-                s.add_body(ab, r=(x, sg * geo["journal_y"], z_ws), v=(V, 0, 0),
+                s.add_body(ab, r=(x, sg * geo.journal_y, z_ws), v=(V, 0, 0),
                            rotation=None if sg > 0 else _rotz_pi())
                 if bearings is not None and (k, side) in bearings:
                     # one marker a ring at the bearing centre: the bore's row-1 spider and the
                     # journal's, placed there (the bearing's rows are the kernel's own)
                     om = _marker(s, ab, "bore_row1", (0, 0, 0), align=True, place=True)
-                    im = _marker(s, ws, f"journal_{side}_row1", (0, sg * geo["journal_y"], 0),
+                    im = _marker(s, ws, f"journal_{side}_row1", (0, sg * geo.journal_y, 0),
                                  place=True)
                     s.bearing(f"bearing{k}{side}", im, om, *bearings[(k, side)])
                 else:
@@ -208,10 +213,10 @@ def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None 
                         # on the row centres (the housing's bore nodes sit 10 mm outboard of them)
                         am = _marker(s, ab, f"bore_{row}", (0, dy, 0), align=True, place=True)
                         wm = _marker(s, ws, f"journal_{side}_{row}",
-                                     (0, sg * (geo["journal_y"] + dy), 0), place=True)
+                                     (0, sg * (geo.journal_y + dy), 0), place=True)
                         s.add(Bushing(f"joint{k}{side}_{row}", am, wm,
-                                      k=(jt["k_radial"], jt["k_axial"], jt["k_radial"], 0, 0, 0),
-                                      c=(jt["c"],) * 3 + (0, 0, 0),
+                                      k=(jt.k_radial, jt.k_axial, jt.k_radial, 0, 0, 0),
+                                      c=(jt.c,) * 3 + (0, 0, 0),
                                       preload=(0, 0, -(P_box + W_ab) / 2, 0, 0, 0)))
                 for seat, sx in (("spring_front", 0.25), ("spring_rear", -0.25)):
                     bm = _marker(s, ab, seat, (sx, 0, 0.04))
@@ -220,26 +225,26 @@ def build(cfg: dict, tables, track=None, reduced: dict[str, ReducedBody] | None 
                     fm = _marker(s, fr, f"primary_{1 if xa > 0 else 2}_{side}",
                                  p_seat - s.init[fi].r + (0, 0, 0.1), align=True, place=True)
                     s.add(Bushing(f"primary{k}{side}_{seat}", fm, bm,
-                                  k=(prim["kx"] / 2, prim["ky"] / 2, prim["kz"] / 2, 0, 0, 0),
-                                  c=(0, 0, prim["cz"] / 2, 0, 0, 0), preload=(0, 0, -P_box / 2, 0, 0, 0)))
-                s.sensor(f"ws{k}_{side}", _marker(s, ab, cfg["sensors"]["node"], (0, 0, 0.175)))
+                                  k=(prim.kx / 2, prim.ky / 2, prim.kz / 2, 0, 0, 0),
+                                  c=(0, 0, prim.cz / 2, 0, 0, 0), preload=(0, 0, -P_box / 2, 0, 0, 0)))
+                s.sensor(f"ws{k}_{side}", _marker(s, ab, cfg.sensors.node, (0, 0, 0.175)))
                 # the tables' nominal contact line (the FE tread spider sits at the FE wheel's)
                 tread = _marker(s, ws, f"tread_{side}", (0, sg * l0, -r0), place=True)
                 rail = (_track_under(s, cfg, f"ws{k}_{side}", x, sg * l0, V)
-                        if cfg["track"]["model"] == "ballasted" else -1)
+                        if cfg.track.model == "ballasted" else -1)
                 s.wheel(f"ws{k}_{side}", tread, 0 if sg > 0 else 1, r0, track=rail)
-            if gb["mass"] > 0:
+            if gb.mass > 0:
                 toward = -1.0 if xa > 0 else 1.0            # towards the bogie centre
                 yg = gear_y * 0.42
-                gbody = rigid(f"gb{k}", gb["mass"], gb["inertia"])
-                s.add_body(gbody, r=(x + toward * gb["arm"], yg, z_ws), v=(V, 0, 0))
+                gbody = rigid(f"gb{k}", gb.mass, gb.inertia)
+                s.add_body(gbody, r=(x + toward * gb.arm, yg, z_ws), v=(V, 0, 0))
                 gm = _marker(s, ws, "gear", (0, yg, 0), place=True)
-                bm = s.marker(f"gb{k}", at=(-toward * gb["arm"], 0, 0))
+                bm = s.marker(f"gb{k}", at=(-toward * gb.arm, 0, 0))
                 s.add(Bushing(f"gear_bearing{k}", gm, bm, k=(1e8, 1e8, 1e8, 1e7, 0, 1e7),
                               c=(1e3,) * 3 + (1e2, 0, 1e2),
-                              preload=(0, 0, gb["mass"] * G - F_h, 0, 0, 0)))
-                hm = s.marker(f"gb{k}", at=(toward * (gb["hanger_arm"] - gb["arm"]), 0, 0))
+                              preload=(0, 0, gb.mass * G - F_h, 0, 0, 0)))
+                hm = s.marker(f"gb{k}", at=(toward * (gb.hanger_arm - gb.arm), 0, 0))
                 p_h = s.initial_marker_pose(hm)[0]
                 fh = s.marker(fr.name, at=p_h - s.init[fi].r + (0, 0, 0.3))
-                s.add(Spring(f"hanger{k}", fh, hm, k=gb["hanger_k"], c=gb["hanger_c"], preload=-F_h))
+                s.add(Spring(f"hanger{k}", fh, hm, k=gb.hanger_k, c=gb.hanger_c, preload=-F_h))
     return s

@@ -162,6 +162,14 @@ def _vf_band(a):
     return parse_pair(a.vf_band, "--vf-band") if a.vf_band else None
 
 
+def _thresholds(a) -> dict:
+    """The criterion's thresholds given on the command line (``--second-db`` ...), as keyword
+    arguments of :class:`axlebox.bearing.diagnostics.criterion.Criterion`; Criterion checks
+    each and names its option."""
+    from axlebox.bearing.diagnostics.criterion import OPTIONS
+    return {name: getattr(a, name) for name in OPTIONS if getattr(a, name) is not None}
+
+
 def _analysis_options(a) -> dict:
     """The options ``diagnose`` and ``report`` share, as keyword arguments of
     :func:`axlebox.pipelines.diagnose.analyse_file`."""
@@ -171,7 +179,7 @@ def _analysis_options(a) -> dict:
     crit = Criterion(mode="relative" if a.relative else "absolute",
                      **({"vf_range": parse_pair(a.vf_range, "--vf-range")} if a.vf_range else {}),
                      **({"rel_range": parse_pair(a.rel_range, "--rel-range")} if a.rel_range else {}),
-                     lag="off" if a.no_lag else a.lag, vf_band=_vf_band(a))
+                     lag="off" if a.no_lag else a.lag, vf_band=_vf_band(a), **_thresholds(a))
     return dict(left=a.left, right=a.right, fs=a.fs, column=a.column, scale=a.scale,
                 shaft=a.shaft_hz, speed_kmh=a.speed_kmh, wheel_radius=a.wheel_radius, rpm=a.rpm,
                 orders_text=a.orders, bore=a.bore, bearing=a.bearing, orders_left=a.orders_left,
@@ -205,7 +213,8 @@ def _cmd_dataset(a) -> None:
     from axlebox.bearing.diagnostics.criterion import Criterion
 
     from .dataset import write
-    write(a.sweep_dir, a.out, window_s=a.window, hop_s=a.hop, criterion=Criterion(mode=a.criterion))
+    write(a.sweep_dir, a.out, window_s=a.window, hop_s=a.hop,
+          criterion=Criterion(mode=a.criterion, **_thresholds(a)))
 
 
 def _add_dataset(sub) -> None:
@@ -224,6 +233,7 @@ def _add_dataset(sub) -> None:
     ds.add_argument("--criterion", choices=("relative", "absolute"), default="relative",
                     help="the criterion's VF mode for the verdict labels (default relative, as the "
                          "demo)")
+    _add_threshold_options(ds)
     ds.set_defaults(func=_cmd_dataset)
 
 
@@ -268,6 +278,28 @@ def _add_sweep(sub) -> None:
 
 VF_BAND_HELP = ("band in Hz over which each side's FC and VF (the paper's Eq. 18) are taken, "
                 "e.g. 0,1000 (default: the record's whole band)")
+
+
+def _add_threshold_options(dg) -> None:
+    """The criterion's thresholds a user may move (bearing/diagnostics/criterion.py, Criterion:
+    where each default comes from); the defaults are Criterion's."""
+    from axlebox.bearing.diagnostics.criterion import Criterion as C
+    dg.add_argument("--second-db", type=float, metavar="DB",
+                    help="how far over its floor each side's own fault line must stand for faults "
+                         f"on both sides (default {C.second_db:g} dB: a healthy bearing's own lines "
+                         "reach 13)")
+    dg.add_argument("--clearer-db", type=float, metavar="DB",
+                    help="how far one side's own line must stand over the other's for the clearer "
+                         f"to be called real when the other is faint (default {C.clearer_db:g} dB)")
+    dg.add_argument("--c-independent", type=float, metavar="C",
+                    help="coherent fraction in [0, 1) at or under which a line seen on both sides "
+                         f"is two impulse trains, a fault on each side (default {C.c_independent:g})")
+    dg.add_argument("--gate-ratio", type=float, metavar="R",
+                    help="turn-folded envelope peak over its median from which a wheel flat's "
+                         f"strikes are blanked, > 1 (default {C.gate_ratio:g}; inf: never)")
+    dg.add_argument("--shaft-p-fa", type=float, metavar="P",
+                    help="false-alarm probability a record of naming a line at a whole multiple "
+                         f"of the shaft's rate, in (0, 1) (default {C.shaft_p_fa:g})")
 
 
 def _add_analysis_options(dg) -> None:
@@ -316,6 +348,7 @@ def _add_analysis_options(dg) -> None:
                          "contradicts RMS and SPM leaves both undecided; it breaks their ties), "
                          "off (the paper's RMS and SPM alone)")
     lg.add_argument("--no-lag", action="store_true", help="the same as --lag off")
+    _add_threshold_options(dg)
 
 
 def parser() -> argparse.ArgumentParser:
@@ -434,7 +467,7 @@ def parser() -> argparse.ArgumentParser:
     sm.add_argument("--out", required=True, help="result file (.h5)")
     sm.add_argument("--checkpoint-every", type=float, default=None, metavar="S",
                     help="simulated seconds between checkpoints of the state to OUT.partial.h5 "
-                         "(default: 1; 0: none; the outputs stream to OUT.stream.h5 meanwhile); the "
+                         "(default: 1; 0: none; the outputs stream to OUT.stream.d meanwhile); the "
                          "same command run again resumes from the last")
     sm.add_argument("--restart", action="store_true",
                     help="start over, dropping a checkpoint of another config")

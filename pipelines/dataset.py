@@ -6,8 +6,10 @@ the vertical acceleration (column 2) of the two axle boxes of its defect's wheel
 ``[[defects]]`` entry's, else wheelset 2), after the track's fade-in, cut into windows of
 ``window_s`` every ``hop_s``.  Each window carries its case's labels: speed, each side's defect
 (kind, W, L, H, row; "none" without one), which side is real ("left", "right", "both" or
-"none"), and the verdict the criterion gives on the whole record (:func:`.diagnose.analyse_file`;
-its reason too), with where it came from (file, first sample's index in the file's arrays).
+"none"), and the verdict the criterion gives on the whole record (:func:`.diagnose.analyse_file`):
+each side's word and reason, the rule that decided and the evidence it read
+(:meth:`axlebox.bearing.diagnostics.verdict.Verdict.row`, columns ``verdict_*``), with where it
+came from (file, first sample's index in the file's arrays).
 
 Format: one NetCDF-4 file (HDF5 underneath, written by xarray through h5netcdf), because the
 windows are a dense (window x sample) array per side and the labels are per-window coordinates:
@@ -24,7 +26,6 @@ import json
 import math
 import os
 import platform
-import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -32,14 +33,12 @@ import numpy as np
 from axlebox._files import h5_bound, h5_reserved, write_text
 from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
-from axlebox.bearing.defects import Defect
 
 from .readers import TRACK_FADE_IN_S
 
 COLUMN = 2                        # vertical acceleration
 DEFECT_FIELDS = ("kind", "W", "L", "H", "row")
 SIDES = {"left": "L", "right": "R"}
-DEFAULT = Defect()                # what a [[defects]] entry leaves out
 
 
 def _positive(value, option: str) -> float:
@@ -63,31 +62,40 @@ def results(folder) -> list[Path]:
     return files
 
 
-def case_labels(path: Path) -> tuple[dict, dict]:
-    """``(labels, config)`` of one vehicle result: speed, wheelset, each side's defect, the real side."""
+def case_labels(path: Path) -> tuple[dict, object]:
+    """``(labels, config)`` of one vehicle result: speed, wheelset, each side's defect, the real
+    side, from its stored config read as the run read it (:func:`.readers.result_config`)."""
+    from axlebox.bearing.rig import RigConfig
+
+    from .readers import result_config
     try:
         with resultfile.reading(path) as f:
-            cfg = tomllib.loads(str(f.attrs.get("config", "")))
             status = f.attrs.get("status", "done")
+        cfg = result_config(path)
     except (OSError, ValueError) as err:
+        if isinstance(err, ParameterError):
+            raise
         raise ParameterError(f"{path.name} is not an axlebox result file: {err}") from None
-    if "rig" in cfg:
+    if isinstance(cfg, RigConfig):
         raise ParameterError(f"{path.name} is a bearing-rig result (one sensor): a dataset needs the "
                              "two axle boxes of a vehicle sweep")
+    if cfg is None:
+        raise ParameterError(f"{path.name} holds no vehicle config: a dataset needs the results of "
+                             "a vehicle sweep")
     if status != "done":
         raise ParameterError(f"{path.name} is an unfinished run (status {status!r}): finish the sweep "
                              "first (a rerun of axlebox sweep resumes it)")
-    defects = cfg.get("defects", [])
-    ws = int(defects[0].get("wheelset", 2)) if defects else 2
-    lab = {"speed_kmh": float(cfg.get("run", {}).get("speed_kmh", 48.0)), "wheelset": ws}
+    defects = cfg.defects
+    ws = defects[0].wheelset if defects else 2
+    lab = {"speed_kmh": cfg.run.speed_kmh, "wheelset": ws}
     for s, letter in SIDES.items():
-        here = [d for d in defects if int(d.get("wheelset", 2)) == ws and d.get("side", "R") == letter]
-        d = here[0] if here else None
-        lab[f"{s}_kind"] = d.get("kind", DEFAULT.kind) if d else "none"
+        here = [d for d in defects if d.wheelset == ws and d.side == letter]
+        d = here[0].defect if here else None
+        lab[f"{s}_kind"] = d.kind if d else "none"
         lab[f"{s}_n_defects"] = len(here)
         for k in ("W", "L", "H"):
-            lab[f"{s}_{k}"] = float(d.get(k, getattr(DEFAULT, k))) if d else 0.0
-        lab[f"{s}_row"] = int(d.get("row", DEFAULT.row)) if d else 0
+            lab[f"{s}_{k}"] = float(getattr(d, k)) if d else 0.0
+        lab[f"{s}_row"] = int(d.row) if d else 0
     real = [s for s in SIDES if lab[f"{s}_kind"] != "none"]
     lab["real_side"] = {0: "none", 1: real[0] if real else "none", 2: "both"}[len(real)]
     return lab, cfg
@@ -131,9 +139,11 @@ def build(sweep_dir, *, window_s: float = 0.5, hop_s: float = 0.25, criterion=No
         fs, starts, xl, xr_ = windows(path, sensors, window_s, hop_s)
         fs_all.add(fs)
         _, _, pair = analyse_file(path, left=sensors[0], right=sensors[1], criterion=criterion)
+        v = pair.verdict
         lab = {**lab, "case": path.stem, "file": path.name,
-               "left_verdict": pair.verdicts["left"][0], "right_verdict": pair.verdicts["right"][0],
-               "left_reason": pair.verdicts["left"][1], "right_reason": pair.verdicts["right"][1]}
+               "left_verdict": v.words["left"], "right_verdict": v.words["right"],
+               "left_reason": v.sentence("left"), "right_reason": v.sentence("right"),
+               **v.row("verdict_")}
         for i in starts:
             rows.append({**lab, "start_index": int(i), "t_start": float(i / fs)})
         left.append(xl)
@@ -196,12 +206,19 @@ labels = ds.drop_dims("sample").to_dataframe()
   `real_side` (left, right, both or none: where the simulation put defects); `left_verdict`,
   `right_verdict` with `*_reason`: what the criterion (`axlebox diagnose`, {mode} mode) says
   on the whole record of the case (real fault, pseudo-fault, healthy, faults on both sides or
-  undecided): a baseline to compare a method with, not ground truth.
+  undecided): a baseline to compare a method with, not ground truth; `verdict_rule` (the rule
+  that decided), `verdict_real` (the side it named real, or none) and the evidence it read,
+  `verdict_*`: the VF difference against the range (`verdict_vf_m`, `_lo`, `_hi`, `_where`),
+  each side's compared indicators, the lag (`verdict_lag_leading`, `verdict_lag_s`), each
+  fault line seen and how its source was found (`verdict_lines`), the whole orders of the
+  wheel's rate on each side (`verdict_orders_left`, `_right`), the blanking of a wheel flat's
+  strikes (`verdict_gate_*`, NaN without). The criterion with every threshold is the file's
+  `criterion` attribute (JSON).
 
 ## Cases
 
-| case | km/h | left | right | real side | verdicts (left / right) | windows |
-| --- | --- | --- | --- | --- | --- | --- |
+| case | km/h | left | right | real side | verdicts (left / right) | rule | windows |
+| --- | --- | --- | --- | --- | --- | --- | --- |
 {table}
 
 ## How it was made, and what it is not
@@ -235,7 +252,8 @@ def write(sweep_dir, out, *, window_s: float = 0.5, hop_s: float = 0.25, criteri
         side = {s: (f"{r[f'{s}_kind']} {1e3 * r[f'{s}_W']:g} mm row {r[f'{s}_row']}"
                     if r[f"{s}_kind"] != "none" else "none") for s in SIDES}
         table.append(f"| {case} | {r['speed_kmh']:g} | {side['left']} | {side['right']} | "
-                     f"{r['real_side']} | {r['left_verdict']} / {r['right_verdict']} | {len(g)} |")
+                     f"{r['real_side']} | {r['left_verdict']} / {r['right_verdict']} | "
+                     f"{r['verdict_rule']} | {len(g)} |")
     card = CARD.format(src=sweep_dir, out=out, window=ds.attrs["window_s"], hop=hop_s,
                        date=datetime.date.today().isoformat(),
                        machine=f"{platform.machine()}, {os.cpu_count()} cores",

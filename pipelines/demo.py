@@ -39,9 +39,8 @@ def min_duration(config: str = CONFIG) -> float:
     from axlebox.mbs import config as vconfig
 
     from .readers import TRACK_FADE_IN_S
-    cfg, _ = vconfig.load(configs.path(config))
-    ftf = models.orders(vconfig.bearing_params(cfg)).FTF * shaft_hz(cfg["run"]["speed_kmh"],
-                                                                    cfg["wheelset"]["r0"])
+    cfg = vconfig.load(configs.resolve(config))
+    ftf = models.orders(cfg.bearing).FTF * shaft_hz(cfg.run.speed_kmh, cfg.wheelset.r0)
     return math.ceil(100 * (TRACK_FADE_IN_S + 2.0 / ftf)) / 100
 
 
@@ -83,8 +82,8 @@ def conclusion(pair) -> list[str]:
     the verdicts, the lag, and the paper's absolute VF range beside the relative one used."""
     names = {"left": "ws2_L", "right": "ws2_R"}
     lo, hi = pair.criterion.range
-    out = [f"defect side ws2_R: {pair.verdicts['right'][0]}; healthy side ws2_L: "
-           f"{pair.verdicts['left'][0]} ({pair.criterion.mode} VF difference {pair.m:.3g} in "
+    out = [f"defect side ws2_R: {pair.verdict.words['right']}; healthy side ws2_L: "
+           f"{pair.verdict.words['left']} ({pair.criterion.mode} VF difference {pair.m:.3g} in "
            f"[{lo:.3g}, {hi:.3g}] means a pseudo-fault; RMS {pair.right.rms:.3g} / {pair.left.rms:.3g} "
            f"and SPM {pair.right.spm_db:.3g} / {pair.left.spm_db:.3g} dB on ws2_R / ws2_L)"]
     lag = pair.lag

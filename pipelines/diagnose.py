@@ -101,6 +101,13 @@ def parse_pair(text: str, option: str) -> tuple[float, float]:
     return lo, hi
 
 
+def rotor_of(shaft=None, rpm=None) -> str:
+    """What turns the shaft, in the verdict's words: ``"shaft"`` for a machine, whose speed is
+    given as ``--shaft-hz`` or ``--rpm``; ``"wheel"`` for a vehicle (``--speed-kmh``, or the
+    speed a result file stores)."""
+    return "shaft" if shaft is not None or rpm is not None else "wheel"
+
+
 def shaft_speed(rec: Record, shaft=None, speed_kmh=None, wheel_radius=0.42, rpm=None) -> float:
     """Shaft frequency (Hz): --shaft-hz, --rpm, --speed-kmh with --wheel-radius, else the file's."""
     given = [o for o, v in (("--shaft-hz", shaft), ("--rpm", rpm), ("--speed-kmh", speed_kmh))
@@ -137,8 +144,9 @@ def analyse_file(path, *, left=None, right=None, fs=None, column: int = 2, scale
                  guided: bool = True, bearing=None, orders_left=None, orders_right=None,
                  bearing_left=None, bearing_right=None, bore_left=None, bore_right=None):
     """Read ``path`` and analyse both sides: ``(record, input info, PairResult)``.  The shaft
-    speed comes from the options, else from the file; each side's bearing as
-    :func:`side_bearings` says."""
+    speed comes from the options, else from the file (and with it the verdict's words for the
+    lines at its whole orders, :func:`rotor_of`); each side's bearing as :func:`side_bearings`
+    says."""
     from axlebox.bearing.diagnostics.criterion import Criterion
     from axlebox.bearing.diagnostics.pair import analyse_pair
     criterion = Criterion() if criterion is None else criterion
@@ -154,10 +162,10 @@ def analyse_file(path, *, left=None, right=None, fs=None, column: int = 2, scale
     res = analyse_pair(rec.left * scale, rec.right * scale, rec.fs, f_shaft,
                        (bl.orders, br.orders), (bl.bore, br.bore), criterion, band,
                        names=rec.names, nperseg=nperseg, guided=guided,
-                       bearings=(bl.name, br.name))
+                       bearings=(bl.name, br.name), rotor=rotor_of(shaft, rpm))
     info = {"file": str(path), "kind": rec.kind, "left": rec.names[0], "right": rec.names[1],
             "fs_hz": rec.fs, "n_samples": int(rec.left.size), "scale": scale,
-            "shaft_hz": f_shaft,
+            "shaft_hz": f_shaft, "rotor": res.rotor,
             "bearings": {"left": {**bl.to_dict(), "from": src_l},
                          "right": {**br.to_dict(), "from": src_r}},
             "band": list(band) if band is not None else
@@ -178,8 +186,8 @@ def run(path, *, json_out=None, figures=None, log=print, **options):
     log(f"{Path(path).name} ({rec.kind}): {rec.left.size} samples at {rec.fs:g} Hz, shaft "
         f"{info['shaft_hz']:.4g} Hz; {bear}" + "".join(f"; {n}" for n in rec.notes))
     log(res.summary())
-    for s, (v, why) in res.verdicts.items():
-        log(f"{s}: {v}: {why}")
+    for s in ("left", "right"):
+        log(f"{s}: {res.verdict.words[s]}: {res.verdict.sentence(s)}")
     if json_out is not None:
         log(f"wrote {write_json(json_out, jsonable({'input': info, **res.to_dict()}))}")
     if figures is not None:

@@ -3,8 +3,11 @@ file's first bytes (not its name):
 
 * ``axlebox-result`` HDF5 (``axlebox simulate`` / ``axlebox bearing simulate``): sensors ``ws2_L``
   and ``ws2_R`` by default, the vertical column (2) of ``signals/<sensor>/acceleration``, ``fs``
-  from its ``fs_hz`` attribute; the shaft speed from the stored config (vehicle: ``run.speed_kmh``
-  and ``wheelset.r0``; rig: ``rig.speed_kmh``, ``rig.r_wheel`` and its ``[bearing]``).
+  from its ``fs_hz`` attribute; the shaft speed and bearing from the stored config, read through
+  the loader that runs it (vehicle: :func:`axlebox.mbs.config.validate`, ``run.speed_kmh``,
+  ``wheelset.r0`` and ``[bearing]``; rig: :func:`axlebox.bearing.rig.config_from_dict`,
+  ``rig.speed_kmh``, ``rig.r_wheel`` and its ``[bearing]``), defaults filled in as a run fills
+  them.
 * MATLAB ``.mat`` v5 (scipy.io.loadmat) and v7.3 (HDF5 after a 512-byte header; MATLAB stores
   arrays column-major, so h5py sees them transposed: a column vector reads as (1, n)).
 * any other HDF5: ``--left``/``--right`` are dataset paths; ``fs`` from --fs or the datasets'
@@ -26,12 +29,13 @@ import h5py
 import numpy as np
 
 from axlebox._params import ParameterError
-from axlebox.bearing import catalogue, models, resultfile
+from axlebox.bearing import catalogue, resultfile
 from axlebox.bearing.frequencies import FaultOrders, shaft_hz
+from axlebox.mbs.system import TRACK_RAMP_S
 
 HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
 DEFAULT_SENSORS = ("ws2_L", "ws2_R")
-TRACK_FADE_IN_S = 0.5        # mbs/system.py track_ramp: vehicle runs start on smooth track
+TRACK_FADE_IN_S = TRACK_RAMP_S   # vehicle runs start on smooth track (mbs/system.py)
 
 
 @dataclass
@@ -123,19 +127,17 @@ def _read_result(path, left, right, fs, column: int) -> Record:
                                      f"has columns 0..{ds.shape[1] - 1}")
             chans.append(_channel(ds[:, column], n, side))
         fs_file = f[f"signals/{names[0]}/acceleration"].attrs.get("fs_hz")
-        cfg = tomllib.loads(str(f.attrs.get("config", "")))
-        # a vehicle run: its config has [run] (a rig's has [rig]) but may leave [track] out
-        vehicle = "rig" not in cfg and ("run" in cfg or "wheelrail" in f)
+        raw = _stored_config(path, str(f.attrs.get("config", "")))
+        # a vehicle run: its config has [run] (a rig's has [rig]), or it has wheel-rail outputs
+        vehicle = "rig" not in raw and ("run" in raw or "wheelrail" in f)
     rec = Record(chans[0], chans[1], _need_fs(fs if fs is not None else fs_file, "this result file"),
                  tuple(names), "axlebox-result")
-    if "rig" in cfg:                          # standalone rig: its own bearing and wheel
-        rec.shaft_hz = shaft_hz(cfg["rig"]["speed_kmh"], cfg["rig"].get("r_wheel", 0.42))
-        rec.bearing = catalogue.of(models.from_table(cfg.get("bearing", {})), "the file's [bearing]")
-        rec.orders = rec.bearing.orders
-    elif "run" in cfg and "speed_kmh" in cfg["run"]:
-        rec.shaft_hz = shaft_hz(cfg["run"]["speed_kmh"], cfg.get("wheelset", {}).get("r0", 0.42))
-    if vehicle and "bearing" in cfg:           # a car on bearings of a model the file names
-        rec.bearing = catalogue.of(models.from_table(cfg["bearing"]), "the file's [bearing]")
+    cfg = stored_config(path, raw, vehicle)
+    if cfg is not None:                       # the run's own speed, wheel and bearing
+        rig = "rig" in raw
+        rec.shaft_hz = shaft_hz(*((cfg.speed_kmh, cfg.r_wheel) if rig
+                                  else (cfg.run.speed_kmh, cfg.wheelset.r0)))
+        rec.bearing = catalogue.of(cfg.bearing, "the file's [bearing]")
         rec.orders = rec.bearing.orders
     if vehicle:                               # drop the track irregularity's fade-in
         n0 = int(round(TRACK_FADE_IN_S * rec.fs))
@@ -143,6 +145,39 @@ def _read_result(path, left, right, fs, column: int) -> Record:
             rec.left, rec.right = rec.left[n0:], rec.right[n0:]
             rec.notes.append(f"first {TRACK_FADE_IN_S:g} s (track fade-in) left out")
     return rec
+
+
+def _stored_config(path, text: str) -> dict:
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise ParameterError(f"input file {str(path)!r}: its stored config is not valid TOML "
+                             f"({err})") from None
+
+
+def stored_config(path, raw: dict, vehicle: bool):
+    """The config a result file stores, through the loader that ran it: a
+    :class:`~axlebox.bearing.rig.RigConfig` (``[rig]``), a
+    :class:`~axlebox.mbs.config.CarConfig` (``vehicle``) or None (neither); a config this
+    version refuses is one line naming the file and the field."""
+    from axlebox.bearing.rig import config_from_dict
+    from axlebox.mbs import config as vconfig
+    try:
+        if "rig" in raw:
+            return config_from_dict(raw)
+        return vconfig.validate(raw) if vehicle else None
+    except ParameterError as err:
+        raise ParameterError(f"input file {str(path)!r}: its stored config is not one this version "
+                             f"runs ({err})") from None
+
+
+def result_config(path):
+    """The config an axlebox-result file stores, as its run had it (:func:`stored_config`): a
+    rig's, a car's, or None for a file of neither."""
+    with resultfile.reading(path) as f:
+        raw = _stored_config(path, str(f.attrs.get("config", "")))
+        vehicle = "rig" not in raw and ("run" in raw or "wheelrail" in f)
+    return stored_config(path, raw, vehicle)
 
 
 def _h5_datasets(f: h5py.File) -> dict[str, h5py.Dataset]:

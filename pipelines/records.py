@@ -32,12 +32,25 @@ REQUIRED = ("file", "faulty_end", "healthy_end", "fault", "rpm", "fs_hz")
 
 @dataclass
 class Scored:
-    """One record: its manifest row, each end's verdict word and the rule that decided."""
+    """One record: its manifest row, each end's verdict word, the rule that decided, the end it
+    named real (None: neither), the evidence's fields (:meth:`.verdict.Verdict.row`: the VF
+    difference, the lag, the lines and how each was read, ...; its sides ``left`` and
+    ``right`` are the channels, the first end of :data:`END_COLUMNS` the left) and each end's
+    sentence."""
 
     row: dict
     words: dict
     rule: str
+    real: str | None = None
+    evidence: dict = field(default_factory=dict)
     sentences: dict = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        """JSON-ready: the manifest row, the words, the rule, the real end, the evidence and the
+        sentences."""
+        return {"row": dict(self.row), "words": dict(self.words), "rule": self.rule,
+                "real": self.real, "evidence": dict(self.evidence),
+                "sentences": dict(self.sentences)}
 
     @property
     def faulty(self) -> str:
@@ -125,10 +138,11 @@ def score(manifest, bearings: dict, *, scale: float = 1.0, criterion=None,
             rpm=float(row["rpm"]), scale=scale, criterion=criterion,
             bearing_left=bear[ends[0]], bearing_right=bear[ends[1]])
         v = pair.verdict
-        words = {ends[0]: v.words["left"], ends[1]: v.words["right"]}
+        end = {"left": ends[0], "right": ends[1]}
+        words = {end[s]: v.words[s] for s in end}
         assert all(w in VERDICTS for w in words.values())
-        out.append(Scored(row, words, v.rule,
-                          {ends[0]: v["left"][1], ends[1]: v["right"][1]}))
+        out.append(Scored(row, words, v.rule, end.get(v.real), v.row(),
+                          {end[s]: v.sentence(s) for s in end}))
         log(f"{row['file']}: {row['fault']} at {row['faulty_end']}: {ends[0]} {words[ends[0]]}, "
             f"{ends[1]} {words[ends[1]]} ({v.rule})")
     return Score(out)

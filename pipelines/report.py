@@ -20,7 +20,6 @@ import html
 import json
 import re
 import shutil
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -58,7 +57,9 @@ class Case:
         return f"{self.speed_kmh:g} km/h, {w}"
 
     def row(self) -> dict:
-        """The summary table's row: case, both sides' indicators, lag, VF difference, verdicts."""
+        """The summary table's row: case, both sides' indicators, lag, VF difference, verdicts,
+        the rule that decided and the evidence it read (columns ``verdict_*``,
+        :meth:`axlebox.bearing.diagnostics.verdict.Verdict.row`)."""
         r = {"file": self.path.name, "speed_kmh": self.speed_kmh, "width_mm": self.width_mm}
         p = self.pair
         if p is not None:
@@ -67,10 +68,10 @@ class Case:
                 c = getattr(p, side)
                 r.update({f"{side}_{k}": getattr(c, k) for k in SUMMARY_FIELDS})
                 r[f"{side}_lines"] = " ".join(c.detected)
-                r[f"{side}_verdict"] = p.verdicts[side][0]
+                r[f"{side}_verdict"] = p.verdict.words[side]
             lead = {"a": "left", "b": "right"}.get(p.lag.leading, "neither")
             r.update(lag_s=p.lag.lag_s, leading=lead, lag_correlation=p.lag.peak, vf_diff=p.vf_diff,
-                     criterion_m=p.m)
+                     criterion_m=p.m, **p.verdict.row("verdict_"))
         for rc in self.ride:
             r.update({f"{rc.sensor}_{k}": getattr(rc, k) for k in ("W_z", "W_y", "N_MV")})
         return r
@@ -113,17 +114,21 @@ def case_parameters(path) -> tuple[float, float, str | None]:
     """``(speed_kmh, width_mm, defect_side)`` from the config stored in an axlebox-result file;
     the side is that ("left"/"right", from ``defects[].side`` L/R) of the widest defect when it
     is on wheelset 2, whose axle-boxes the default channels ws2_L / ws2_R read; None otherwise."""
-    with resultfile.reading(path) as f:
-        cfg = tomllib.loads(str(f.attrs.get("config", "")))
-    speed = cfg.get("run", {}).get("speed_kmh", cfg.get("rig", {}).get("speed_kmh"))
-    if speed is None:
-        raise ParameterError(f"{str(path)!r}: its config has no run.speed_kmh or rig.speed_kmh: "
-                             "expected the speed of the case")
-    defects = sorted(cfg.get("defects", []), key=lambda d: float(d.get("W", 0.0)))
+    from axlebox.bearing.rig import RigConfig
+
+    from .readers import result_config
+    cfg = result_config(path)
+    if cfg is None:
+        raise ParameterError(f"{str(path)!r}: its config is neither a car's ([run] ...) nor a rig's "
+                             "([rig]): expected the speed of the case")
+    if isinstance(cfg, RigConfig):
+        defects = sorted(cfg.defects, key=lambda d: d.W)
+        return cfg.speed_kmh, 1e3 * defects[-1].W if defects else 0.0, None
+    defects = sorted(cfg.defects, key=lambda d: d.defect.W)
     side = None
-    if defects and defects[-1].get("wheelset", 2) == 2:     # the wheelset ws2_L / ws2_R sit on
-        side = {"L": "left", "R": "right"}.get(defects[-1].get("side"))
-    return float(speed), 1e3 * float(defects[-1].get("W", 0.0)) if defects else 0.0, side
+    if defects and defects[-1].wheelset == 2:     # the wheelset ws2_L / ws2_R sit on
+        side = {"L": "left", "R": "right"}[defects[-1].side]
+    return cfg.run.speed_kmh, 1e3 * defects[-1].defect.W if defects else 0.0, side
 
 
 def _is_result(path: Path) -> bool:
@@ -190,7 +195,7 @@ def _table_html(cases: list[Case]) -> str:
         p = c.pair
         for i, side in enumerate(("left", "right")):
             s = getattr(p, side)
-            verdict, why = p.verdicts[side]
+            verdict, why = p.verdict.words[side], p.verdict.sentence(side)
             cells = [f"{s.rms:.4g}", f"{s.peak:.4g}", f"{s.kurtosis:.3g}",
                      f"{s.spm_db:.1f} ({s.spm_class})", f"{s.FC:.0f}", f"{s.VF:.3g}",
                      html.escape(" ".join(s.detected) or "none"),
@@ -285,8 +290,8 @@ def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
                                     left=left, right=right, **diagnose_kw))
         pair = cases[-1].pair
         if pair is not None:
-            log(f"report: {path.name}: {cases[-1].label}: left {pair.verdicts['left'][0]}, "
-                f"right {pair.verdicts['right'][0]}")
+            log(f"report: {path.name}: {cases[-1].label}: left {pair.verdict.words['left']}, "
+                f"right {pair.verdict.words['right']} ({pair.verdict.rule})")
     cases.sort(key=lambda c: (c.speed_kmh, c.width_mm))
     all_cases, cases = cases, [c for c in cases if c.pair is not None]
     figures = []

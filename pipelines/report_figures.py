@@ -41,7 +41,7 @@ def _width_label(w_mm: float) -> str:
 
 def _side_title(case, side: str) -> str:
     name = case.pair.names[0 if side == "left" else 1]
-    return f"{side} ({name}): {case.pair.verdicts[side][0]}"
+    return f"{side} ({name}): {case.pair.verdict.words[side]}"
 
 
 def _signal(case, side):

@@ -52,18 +52,19 @@ def antialias(fs_in: float, fs_out: float, passband: float) -> np.ndarray:
     return signal.firwin(n, 0.5 * (edge + stop), window=("kaiser", beta), fs=fs_in)
 
 
-def measure(a: np.ndarray, fs_in: float, s: dict) -> np.ndarray:
-    """What the chain ``s`` (the ``[sensors]`` table) records of the accelerations ``a``
-    ((t, ...) at ``fs_in``): the samples at ``s['fs_hz']`` (every k-th instant of the input)."""
+def measure(a: np.ndarray, fs_in: float, s) -> np.ndarray:
+    """What the chain ``s`` (the ``[sensors]`` section, mbs/config.py Sensors) records of the
+    accelerations ``a`` ((t, ...) at ``fs_in``): the samples at ``s.fs_hz`` (every k-th instant
+    of the input)."""
     a = np.asarray(a, float)
-    k = fs_in / s["fs_hz"]
+    k = fs_in / s.fs_hz
     if k < 2 or abs(k - round(k)) > 1e-9:
-        raise ParameterError(f"sensors.fs_hz = {s['fs_hz']:g} is not allowed: expected the run's "
+        raise ParameterError(f"sensors.fs_hz = {s.fs_hz:g} is not allowed: expected the run's "
                              f"output rate {fs_in:g} Hz over a whole number >= 2")
     k = int(round(k))
     n = a.shape[0]
-    x = filtered(a, fs_in, lambda f: response(f, s["resonance_hz"], s["resonance_q"], s["highpass_hz"]))
-    h = antialias(fs_in, s["fs_hz"], s["passband"])
+    x = filtered(a, fs_in, lambda f: response(f, s.resonance_hz, s.resonance_q, s.highpass_hz))
+    h = antialias(fs_in, s.fs_hz, s.passband)
     # the kept samples only (polyphase, k times less work and memory than filtering every one):
     # the full convolution's samples d, d + k, ... (d the group delay) are those k q, k (q + 1), ...
     # of the taps delayed by p, d + p = k q
@@ -74,10 +75,10 @@ def measure(a: np.ndarray, fs_in: float, s: dict) -> np.ndarray:
     return y[q:q + (n + k - 1) // k].copy()       # a copy: the slice would keep all of y alive
 
 
-def decimate_run(run, fs_in: float, s: dict):
-    """The run as the acquisition at ``s['fs_hz']`` records it: its sensors through
+def decimate_run(run, fs_in: float, s):
+    """The run as the acquisition at ``s.fs_hz`` records it: its sensors through
     :func:`measure`, its time and other outputs at every k-th instant."""
-    k = int(round(fs_in / s["fs_hz"]))
+    k = int(round(fs_in / s.fs_hz))
     sensors = {name: measure(a, fs_in, s) for name, a in run.sensors.items()}
     sub = {f: getattr(run, f)[::k] for f in ("time", "wheels", "elements", "bearings")
            if getattr(run, f) is not None}

@@ -5,8 +5,9 @@ config makes flexible; wheel-rail tables; track irregularity; the vehicle; stati
 the track as it lies under the wheels at t = 0 (no settling transient); the run; the result file
 (``format = "axlebox-result"``, :mod:`axlebox.bearing.resultfile`), written through a temporary
 name.  A run that diverges still writes what it computed, with ``status`` and ``message``
-attributes, and the command exits with status 1.  The outputs stream to ``<out>.stream.h5`` while
-the run goes (:mod:`.stream`: memory flat in the run's length); every ``checkpoint_every``
+attributes, and the command exits with status 1.  The outputs stream to ``<out>.stream.d`` while
+the run goes (:mod:`.stream`: memory flat in the run's length; a segment file per checkpoint
+interval, renamed whole, so no kill tears what a checkpoint counts on); every ``checkpoint_every``
 simulated seconds the run's state goes to ``<out>.partial.h5`` (through a temporary name); the same
 command run again resumes from the two, to the same bits as a run never stopped.
 """
@@ -22,7 +23,6 @@ from pathlib import Path
 
 import h5py
 import numpy as np
-import tomli_w
 
 from axlebox import configs
 from axlebox._cache import cache_dir
@@ -35,39 +35,39 @@ from axlebox.mbs import config as vconfig
 from axlebox.mbs import bearings as car_bearings
 from axlebox.mbs import integrate, roughness, statics, track, vehicle, wheel_defects
 from axlebox.mbs.wheelrail import element_kernel as ek
-from axlebox.mbs.wheelrail.element import WheelRailParams, build_tables
-from axlebox.mbs.wheelrail.geometry import TrackLayout
+from axlebox.mbs.wheelrail.element import build_tables
 from axlebox.mbs.wheelrail.profile import read_profile
 from axlebox.mbs.wheelrail.standard import chn60, s1002, uic60
 
 from . import stream
 
-def reduced_bodies(cfg: dict, log=print) -> dict:
+def reduced_bodies(cfg: vconfig.CarConfig, log=print) -> dict:
     """The reduced bodies the config needs: from ``bodies.dir`` or built (coarse mesh, each kind
     by its ``bodies.method_<kind>``) into the cache; none when every body is rigid and no folder
     is given."""
-    b = cfg["bodies"]
-    if not b["dir"] and not b["flexible"]:
+    b = cfg.bodies
+    if not b.dir and not b.flexible:
         return {}
     out = {}
-    if b["dir"]:
+    if b.dir:
         for kind in vconfig.BODY_KINDS:
-            p = Path(b["dir"]) / f"{kind}.h5"
+            p = Path(b.dir) / f"{kind}.h5"
             if not p.is_file():
-                raise ParameterError(f"bodies.dir = {b['dir']!r} is not allowed: it has no {kind}.h5 "
+                raise ParameterError(f"bodies.dir = {b.dir!r} is not allowed: it has no {kind}.h5 "
                                      "(axlebox bodies build --body all --out DIR)")
             out[kind] = bodyfile.read(p, fields=False)
-            if out[kind].method != b[f"method_{kind}"]:
-                raise ParameterError(f"bodies.method_{kind} = {b[f'method_{kind}']!r} is not allowed "
-                                     f"with bodies.dir = {b['dir']!r}: its {kind}.h5 is "
+            method = getattr(b, f"method_{kind}")
+            if out[kind].method != method:
+                raise ParameterError(f"bodies.method_{kind} = {method!r} is not allowed "
+                                     f"with bodies.dir = {b.dir!r}: its {kind}.h5 is "
                                      f"{out[kind].method!r}")
         return out
     from .bodies import BODIES, build_body
     for kind in vconfig.BODY_KINDS:
-        method = b[f"method_{kind}"]
-        where = cache_dir("bodies", f"coarse-{b['modes']}" if method == "craig-bampton" else "coarse-guyan")
+        method = getattr(b, f"method_{kind}")
+        where = cache_dir("bodies", f"coarse-{b.modes}" if method == "craig-bampton" else "coarse-guyan")
         rb, _ = build_body(kind, method=method, mesh_size=BODIES[kind].coarse_mesh_size,
-                           n_modes=b["modes"] if method == "craig-bampton" else None,
+                           n_modes=b.modes if method == "craig-bampton" else None,
                            n_reference=0, out_dir=where, log=log)
         out[kind] = rb
     return out
@@ -83,64 +83,52 @@ def _profile(name: str, kind: str):
                          f"{' or '.join(builtin)} or a profile file")
 
 
-def tables(cfg: dict):
-    w = cfg["wheelrail"]
-    lay = TrackLayout(r0=cfg["wheelset"]["r0"], gauge=w["gauge"], back_to_back=w["back_to_back"],
-                      cant=w["cant"])
-    par = WheelRailParams(mu=w["mu"], law=w["law"], nx=w["fastsim_grid"], ny=w["fastsim_grid"],
-                          update=w["fastsim_update"], smooth_y=w["smooth_y"])
-    return build_tables(_profile(w["wheel"], "wheel"), _profile(w["rail"], "rail"), lay, par)
+def tables(cfg: vconfig.CarConfig):
+    w = cfg.wheelrail
+    return build_tables(_profile(w.wheel, "wheel"), _profile(w.rail, "rail"), cfg.layout(),
+                        cfg.wheelrail_params())
 
 
-def _contact_load(cfg: dict):
+def _contact_load(cfg: vconfig.CarConfig):
     """The contact filter's load: the static wheel load, when ``track.contact_filter``."""
-    return vehicle.static_wheel_load(cfg) if cfg["track"]["contact_filter"] else None
+    return vehicle.static_wheel_load(cfg) if cfg.track.contact_filter else None
 
 
-def track_record(cfg: dict):
-    t = cfg["track"]
-    if not t["irregularity"]:
-        return None
-    extra = {}
-    if t["rail_roughness"] != "none":
-        extra = dict(roughness=True, roughness_spectrum=t["rail_roughness"],
-                     roughness_lambda_min=t["roughness_lambda_min"], contact_load=_contact_load(cfg) or 0.0)
-    return track.generate(track.IrregularityParams(grade=t["fra_class"], lambda_min=t["lambda_min"],
-                                                   lambda_max=t["lambda_max"], length=t["length"],
-                                                   seed=cfg["run"]["seed"], **extra))
+def track_record(cfg: vconfig.CarConfig):
+    p = cfg.irregularity(_contact_load(cfg) or 0.0)
+    return None if p is None else track.generate(p)
 
 
-def wheel_records(cfg: dict, names) -> dict:
+def wheel_records(cfg: vconfig.CarConfig, names) -> dict:
     """Each wheel's radius deviation record ``(values, slopes, ds)`` around its rolling circle:
     its roughness (mbs/roughness.py; independent random phases per wheel from the run's seed)
     plus its ``[[wheel_defects]]`` (mbs/wheel_defects.py), on one grid (a roughness grid, or
     0.25 mm); only the wheels that have either."""
-    t, r0 = cfg["track"], cfg["wheelset"]["r0"]
-    rough = t["wheel_roughness"] != "none"
-    mine = {name: [d for d in cfg.get("wheel_defects", []) if f"ws{d['wheelset']}_{d['side']}" == name]
+    t, r0 = cfg.track, cfg.wheelset.r0
+    rough = t.wheel_roughness != "none"
+    mine = {name: [d for d in cfg.wheel_defects if f"ws{d.wheelset}_{d.side}" == name]
             for name in names}
     if not rough and not any(mine.values()):
         return {}
     C = 2 * math.pi * r0
-    n = roughness.wheel_grid(r0, t["roughness_lambda_min"]) if rough else 2 * math.ceil(C / 0.25e-3 / 2)
+    n = roughness.wheel_grid(r0, t.roughness_lambda_min) if rough else 2 * math.ceil(C / 0.25e-3 / 2)
     s = np.arange(n) * (C / n)
     load = _contact_load(cfg)
-    seeds = np.random.SeedSequence([int(cfg["run"]["seed"]), 1]).spawn(len(names))
+    seeds = np.random.SeedSequence([int(cfg.run.seed), 1]).spawn(len(names))
     out = {}
     for name, sq in zip(names, seeds):
         if not rough and not mine[name]:
             continue
         v, d = np.zeros(n), np.zeros(n)
         if rough:
-            v, d, _ = roughness.wheel_record(t["wheel_roughness"], r0, t["roughness_lambda_min"],
+            v, d, _ = roughness.wheel_record(t.wheel_roughness, r0, t.roughness_lambda_min,
                                              load, np.random.default_rng(sq), n=n)
         for e in mine[name]:
-            if e["kind"] == "flat":
-                dv, dd = wheel_defects.flat(s, e["length"], r0, r0 * math.radians(e["angle_deg"]),
-                                            e["shape"])
+            if e.kind == "flat":
+                dv, dd = wheel_defects.flat(s, e.length, r0, r0 * math.radians(e.angle_deg), e.shape)
             else:
-                dv, dd = wheel_defects.polygon(s, r0, e["orders"], 1e-6 * np.asarray(e["amplitudes_um"]),
-                                               np.radians(e["phases_deg"]) if e["phases_deg"] else None)
+                dv, dd = wheel_defects.polygon(s, r0, list(e.orders), 1e-6 * np.asarray(e.amplitudes_um),
+                                               np.radians(e.phases_deg) if e.phases_deg else None)
             v, d = v + dv, d + dd
         out[name] = (v, d, C / n)
     return out
@@ -153,7 +141,7 @@ def _car(cfg, tabs, trk, red, bearings=None):
     return s.assemble()
 
 
-def build_model(cfg: dict, log=print):
+def build_model(cfg: vconfig.CarConfig, log=print):
     """Vehicle model in static equilibrium: (model, y0).  With ``joint.model = "bearing"`` the
     equilibrium is found with row bushings first, then the bearings are put in their own
     (mbs/bearings.py)."""
@@ -163,33 +151,26 @@ def build_model(cfg: dict, log=print):
     log(f"vehicle: {len(model.bodies)} bodies, {model.n_states} states, flexible: "
         + ", ".join(f"{b.name} ({b.n_modes} modes)" for b in model.bodies if b.n_modes))
     y0 = statics.equilibrium(model, log=log)
-    if not vconfig.has_bearings(cfg):
+    if not cfg.has_bearings:
         return model, y0
     ws = model.body_state(model.system.index("ws1"), y0)
     loads = {key: F for key, F in car_bearings.joint_loads(model, y0).items()
-             if key[0] in cfg["joint"]["wheelsets"]}        # the rest stay on row bushings
+             if key[0] in cfg.joint.wheelsets}        # the rest stay on row bushings
     starts = car_bearings.start(cfg, loads, float(ws["omega"][1]), log)
     model = _car(cfg, tabs, trk, red, bearings={k: (v.tag, v.P, v.D, v.y0) for k, v in starts.items()})
     y0 = car_bearings.place_axleboxes(model, y0, starts)
-    if cfg["coupling"]["hold"] == "jacobian":
+    if cfg.coupling.hold == "jacobian":
         model.bearing_stiffness = car_bearings.stiffness(cfg, loads, model.bearing_names)
     log(f"coupled: {model.n_states} states ({model.n_states - model.n_body_states} in "
         f"{len(model.bearing_names)} bearings)")
     return model, y0
 
 
-def settings(cfg: dict) -> integrate.Settings:
-    i = cfg["integrator"]
-    return integrate.Settings(method=i["method"], dt=i["dt"], output_rate_hz=i["output_rate_hz"],
-                              state_rate_hz=i["state_rate_hz"], rho_inf=i["rho_inf"],
-                              exchange_dt=cfg["coupling"]["exchange_dt"],
-                              body_substeps=cfg["coupling"]["body_substeps"], hold=cfg["coupling"]["hold"])
-
-
-def write(path, run: integrate.Run, model, cfg_text: str, seed: int,
+def write(path, run: integrate.Run, model, cfg: vconfig.CarConfig,
           ride: list[comfort.RideComfort] = ()) -> Path:
-    """The result file; ``ride``: the carbody's comfort indices, group ``comfort`` (one
-    (6,) dataset a floor sensor, columns :attr:`comfort.RideComfort.COLUMNS`)."""
+    """The result file, its config stored whole (every default filled in); ``ride``: the
+    carbody's comfort indices, group ``comfort`` (one (6,) dataset a floor sensor, columns
+    :attr:`comfort.RideComfort.COLUMNS`)."""
     fs = 1.0 / np.median(np.diff(run.time)) if run.time.size > 1 else 0.0
     signals = {name: {"acceleration": acc} for name, acc in run.sensors.items()}
     wr = {}
@@ -219,7 +200,7 @@ def write(path, run: integrate.Run, model, cfg_text: str, seed: int,
               **({"comfort": cm} if cm else {}),
               "states": {"time": run.state_time, "y": run.states,
                          "y_end": (run.y_end, {"t": float(run.time[-1]) if run.time.size else 0.0})}}
-    return resultfile.write(path, config_toml=cfg_text, seed=seed, time=run.time, fs_hz=fs,
+    return resultfile.write(path, config_toml=cfg.to_toml(), seed=cfg.run.seed, time=run.time, fs_hz=fs,
                             signals=signals, groups=groups,
                             attrs={"status": run.status, "message": run.message, "wall_s": run.wall_s,
                                    "bodies": ",".join(b.name for b in model.bodies)})
@@ -227,33 +208,28 @@ def write(path, run: integrate.Run, model, cfg_text: str, seed: int,
 
 @dataclass(frozen=True)
 class Config:
-    """A car's config in memory, as :func:`run` takes it instead of a file: its TOML ``text``
-    (what the result file stores) and ``name`` (what a refusal calls it)."""
+    """A car's config as TOML text in memory, as :func:`run` takes it instead of a file:
+    ``text`` and ``name`` (what a refusal calls it)."""
     text: str
     name: str = "config text"
 
 
-def load_config(config_path, duration: float | None = None, overrides: dict | None = None):
-    """``(cfg, text)``: the validated config and the TOML text of what will run (the file's own
-    text, or, with ``duration`` or ``overrides`` (section -> {field: value}), the merged
-    config written out again, so that a result file's config is exactly its run's).
-    ``config_path`` is a TOML file, the name of a shipped config (:mod:`axlebox.configs`) or a
-    :class:`Config`."""
-    if isinstance(config_path, Config):
-        cfg, text = vconfig.loads(config_path.text, config_path.name)
-        config_path = Path(config_path.name)
+def load_config(config_path, duration: float | None = None,
+                overrides: dict | None = None) -> vconfig.CarConfig:
+    """The config that will run: ``config_path`` (a TOML file, the name of a shipped config
+    (:mod:`axlebox.configs`), a :class:`Config` or a :class:`~axlebox.mbs.config.CarConfig`)
+    with ``overrides`` (section -> {field: value}, or a list of entries for ``defects`` /
+    ``wheel_defects``) and ``duration`` replacing its fields."""
+    if isinstance(config_path, vconfig.CarConfig):
+        cfg = config_path
+    elif isinstance(config_path, Config):
+        cfg = vconfig.loads(config_path.text, config_path.name)
     else:
-        config_path = configs.resolve(config_path)
-        cfg, text = vconfig.load(config_path)
-    if duration is None and not overrides:
-        return cfg, text
-    user = tomllib.loads(text)
-    for sec, fields in (overrides or {}).items():
-        user[sec] = fields if isinstance(fields, list) else {**user.get(sec, {}), **fields}
+        cfg = vconfig.load(configs.resolve(config_path))
+    changes = dict(overrides or {})
     if duration is not None:
-        user.setdefault("run", {})["duration"] = duration
-    cfg = vconfig.validate(user)
-    return cfg, f"# {Path(config_path).name}, as run\n" + tomli_w.dumps(user)
+        changes["run"] = {**changes.get("run", {}), "duration": duration}
+    return cfg.replace(**changes) if changes else cfg
 
 
 def _changed(old_text: str, new_text: str) -> list[str]:
@@ -310,7 +286,7 @@ def run(config_path, out, duration: float | None = None, log=print,
         overrides: dict | None = None, checkpoint_every: float | None = None,
         restart: bool = False) -> integrate.Run:
     """The whole command; ``config_path``: a file, a shipped config's name or a :class:`Config`
-    (in memory: the sweep's cases).  The outputs stream to ``<out>.stream.h5`` while the run
+    (in memory: the sweep's cases).  The outputs stream to ``<out>.stream.d`` while the run
     goes (memory flat in its length; :mod:`.stream`), the result is made from it at the end.
     ``checkpoint_every`` (simulated s, 0: none; None: 1 s): snapshots of the state to
     ``<out>.partial.h5``; a rerun of the same config resumes
@@ -318,7 +294,8 @@ def run(config_path, out, duration: float | None = None, log=print,
     refused (exit 2, naming what changed) unless ``restart``.  Returns the run's status, wall
     time, recorded time and sensors; its wheel-rail, bearing and state outputs are in the file
     only (copied to it from the stream a block at a time)."""
-    cfg, text = load_config(config_path, duration, overrides)
+    cfg = load_config(config_path, duration, overrides)
+    text = cfg.to_toml()
     out = Path(out)
     if checkpoint_every is None:
         checkpoint_every = 1.0          # a checkpoint is the state alone: cheap at any length
@@ -335,35 +312,39 @@ def run(config_path, out, duration: float | None = None, log=print,
             partial.unlink()
         else:
             resume = read_checkpoint(partial, text)
-            if not streamed.is_file():
+            if not streamed.is_dir():       # (an earlier version's was one file, <out>.stream.h5)
                 raise ParameterError(f"checkpoint {str(partial)!r} has no stream {str(streamed)!r} "
                                      "(made by an earlier version?): --restart to start over")
-    s = settings(cfg)
+    s = cfg.settings()
     t0 = time.perf_counter()
     model, y0 = build_model(cfg, log)
-    log(f"model ready in {time.perf_counter() - t0:.1f} s; running {cfg['run']['duration']:g} s "
+    log(f"model ready in {time.perf_counter() - t0:.1f} s; running {cfg.run.duration:g} s "
         f"({s.method}, dt {s.dt:g} s)" + (f", resuming at {resume['k'] / s.output_rate_hz:g} s from {partial}"
                                           if resume else ""))
 
     def progress(t, T):
         print(f"\rsimulating: {t:6.3f} / {T:g} s", end="", file=sys.stderr, flush=True)
     sink = stream.Stream(streamed, model, s.state_every, None if resume is None else resume["k"],
-                         every=stream.kept_every(s, cfg["sensors"]))
+                         every=stream.kept_every(s, cfg.sensors))
+
+    def checkpoint(snap):               # the outputs committed first: a checkpoint's are all whole
+        sink.commit(snap["k"])
+        write_checkpoint(partial, text, snap)
     try:
-        res = integrate.simulate(model, cfg["run"]["duration"], s, y0=y0, progress=progress,
-                                 checkpoint=lambda snap: write_checkpoint(partial, text, snap),
+        res = integrate.simulate(model, cfg.run.duration, s, y0=y0, progress=progress,
+                                 checkpoint=checkpoint,
                                  checkpoint_every=checkpoint_every if checkpoint_every > 0 else math.inf,
                                  resume=resume, sink=sink.append)
     finally:
         sink.close()
     print(file=sys.stderr)
-    with stream.finished(streamed, res, model, s, cfg["sensors"]) as rec:   # as the acquisition records it
+    with stream.finished(streamed, res, model, s, cfg.sensors) as rec:   # as the acquisition records it
         ride = comfort.floor_comfort(rec.time, rec.sensors, model.system.track_ramp)   # fade-in left out
-        write(out, rec, model, text, cfg["run"]["seed"], ride)
+        write(out, rec, model, cfg, ride)
         # what the caller gets: the recorded time and sensors; the rest is in the file
         res = dataclasses.replace(rec, wheels=None, elements=None, bearings=None, states=None)
     partial.unlink(missing_ok=True)
-    streamed.unlink(missing_ok=True)
+    stream.remove(streamed)
     T = res.time[-1] if res.time.size else 0.0
     log(f"wrote {out}: {T:g} s simulated in {res.wall_s:.1f} s wall ({T / max(res.wall_s, 1e-9):.3f} "
         f"simulated s per wall s)")

@@ -13,7 +13,7 @@ wheelset); a wheel defect name (vehicle only) keeps the ``[[wheel_defects]]`` en
 ``DIR/v48_w2.h5`` (``.`` -> ``p``; ``DIR/v48_w2_inner_LR.h5`` when kinds and sides are swept)
 with its own config inside, through a temporary name; a rerun
 skips files that open as a result of the same config and removes ``*.tmp`` left by a killed run
-(the checkpoints ``*.partial.h5`` and streamed outputs ``*.stream.h5`` are kept: a killed case
+(the checkpoints ``*.partial.h5`` and streamed outputs ``*.stream.d`` are kept: a killed case
 resumes from its last checkpoint).
 
 What survives what: the sweep holds ``DIR/.sweep.lock`` (a second sweep on DIR is refused, naming
@@ -28,6 +28,7 @@ through :mod:`axlebox.pipelines.report`, the rig's one sensor through
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import io
 import logging
 import math
@@ -40,31 +41,36 @@ import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
-import tomli_w
 
 from axlebox import configs
 from axlebox._files import is_locked, locked
 from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
+from axlebox.bearing.defects import Defect
 
 SWEEP_FIELDS = ("speeds_kmh", "widths_mm", "kinds", "sides", "wheel_defects")
 SIDES = ("L", "R", "LR")                             # LR: the defect on both sides of its wheelset
-RUN_SECTION = {"rig": "rig", "vehicle": "run"}       # where speed_kmh and duration live
 LOCK = ".sweep.lock"                                 # held by the sweep that owns the folder
 
 
 @dataclass(frozen=True)
 class Case:
-    """One point of the matrix: ``toml`` is the config its runner gets and stores in the result."""
+    """One point of the matrix: ``config`` (a :class:`~axlebox.bearing.rig.RigConfig` or
+    :class:`~axlebox.mbs.config.CarConfig`) and ``toml``, its file: what its runner gets and
+    stores in the result."""
 
     name: str
     kind: str
     speed_kmh: float
     width_mm: float
-    toml: str
+    config: object
     defect_kind: str | None = None      # swept kind, None: the config's own
     sides: str | None = None            # swept side(s), None: the config's own
     wheel: str | None = None            # swept wheel defect name, None: the config's own
+
+    @property
+    def toml(self) -> str:
+        return self.config.to_toml()
 
     def path(self, out) -> Path:
         return Path(out) / f"{self.name}.h5"
@@ -73,14 +79,14 @@ class Case:
 def load_config(path) -> tuple[str, dict]:
     """``(kind, parsed TOML)`` of a sweep's base config (a file, or the name of a shipped config),
     kind ``"rig"`` or ``"vehicle"``."""
-    from axlebox.mbs.config import SCHEMA
+    from axlebox.mbs.config import SECTIONS
     path = configs.resolve(path)
     try:
         cfg = tomllib.loads(path.read_text())
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as err:
         raise ParameterError(f"config {str(path)!r} is not valid TOML: {err}") from None
     secs = set(cfg) - {"sweep", "defects"}
-    rig, vehicle = "rig" in secs, bool(secs & set(SCHEMA))
+    rig, vehicle = "rig" in secs, bool(secs & set(SECTIONS))
     if rig == vehicle:
         raise ParameterError(f"config {str(path)!r} is of an unknown kind (sections: "
                              f"{', '.join(sorted(cfg)) or 'none'}): expected a bearing rig config "
@@ -100,14 +106,14 @@ def _numbers(values, name: str, what: str, zero_ok: bool) -> list[float]:
     return list(dict.fromkeys(float(v) for v in values))
 
 
-def case_toml(kind: str, d: dict) -> str:
-    """The case's config as its runner stores it, validated here before any worker starts."""
+def typed(kind: str, d: dict):
+    """The config object of a parsed rig or vehicle TOML (its ``[sweep]`` left out)."""
+    d = {k: v for k, v in d.items() if k != "sweep"}
     if kind == "rig":
         from axlebox.bearing.rig import config_from_dict
-        return config_from_dict(d).to_toml()
+        return config_from_dict(d)
     from axlebox.mbs.config import validate
-    validate(d)
-    return tomli_w.dumps(d)
+    return validate(d)
 
 
 def _names(values, name: str, allowed: tuple[str, ...]) -> list[str]:
@@ -121,27 +127,33 @@ def _names(values, name: str, allowed: tuple[str, ...]) -> list[str]:
     return list(dict.fromkeys(values))
 
 
-def _place(defects: list[dict], w, kind, sides) -> list[dict]:
-    """The case's ``[[defects]]``: width ``w`` mm (0: none, None: as they are), ``kind`` and
-    ``sides`` (None: as they are) set on every entry; ``LR`` gives each entry once per side."""
+def _place(defects: tuple, w, kind, sides) -> list:
+    """The case's defects (the rig's :class:`~axlebox.bearing.defects.Defect` or the car's
+    :class:`~axlebox.mbs.config.BearingDefect` entries): width ``w`` mm (0: none, None: as they
+    are), ``kind`` and ``sides`` (None: as they are) set on every entry; ``LR`` gives each
+    entry once per side."""
     if w == 0:
         return []
     out = []
     for e in defects:
-        e = dict(e)
-        if w is not None:
-            e["W"] = w * 1e-3
-        if kind is not None:
-            e["kind"] = kind
-        out += [dict(e, side=s) for s in sides] if sides is not None else [e]
+        change = {**({"W": w * 1e-3} if w is not None else {}), **({"kind": kind} if kind else {})}
+        if isinstance(e, Defect):
+            out.append(dataclasses.replace(e, **change))
+            continue
+        e = dataclasses.replace(e, shape=dataclasses.replace(e.shape, **change))
+        out += [dataclasses.replace(e, side=s) for s in sides] if sides is not None else [e]
     return out
+
+
+def _width(e) -> float:
+    return (e if isinstance(e, Defect) else e.shape).W
 
 
 def matrix(kind: str, cfg: dict, speeds=None, widths=None, duration=None, kinds=None,
            sides=None, wheels=None) -> list[Case]:
-    """The cases of ``cfg`` (parsed TOML): speeds (km/h) x widths (mm) x defect kinds x sides x
-    wheel defects (names of ``[[wheel_defects]]`` entries, ``none``: without); options over
-    ``[sweep]``."""
+    """The cases of ``cfg`` (parsed TOML, its ``[sweep]`` read here): speeds (km/h) x widths
+    (mm) x defect kinds x sides x wheel defects (names of ``[[wheel_defects]]`` entries,
+    ``none``: without); options over ``[sweep]``."""
     from axlebox.bearing.layout import KINDS
     sw = cfg.get("sweep", {})
     if not isinstance(sw, dict):
@@ -150,7 +162,6 @@ def matrix(kind: str, cfg: dict, speeds=None, widths=None, duration=None, kinds=
         if k not in SWEEP_FIELDS:
             raise ParameterError(f"sweep.{k} is not a field of [sweep]: expected one of "
                                  f"{', '.join(SWEEP_FIELDS)}")
-    sec = RUN_SECTION[kind]
     def axis(given, key, option, what, zero_ok, default):
         if given is not None:
             return _numbers(given, option, what, zero_ok)
@@ -160,13 +171,14 @@ def matrix(kind: str, cfg: dict, speeds=None, widths=None, duration=None, kinds=
         if given is not None:
             return _names(given, option, allowed)
         return _names(sw[key], f"sweep.{key}", allowed) if key in sw else [None]
+    base = typed(kind, cfg)
     speeds = axis(speeds, "speeds_kmh", "--speeds", "speeds in km/h", False,
-                  [cfg.get(sec, {}).get("speed_kmh", 48.0)])
+                  [(base if kind == "rig" else base.run).speed_kmh])
     widths = axis(widths, "widths_mm", "--widths", "defect widths in mm", True,
                   [None])                                # None: the config's defects as they are
     kinds = names(kinds, "kinds", "--kinds", tuple(KINDS))
     sides = names(sides, "sides", "--sides", SIDES)
-    named = [e.get("name", "") for e in cfg.get("wheel_defects", []) if isinstance(e, dict)]
+    named = [e.name for e in getattr(base, "wheel_defects", ())]
     wheels = names(wheels, "wheel_defects", "--wheel-defects",
                    tuple(dict.fromkeys(["none"] + [n for n in named if n])))
     if kind == "rig" and wheels != [None]:
@@ -177,8 +189,7 @@ def matrix(kind: str, cfg: dict, speeds=None, widths=None, duration=None, kinds=
                              "bearing; sweep sides with a vehicle config")
     if duration is not None and not (math.isfinite(duration) and duration > 0):
         raise ParameterError(f"--duration = {duration!r} is not allowed: expected a time > 0 s")
-    base = {k: v for k, v in cfg.items() if k != "sweep"}
-    defects = base.get("defects", [])
+    defects = base.defects
     if not defects and (any(widths) or kinds != [None] or sides != [None]):
         what, field = ((f"width {next(w for w in widths if w):g} mm", "W") if any(widths) else
                        (f"kinds {kinds!r}", "kind") if kinds != [None] else (f"sides {sides!r}", "side"))
@@ -189,25 +200,20 @@ def matrix(kind: str, cfg: dict, speeds=None, widths=None, duration=None, kinds=
                              for sd in sides for wd in wheels):
         if w == 0:                   # no defect: one case, whatever the kind and side
             dk, sd = None, None
-        d = tomllib.loads(tomli_w.dumps(base))          # a deep copy of plain TOML data
-        d.setdefault(sec, {})["speed_kmh"] = float(v)
-        if duration is not None:
-            d[sec]["duration"] = float(duration)
-        d.pop("defects", None)
         placed = _place(defects, w, dk, None if sd is None else
                         (("L", "R") if sd == "LR" else (sd,)))
-        if placed:
-            d["defects"] = placed
-        if wd is not None:      # the entries of that name only; none: no wheel defect
-            kept = [e for e in d.pop("wheel_defects", []) if e.get("name") == wd]
-            if kept:
-                d["wheel_defects"] = kept
-        mm = w if w is not None else 1e3 * max((float(e.get("W", 0.0)) for e in defects),
-                                               default=0.0)
+        run = {"speed_kmh": float(v), **({"duration": float(duration)} if duration is not None else {})}
+        if kind == "rig":
+            c = dataclasses.replace(base, **run, defects=tuple(placed))
+        else:
+            # wd: the wheel defects of that name only; "none": none
+            wheel = base.wheel_defects if wd is None else [e for e in base.wheel_defects if e.name == wd]
+            c = base.replace(run=run, defects=placed, wheel_defects=wheel)
+        mm = w if w is not None else 1e3 * max((_width(e) for e in defects), default=0.0)
         name = f"v{v:g}_w{mm:g}".replace(".", "p") + "".join(
             f"_{x}" for x in (dk, sd, wd) if x is not None)
         if name not in cases:
-            cases[name] = Case(name, kind, float(v), mm, case_toml(kind, d), dk, sd, wd)
+            cases[name] = Case(name, kind, float(v), mm, c, dk, sd, wd)
     return list(cases.values())
 
 
@@ -331,8 +337,7 @@ def vehicle_rows(c: Case, path: Path, criterion):
     ``(axlebox.pipelines.report.Case, rows)``; a run whose axle-box record cannot be diagnosed
     (a comfort run's 1 kHz) gives its ride comfort alone and no rows."""
     from .report import diagnosed_case
-    defects = tomllib.loads(c.toml).get("defects", [])
-    ws = defects[0].get("wheelset") if defects else None
+    ws = c.config.defects[0].wheelset if c.config.defects else None
     rc = diagnosed_case(path, c.speed_kmh, c.width_mm, None, lambda *_: None,
                         criterion=criterion,
                         **(dict(left=f"ws{ws}_L", right=f"ws{ws}_R") if ws else {}))
@@ -340,7 +345,7 @@ def vehicle_rows(c: Case, path: Path, criterion):
     if p is None:
         return rc, []
     return rc, [
-        _row(c, path, s, p.names[i], getattr(p, s), p.verdicts[s][0], p.lag.lag_s, p.vf_diff)
+        _row(c, path, s, p.names[i], getattr(p, s), p.verdict.words[s], p.lag.lag_s, p.vf_diff)
         for i, s in enumerate(("left", "right"))]
 
 

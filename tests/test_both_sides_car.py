@@ -14,7 +14,6 @@ import pytest
 import xarray as xr
 
 from axlebox import configs
-from axlebox.bearing.diagnostics.coherence import C_INDEPENDENT
 from axlebox.bearing.diagnostics.criterion import Criterion
 from axlebox.pipelines import cli
 from axlebox.pipelines.diagnose import analyse_file
@@ -23,6 +22,7 @@ from axlebox.pipelines.sweep import load_config, matrix, run_cases
 from conftest import assert_windows_are_the_source, full_size
 
 REL = Criterion(mode="relative")
+C_INDEPENDENT = REL.c_independent       # the criterion's default, 0.2
 
 
 @pytest.fixture(scope="module")
@@ -69,7 +69,7 @@ def test_a_defect_on_one_side_keeps_real_and_pseudo(runs):
     """The copy keeps the defect side's timing (coherent fraction over 0.2 in every pair of the
     two sides' own bands); the impulses' lag and where the line rings name the defect side."""
     pair = _pair(runs, "v80_w2_R")
-    assert (pair.verdicts["right"][0], pair.verdicts["left"][0]) == ("real fault", "pseudo-fault")
+    assert (pair.verdict.words["right"], pair.verdict.words["left"]) == ("real fault", "pseudo-fault")
     ev = next(e for e in pair.evidence if e.line == "BPFO")
     assert ev.timing.decision != "independent"
     assert pair.verdict.real == "right" and pair.verdict.rule in ("lag", "ringing")
@@ -79,7 +79,7 @@ def test_a_defect_on_one_side_keeps_real_and_pseudo(runs):
 @pytest.mark.slow
 def test_no_defect_is_healthy(runs):
     pair = _pair(runs, "v80_w0")
-    assert pair.verdicts["left"][0] == pair.verdicts["right"][0] == "healthy"
+    assert pair.verdict.words["left"] == pair.verdict.words["right"] == "healthy"
     # the car without a defect shows a narrow line at a whole order in its spectrum at some
     # speeds (README, "Wheel flats and polygons"): named as the wheel's, no bearing line
     assert pair.verdict.rule in ("no fault line", "wheel lines only")
@@ -101,8 +101,8 @@ def test_the_sweep_as_a_dataset(runs, tmp_path):
         rows = labels[labels.case == name]
         assert set(rows.real_side) == {side}
         pair = analyse_file(runs / f"{name}.h5", criterion=REL)[2]
-        assert set(rows.left_verdict) == {pair.verdicts["left"][0]}
-        assert set(rows.right_verdict) == {pair.verdicts["right"][0]}
+        assert set(rows.left_verdict) == {pair.verdict.words["left"]}
+        assert set(rows.right_verdict) == {pair.verdict.words["right"]}
         assert set(rows.speed_kmh) == {float(name[1:3])}
         assert set(rows.right_kind) == {"none" if side == "none" else "outer"}
     assert_windows_are_the_source(ds, runs)

@@ -1,6 +1,8 @@
-"""The config reference (pipelines/config_reference.py): every field of every config documented,
-nothing stale, the page's defaults and ranges the code's own, its tables well formed and a Sphinx build
-of it clean with warnings as errors."""
+"""One declaration per config field (mbs/config.py, axlebox/_params.py) and the reference generated
+from it (pipelines/config_reference.py): the page lists exactly the fields the loader accepts, with
+the defaults the code uses (one default per field: the config's and the classes the run is built
+from agree), every field documented, its tables well formed and a Sphinx build of it clean with
+warnings as errors."""
 import dataclasses
 import re
 import subprocess
@@ -16,14 +18,13 @@ from axlebox.bearing.params import BearingParams
 from axlebox.bearing.rig import RIG_SECTIONS, RigConfig
 from axlebox.mbs import config
 from axlebox.pipelines import config_reference
-from axlebox.mbs.config import DEFECT_PLACE, SCHEMA, WHEEL_DEFECT
-from axlebox.pipelines.config_reference import FIELDS, HEADER, SECTION_NOTES, reference_markdown
+from axlebox.mbs.config import SECTIONS, CarConfig, WheelDefect
+from axlebox.pipelines.config_reference import HEADER, reference_markdown
 from axlebox.pipelines.sweep import SWEEP_FIELDS
 
 # every unit the reference may give: a typo or a unit written another way fails here
 UNITS = {"", "-", "s", "m", "m/s", "km/h", "Hz", "kg", "kg/m", "kg m^2", "N", "N/m", "N s/m",
          "N m^2", "N m/rad", "Pa", "rad", "deg", "µm", "mm"}
-NUMERIC = (config.F, config.I, config.N)
 CELL = re.compile(r"(?<!\\)\|")
 
 
@@ -69,32 +70,97 @@ def page(md):
     return tables(md)
 
 
-def test_every_schema_field_has_a_unit_and_a_meaning_and_none_is_stale():
-    assert list(FIELDS) == list(SCHEMA)
-    assert set(SECTION_NOTES) == set(SCHEMA) and all(SECTION_NOTES.values())
-    for sec, fields in SCHEMA.items():
-        assert list(FIELDS[sec]) == list(fields), f"[{sec}]: documented fields differ from SCHEMA's"
-        for key, spec in fields.items():
-            unit, meaning = FIELDS[sec][key]
-            assert unit in UNITS, f"{sec}.{key}: unit {unit!r}"
-            assert meaning.strip(), f"{sec}.{key}: no meaning"
-            numbers = spec[0] in NUMERIC or (spec[0] == config.L and len(spec[2]) == 2
-                                            and not isinstance(spec[2][0], str))
-            assert (unit != "") == numbers, f"{sec}.{key}: unit {unit!r} for a {spec[0]}"
+def _accepted(section: str) -> list[str]:
+    """The fields the loader accepts in ``[section]``, as its refusal of an unknown one lists
+    them (the loader's own word, not the declaration's)."""
+    with pytest.raises(ParameterError, match="expected one of") as err:
+        config.validate({section: {"no_such_field": 1}})
+    return err.value.args[0].split("expected one of ")[1].split(", ")
 
 
-def test_speed_kmh_says_it_is_in_kmh():
-    unit, meaning = FIELDS["run"]["speed_kmh"]
-    assert unit == "km/h" and "km/h" in meaning
+def test_every_section_field_has_a_unit_and_a_meaning():
+    for sec, cls in SECTIONS.items():
+        assert cls.__doc__.strip(), sec
+        for f in dataclasses.fields(cls):
+            numeric = "range" in f.metadata
+            # a number declared without a unit is dimensionless ("-" on the page)
+            unit = f.metadata.get("unit", "") or ("-" if numeric else "")
+            assert f.metadata.get("doc", "").strip(), f"{sec}.{f.name}: no meaning"
+            assert unit in UNITS, f"{sec}.{f.name}: unit {unit!r}"
+            assert (unit != "") == numeric, f"{sec}.{f.name}: unit {unit!r}"
+
+
+def test_the_reference_lists_exactly_the_fields_the_loader_takes_with_the_codes_defaults(page):
+    """The generated page against the loader and the code that runs: each section's rows are
+    the fields ``validate`` accepts, in order; each default is the value a config that leaves the
+    field out runs with (``CarConfig()``, the TOML ``to_toml`` writes), and that value is
+    accepted and round-trips through the file."""
+    defaults = CarConfig()
+    stored = tomllib.loads(defaults.to_toml())
+    assert list(page)[:len(SECTIONS)] == [f"[{s}]" for s in SECTIONS]
+    for sec in SECTIONS:
+        rows = page[f"[{sec}]"]
+        assert list(rows) == _accepted(sec), sec
+        for key, row in rows.items():
+            used = getattr(getattr(defaults, sec), key)
+            shown = toml_value(row[2])
+            assert shown == (list(used) if isinstance(used, tuple) else used), f"{sec}.{key}"
+            assert stored[sec][key] == shown, f"{sec}.{key}"
+    assert config.loads(defaults.to_toml()) == defaults
+
+
+def test_one_default_per_field_the_config_and_the_run_classes_agree():
+    """The issue-50 table, now empty: the config's default of each field the integrator, the
+    track and the wheel-rail element also take is theirs (``like``), so building them from a
+    config that leaves every field out gives their own defaults."""
+    from axlebox.mbs.integrate import Settings
+    from axlebox.mbs.track import IrregularityParams
+    from axlebox.mbs.wheelrail.element import WheelRailParams
+    from axlebox.mbs.wheelrail.geometry import TrackLayout
+    c = CarConfig()
+    assert c.settings() == Settings()
+    assert c.layout() == TrackLayout()
+    assert c.wheelrail_params() == WheelRailParams()
+    assert c.irregularity() == IrregularityParams()
+    # the rows of the table in the issue, by name
+    assert (c.integrator.method, c.integrator.dt, c.integrator.state_rate_hz) == ("leapfrog", 5e-5, 500.0)
+    assert (c.wheelrail.back_to_back, c.wheelrail.fastsim_grid, c.wheelrail.smooth_y) == (1.360, 8, 1e-3)
+    assert (c.track.length, c.track.roughness_lambda_min) == (400.0, 0.003)
+
+
+def test_the_shipped_vehicle_config_writes_out_the_defaults():
+    """configs/vehicle.toml spells out every default with its source: it must stay the defaults."""
+    from axlebox import configs
+    assert config.load(configs.path("vehicle")) == CarConfig()
+
+
+def test_every_range_and_choice_the_page_shows_is_what_the_loader_does(page):
+    """Each number's ends are accepted and a step past them refused; each choice accepted."""
+    base = CarConfig()
+    for sec, cls in SECTIONS.items():
+        for f in dataclasses.fields(cls):
+            row = page[f"[{sec}]"][f.name]
+            if "range" in f.metadata and "length" not in f.metadata and "numbers" not in f.metadata:
+                lo, hi = (tomllib.loads(f"x = {v}")["x"]
+                          for v in row[4].split(";")[0].split(" (")[0].split(" … "))
+                assert (lo, hi) == f.metadata["range"], f"{sec}.{f.name}"
+                step = 1 if f.type == "int" else max(abs(hi), 1.0) * 1e-6
+                with pytest.raises(ParameterError, match=rf"{sec}\.{f.name} = "):
+                    config.validate({sec: {f.name: hi + step}})
+            elif "choices" in f.metadata:
+                assert re.findall(r'`"([^"]*)"`', row[4].split(";")[0]) == list(f.metadata["choices"])
+                with pytest.raises(ParameterError, match=rf"{sec}\.{f.name} = 'zz' is not allowed"):
+                    config.validate({sec: {f.name: "zz"}})
+    assert base.run.speed_kmh == 48.0
 
 
 @pytest.mark.parametrize("rows, expected", [
     (config_reference.bearing_rows, ["type"] + [f.name for f in dataclasses.fields(BearingParams)]),
     (lambda: config_reference.bearing_rows("dcrb"),
      ["type"] + [f.name for f in dataclasses.fields(DcrbParams)]),
-    (config_reference.defect_rows, list(DEFECT_PLACE) + [f.name for f in dataclasses.fields(Defect)]
+    (config_reference.defect_rows, ["wheelset", "side"] + [f.name for f in dataclasses.fields(Defect)]
      + ["angle_deg"]),
-    (config_reference.wheel_defect_rows, list(WHEEL_DEFECT)),
+    (config_reference.wheel_defect_rows, [f.name for f in dataclasses.fields(WheelDefect)]),
     (config_reference.rig_rows, [f.name for f in dataclasses.fields(RigConfig)
                               if f.name not in RIG_SECTIONS]),
     (config_reference.sweep_rows, list(SWEEP_FIELDS)),
@@ -124,8 +190,7 @@ def test_free_form_defaults_and_ranges_are_the_dataclasses(page):
 
 
 def test_the_vehicle_defect_angle_range_is_what_the_config_accepts(page):
-    """angle_deg's range is derived from Defect.angle's; config._defects checks its own literal:
-    the two must agree."""
+    """angle_deg's range on the page is what the vehicle's [[defects]] accepts."""
     row = page["[[defects]]"]["angle_deg"]
     lo, hi = (float(v) for v in row[4].split(" … "))
     dtrb = {"joint": {"model": "dtrb"}, "integrator": {"dt": 1e-5}}
@@ -146,25 +211,14 @@ def test_page_title_intro_and_headings(md, page):
     assert lines[0] == "# Config reference"
     assert sum(line.startswith("# ") for line in lines) == 1
     assert not any(line.startswith("###") for line in lines)
-    assert "generated from `axlebox.mbs.config.SCHEMA`" in md
-    expected = [f"[{s}]" for s in SCHEMA] + ["[bearing]", '[bearing] type = "dcrb"', "[[defects]]",
+    assert "generated from the dataclasses that declare them" in md
+    expected = [f"[{s}]" for s in SECTIONS] + ["[bearing]", '[bearing] type = "dcrb"', "[[defects]]",
                                              "[[wheel_defects]]",
                                              "[rig]", "[sweep]"]
     assert list(page) == expected
 
 
-def test_page_defaults_and_ranges_are_the_schemas(page):
-    for sec, fields in SCHEMA.items():
-        assert list(page[f"[{sec}]"]) == list(fields)
-        for key, (kind, default, *rng) in fields.items():
-            row = page[f"[{sec}]"][key]
-            assert toml_value(row[2]) == default, f"{sec}.{key}: default {row[2]}"
-            if kind in (config.F, config.I):
-                lo, hi = (tomllib.loads(f"x = {v}")["x"] for v in row[4].split(" … "))
-                assert (lo, hi) == tuple(rng), f"{sec}.{key}: range {row[4]}"
-            elif kind == config.S and rng[0] is not None:
-                assert re.findall(r'`"([^"]*)"`', row[4]) == list(rng[0]), f"{sec}.{key}"
-    # spot checks, as written in configs/vehicle.toml
+def test_page_spot_checks_as_written_in_the_shipped_vehicle_config(page):
     assert page["[run]"]["duration"][2] == "`5.0`"
     assert page["[track]"]["pad_k"][2] == "`6.5e7`"
     assert page["[track]"]["pad_k"][3] == "N/m"
@@ -173,7 +227,13 @@ def test_page_defaults_and_ranges_are_the_schemas(page):
 
 
 def test_a_bar_in_a_cell_is_escaped(monkeypatch):
-    monkeypatch.setitem(FIELDS["run"], "duration", ("s", "a | b"))
+    from axlebox._params import param, section
+
+    @section("run")
+    class Run:
+        """A section whose field's meaning holds a bar."""
+        duration: float = param(5.0, 1e-4, 1e4, "s", "a | b")
+    monkeypatch.setitem(SECTIONS, "run", Run)
     row = tables(reference_markdown())["[run]"]["duration"]
     assert row[5] == r"a \| b"
 
@@ -195,16 +255,19 @@ def test_sphinx_builds_the_page_with_warnings_as_errors(tmp_path, md):
     assert html.count("<table") == len(tables(md))
 
 
-def test_the_schemas_choices_are_the_codes():
-    """Choice lists the schema spells out itself must be the ones the code acts on."""
+def test_the_declared_choices_are_the_codes():
+    """Choice lists a section spells out itself must be the ones the code acts on."""
     from axlebox.mbs import exchange, roughness
-    from axlebox.mbs.config import SCHEMA
     from axlebox.mbs.wheelrail import element
-    assert set(SCHEMA["coupling"]["hold"][2]) == set(exchange.HOLDS)
-    assert set(SCHEMA["wheelrail"]["law"][2]) == set(element.LAWS)
-    assert set(SCHEMA["wheelrail"]["fastsim_update"][2]) == set(element.UPDATES)
-    assert set(SCHEMA["track"]["rail_roughness"][2]) == {"none", *roughness.RAIL_DB}
-    assert set(SCHEMA["track"]["wheel_roughness"][2]) == {"none", *roughness.WHEEL_DB}
+
+    def choices(sec, key):
+        f = next(f for f in dataclasses.fields(SECTIONS[sec]) if f.name == key)
+        return set(f.metadata["choices"])
+    assert choices("coupling", "hold") == set(exchange.HOLDS)
+    assert choices("wheelrail", "law") == set(element.LAWS)
+    assert choices("wheelrail", "fastsim_update") == set(element.UPDATES)
+    assert choices("track", "rail_roughness") == {"none", *roughness.RAIL_DB}
+    assert choices("track", "wheel_roughness") == {"none", *roughness.WHEEL_DB}
 
 
 @pytest.mark.parametrize("name,words", [("carbody", "has no FE body"), ("gb2", "has no FE body"),
@@ -216,5 +279,5 @@ def test_only_bodies_with_an_fe_body_can_be_flexible(name, words):
     with pytest.raises(ParameterError, match=rf"bodies.flexible = \['{name}'\] is not allowed: "
                                              rf"'{name}' {words}"):
         validate({"bodies": {"flexible": [name]}})
-    assert validate({"bodies": {"flexible": ["frame2", "ws4", "ab3L"]}})["bodies"]["flexible"] == \
-        ["frame2", "ws4", "ab3L"]
+    assert validate({"bodies": {"flexible": ["frame2", "ws4", "ab3L"]}}).bodies.flexible == \
+        ("frame2", "ws4", "ab3L")

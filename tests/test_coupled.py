@@ -24,16 +24,12 @@ DEFECT = {"wheelset": 2, "side": "R", "row": 2, "W": 2e-3, "L": 50.4e-3, "H": 2e
 
 
 def coupled_config(**over):
-    base, _ = vconfig.load(configs.path("vehicle"))
-    user = {sec: dict(v) for sec, v in base.items() if isinstance(v, dict) and sec != "bearing"}
-    user["bodies"]["flexible"] = []
-    user["joint"]["model"] = "dtrb"
-    user["integrator"]["method"] = "rk4"
-    user["integrator"]["dt"] = 1e-5
-    user["defects"] = [DEFECT]
+    base = vconfig.load(configs.path("vehicle"))
+    changes = {"bodies": {"flexible": []}, "joint": {"model": "dtrb"},
+               "integrator": {"method": "rk4", "dt": 1e-5}, "defects": [DEFECT]}
     for sec, fields in over.items():
-        user[sec] = fields if isinstance(fields, list) else {**user[sec], **fields}
-    return vconfig.validate(user)
+        changes[sec] = fields if isinstance(fields, list) else {**changes.get(sec, {}), **fields}
+    return base.replace(**changes)
 
 
 @pytest.fixture(scope="module")
@@ -332,11 +328,11 @@ def test_shipped_configs_are_the_papers_cases():
     0, 1, 3, 5 mm x 20, 40, 60, 80 km/h (paper, study), every case long enough for the diagnosis
     (two cage periods after the 0.5 s fade-in)."""
     from axlebox.pipelines.sweep import load_config, matrix
-    cfg, _ = vconfig.load(configs.path("validation_48kmh"))
-    assert (cfg["run"]["speed_kmh"], cfg["track"]["fra_class"], cfg["joint"]["model"]) == (48.0, 5, "dtrb")
-    (d,) = cfg["defects"]
-    assert (d["wheelset"], d["side"], d["defect"].row) == (2, cfg["gearbox"]["side"], 2)
-    assert (d["defect"].L, d["defect"].W, d["defect"].H) == (50.4e-3, 2e-3, 2e-3)
+    cfg = vconfig.load(configs.path("validation_48kmh"))
+    assert (cfg.run.speed_kmh, cfg.track.fra_class, cfg.joint.model) == (48.0, 5, "dtrb")
+    (d,) = cfg.defects
+    assert (d.wheelset, d.side, d.defect.row) == (2, cfg.gearbox.side, 2)
+    assert (d.defect.L, d.defect.W, d.defect.H) == (50.4e-3, 2e-3, 2e-3)
     cases = matrix(*load_config(configs.path("study")))
     assert sorted({(c.speed_kmh, c.width_mm) for c in cases}) == sorted(
         (v, w) for v in (20.0, 40.0, 60.0, 80.0) for w in (0.0, 1.0, 3.0, 5.0))

@@ -22,6 +22,8 @@ from conftest import assert_windows_are_the_source, write_pair_result
 FS = 10_000.0
 T = 3.0
 DEFECT = '[[defects]]\nwheelset = 2\nside = "{side}"\nW = 0.002\nrow = 2\nkind = "{kind}"\n'
+# the axle-boxes on the DTRB (the defects' bearings) at a step it takes: a config a run accepts
+BEARINGS = '[joint]\nmodel = "bearing"\n[integrator]\ndt = 1e-5\n'
 CASES = {"none": ((), "none"), "left": (("L",), "left"), "right": (("R",), "right"),
          "both": (("L", "R"), "both")}
 
@@ -35,7 +37,8 @@ def write_case(folder, name, sides, speed=48.0, seed=0, kind="outer"):
     else:
         a, b = coaxial_pair(T, FS, bpfo, rng, amplitude=1.0 if sides else 0.0, **house)
         left, right = (a, b) if sides == ("L",) else (b, a)
-    cfg = f"[run]\nspeed_kmh = {speed}\n" + "".join(DEFECT.format(side=s, kind=kind) for s in sides)
+    cfg = (f"[run]\nspeed_kmh = {speed}\n" + BEARINGS
+           + "".join(DEFECT.format(side=s, kind=kind) for s in sides))
     return write_pair_result(folder / f"{name}.h5", left, right, cfg, FS, seed)
 
 
@@ -96,8 +99,14 @@ def test_verdict_labels_are_what_diagnose_says(dataset, sweep_dir):
     for name in CASES:
         r = labels[labels.case == name].iloc[0]
         _, _, pair = analyse_file(sweep_dir / f"{name}.h5", criterion=Criterion(mode="relative"))
-        assert (r.left_verdict, r.right_verdict) == (pair.verdicts["left"][0], pair.verdicts["right"][0])
+        assert (r.left_verdict, r.right_verdict) == (pair.verdict.words["left"], pair.verdict.words["right"])
         assert (r.left_verdict, r.right_verdict) == expect[name], name
+        # the rule and the evidence's fields, not only the sentence
+        v = pair.verdict
+        assert (r.verdict_rule, r.verdict_real, r.verdict_rotor) == (v.rule, v.real or "none", "wheel")
+        assert r.verdict_vf_m == pytest.approx(v.evidence.vf.m, rel=1e-12)
+        assert r.verdict_lag_leading == (v.evidence.lag.leading or "none")
+        assert r.left_reason == v.sentence("left")
 
 
 def test_card_states_how_it_was_made(dataset):

@@ -137,8 +137,8 @@ def test_the_dcrb_declares_its_methods_and_steps():
         models.from_table({"type": "crb"})
     entry = catalogue.lookup("dcrb")
     assert entry.bore == 0.130 and entry.orders == models.orders(DcrbParams())
-    cfg, _ = vconfig.load(configs.path("dcrb_48kmh"))
-    assert isinstance(vconfig.bearing_params(cfg), DcrbParams)
+    cfg = vconfig.load(configs.path("dcrb_48kmh"))
+    assert isinstance(cfg.bearing, DcrbParams)
 
 
 @pytest.mark.slow
@@ -155,8 +155,8 @@ def test_car_one_sided_outer_defect_is_real_on_its_side_and_pseudo_across(tmp_pa
     T = 2.0 if full_size() else 1.5
     assert cli.main(["simulate", "dcrb_48kmh", "--duration", str(T), "--out", str(out)]) == 0
     _, _, pair = analyse_file(out)
-    print(pair.verdict.words, pair.verdict.rule, pair.verdicts)
-    assert (pair.verdicts["right"][0], pair.verdicts["left"][0]) == ("real fault", "pseudo-fault")
+    print(pair.verdict.words, pair.verdict.rule, pair.verdict.sentence("right"))
+    assert (pair.verdict.words["right"], pair.verdict.words["left"]) == ("real fault", "pseudo-fault")
     assert cli.main(["report", str(out), "--out", str(tmp_path / "report")]) == 0
     page = (tmp_path / "report" / "index.html").read_text()
     assert "real fault" in page and "pseudo-fault" in page

@@ -69,7 +69,13 @@ def test_cwru_drive_end_is_real_and_fan_end_pseudo(setting, tmp_path, capsys):
     assert d["lag"]["leading"] == "a"
     assert d["input"]["fs_hz"] == 12000 and d["input"]["n_samples"] == 121991
     assert (tmp_path / "fig" / f"{CWRU.stem}_diagnose.png").stat().st_size > 10_000
-    assert "real fault" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "real fault" in printed
+    # a machine's record (speed given as --rpm): its shaft's harmonics are the shaft's
+    assert d["input"]["rotor"] == d["rotor"] == v["evidence"]["rotor"] == "shaft"
+    assert any(o["envelope"] or o["spectrum"] for o in v["evidence"]["shaft_orders"].values())
+    assert "shaft: " in v["sentences"]["left"] + v["sentences"]["right"]
+    assert "wheel" not in " ".join(v["sentences"].values()) + printed
 
 
 @needs_cwru
@@ -230,6 +236,74 @@ def test_vf_band_option_takes_fc_and_vf_over_the_band(tmp_path, reference_result
         assert d[s]["FC"] == pytest.approx(FC, rel=1e-12) and d[s]["VF"] == pytest.approx(VF, rel=1e-12)
 
 
+def test_thresholds_are_options_and_printed_in_the_json(tmp_path, reference_result, capsys):
+    """Every threshold that decides a verdict is in the JSON's criterion (the defaults where no
+    option moves them); ``--second-db``, ``--clearer-db``, ``--c-independent``, ``--gate-ratio``
+    and ``--shaft-p-fa`` set theirs."""
+    left, right, ref = reference_result
+    for name, value in (("clearer_db", 3.0), ("c_independent", 0.2), ("rho_min_db", 15.0),
+                        ("z_min", 5.0), ("ringing_bands", 3), ("gate_ratio", 5.0),
+                        ("shaft_p_fa", 1e-3), ("second_db", 15.0), ("source_ratio", 2.0)):
+        assert ref["criterion"][name] == value, name
+    path, extra = write_inputs(tmp_path, left, right)["csv with header"]
+    out = tmp_path / "d.json"
+    assert main(["diagnose", str(path), *extra, "--shaft-hz", str(SHAFT), "--second-db", "12",
+                 "--clearer-db", "4.5", "--c-independent", "0.1", "--gate-ratio", "inf",
+                 "--shaft-p-fa", "1e-4", "--json", str(out)]) == 0, capsys.readouterr().err
+    crit = json.loads(out.read_text())["criterion"]
+    assert (crit["second_db"], crit["clearer_db"], crit["c_independent"], crit["shaft_p_fa"]) == \
+        (12.0, 4.5, 0.1, 1e-4)
+    assert crit["gate_ratio"] is None                       # inf: never blank (JSON has no inf)
+    with pytest.raises(SystemExit) as e:                    # argparse's refusal: one line too
+        main(["diagnose", str(path), *extra, "--shaft-hz", str(SHAFT), "--clearer-db", "loud"])
+    err = capsys.readouterr().err
+    assert e.value.code == 2 and len(err.strip().splitlines()) == 1
+    assert "--clearer-db" in err and "'loud'" in err
+
+
+def flat_pair(n, f_w):
+    """A wheel flat's strikes on both axle boxes (tests/test_diagnostics_wheel.py), in
+    wheel-rail noise: whole orders of the wheel's rate, no bearing line."""
+    from axlebox.bearing.diagnostics.synthetic import resonance, wheel_rail_noise
+    rng = np.random.default_rng(3)
+    x = np.zeros(n)
+    x[np.round(np.arange(0.01, n / FS, 1.0 / f_w) * FS).astype(int)] = 1.0
+    hit = sum(resonance(x, FS, f, 0.02) for f in (300.0, 650.0, 2500.0, 3500.0))
+    hit /= hit.std()
+    return 6.0 * hit + 0.5 * wheel_rail_noise(n, FS, rng), 10.0 * hit + 0.5 * wheel_rail_noise(n, FS, rng)
+
+
+def test_a_vehicles_lines_are_the_wheels_and_a_machines_the_shafts(tmp_path, capsys):
+    """The same two channels: from a car's result file (its speed stored) or read with
+    ``--speed-kmh``, the lines at whole orders of the shaft are the wheel's ("wheel lines
+    only", "wheel: 1x, 2x ..."); read with ``--shaft-hz`` (a machine), the shaft's."""
+    f_w = shaft_hz(40.0)
+    left, right = flat_pair(int(4.5 * FS), f_w)
+    p = tmp_path / "car.h5"
+    acc_l, acc_r = np.zeros((left.size, 3)), np.zeros((left.size, 3))
+    acc_l[:, 2], acc_r[:, 2] = left, right
+    resultfile.write(p, config_toml="[run]\nspeed_kmh = 40.0\n[wheelset]\nr0 = 0.42\n", seed=0,
+                     time=np.arange(left.size) / FS, fs_hz=FS,
+                     signals={"ws2_L": {"acceleration": acc_l}, "ws2_R": {"acceleration": acc_r}})
+    csv = tmp_path / "machine.csv"
+    np.savetxt(csv, np.c_[left, right], delimiter=",", fmt="%.17g", header="DE,FE", comments="")
+    said = {}
+    for name, args in (("result", [str(p)]),
+                       ("speed", [str(csv), "--fs", str(FS), "--speed-kmh", "40"]),
+                       ("shaft", [str(csv), "--fs", str(FS), "--shaft-hz", repr(f_w)])):
+        out = tmp_path / f"{name}.json"
+        assert main(["diagnose", *args, "--json", str(out)]) == 0, capsys.readouterr().err
+        d = json.loads(out.read_text())
+        said[name] = (d["input"]["rotor"], d["verdict"]["rule"], d["verdict"]["sentences"]["left"])
+        assert d["verdict"]["words"] == {"left": "healthy", "right": "healthy"}, said[name]
+    for name in ("result", "speed"):
+        rotor, rule, text = said[name]
+        assert (rotor, rule) == ("wheel", "wheel lines only") and "wheel: 1x, 2x" in text, said[name]
+    rotor, rule, text = said["shaft"]
+    assert (rotor, rule) == ("shaft", "shaft lines only") and "shaft: 1x, 2x" in text, text
+    assert "wheel" not in text
+
+
 def test_file_kind_reads_the_content_not_the_name(tmp_path, reference_result):
     left, right, _ = reference_result
     files = write_inputs(tmp_path, left, right)
@@ -314,6 +388,16 @@ def bad_inputs(tmp_path, left, right):
                                    "--vf-band", "0,6000"], ["--vf-band", "Nyquist", "5000 Hz"]),
         "vf band upside down": ([str(files["csv with header"][0]), "--fs", str(FS), *sh,
                                  "--vf-band", "900,100"], ["--vf-band", "0 <= LO < HI"]),
+        "bad clearer db": ([str(files["csv with header"][0]), "--fs", str(FS), *sh,
+                            "--clearer-db", "-1"], ["--clearer-db", "-1", "expected a level >= 0 dB"]),
+        "bad second db": ([str(files["csv with header"][0]), "--fs", str(FS), *sh,
+                           "--second-db", "nan"], ["--second-db", "nan", ">= 0 dB"]),
+        "bad c independent": ([str(files["csv with header"][0]), "--fs", str(FS), *sh,
+                               "--c-independent", "1.5"], ["--c-independent", "1.5", "[0, 1)"]),
+        "bad gate ratio": ([str(files["csv with header"][0]), "--fs", str(FS), *sh,
+                            "--gate-ratio", "0.5"], ["--gate-ratio", "0.5", "a ratio > 1"]),
+        "bad shaft p_fa": ([str(files["csv with header"][0]), "--fs", str(FS), *sh,
+                            "--shaft-p-fa", "0"], ["--shaft-p-fa", "0", "(0, 1)"]),
     }
 
 
@@ -322,7 +406,8 @@ CASES = ["missing variable", "missing sensor", "missing fs", "missing fs (mat v7
          "unreadable file", "no file",
          "bad orders", "orders without bore", "unknown bearing", "two bearings for a side",
          "side orders without bore", "bad side bore", "no shaft speed", "vf band above Nyquist",
-         "vf band upside down"]
+         "vf band upside down", "bad clearer db", "bad second db", "bad c independent",
+         "bad gate ratio", "bad shaft p_fa"]
 
 
 @pytest.mark.parametrize("case", CASES)

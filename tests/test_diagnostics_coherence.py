@@ -15,7 +15,7 @@ import pytest
 
 from axlebox._params import ParameterError
 from axlebox.bearing.catalogue import lookup
-from axlebox.bearing.diagnostics.coherence import C_COPY, C_INDEPENDENT, Z_MIN, timing
+from axlebox.bearing.diagnostics.coherence import C_COPY, timing
 from axlebox.bearing.diagnostics.criterion import Criterion
 from axlebox.bearing.diagnostics.families import copy_case, two_source_case
 from axlebox.bearing.diagnostics.pair import analyse_pair
@@ -23,6 +23,7 @@ from axlebox.bearing.diagnostics.pair import analyse_pair
 FS = 10_000.0
 BAND = (2000.0, 4000.0)
 REL = Criterion(mode="relative")
+C_INDEPENDENT, Z_MIN = REL.c_independent, REL.z_min        # the defaults, 0.2 and 5
 B6205 = lookup("6205")
 
 
@@ -62,7 +63,7 @@ def test_timing_is_symmetric_and_refuses_bad_input():
     ba = timing(b, a, FS, 40.0, [BAND], [BAND]).pairs[0].harmonics[0]
     assert (ab.g2, ab.c, ab.z) == pytest.approx((ba.g2, ba.c, ba.z), rel=1e-9)
     assert (ab.rho_a_db, ab.rho_b_db) == pytest.approx((ba.rho_b_db, ba.rho_a_db), rel=1e-9)
-    assert ab.c == pytest.approx(1.0, abs=0.05) and ab.usable
+    assert ab.c == pytest.approx(1.0, abs=0.05) and ab.is_usable()
     with pytest.raises(ParameterError, match="same length"):
         timing(a, b[:-1], FS, 40.0, [BAND], [BAND])
     with pytest.raises(ParameterError, match="f_line"):
@@ -85,7 +86,7 @@ def test_a_fault_and_its_copy_are_one_train(seed):
     res = _pair(case)
     ev = next(e for e in res.evidence if e.line == "BPFO")
     assert ev.timing is not None and ev.timing.decision == "coherent", ev.timing.to_dict()
-    use = [h for p in ev.timing.pairs for h in p.harmonics if h.usable]
+    use = [h for p in ev.timing.pairs for h in p.harmonics if h.is_usable()]
     assert use and min(h.c for h in use) > C_COPY
     assert (res.verdict.words["left"], res.verdict.words["right"]) == ("real fault", "pseudo-fault")
     json.dumps(res.to_dict(), allow_nan=False)
@@ -100,7 +101,28 @@ def test_two_faults_are_two_trains(seed):
     assert ev.timing.decision == "independent" and ev.timing.c_min <= C_INDEPENDENT
     assert res.verdict.words == {"left": "faults on both sides", "right": "faults on both sides"}
     assert res.verdict.rule == "each side owns a line"
-    assert "own timing" in res.verdicts["left"][1]
+    assert "own timing" in res.verdict.sentence("left")
+
+
+def test_the_copy_or_source_thresholds_are_the_criterions():
+    """``Criterion.c_independent``, ``rho_min_db`` and ``z_min`` decide whether two lines are two
+    trains.  Two faults (least coherent fraction about 0.008) are both called under the
+    defaults and with ``c_independent`` just over that fraction; just under it, or with
+    ``z_min`` or ``rho_min_db`` out of reach (no significant, no usable harmonic), the same
+    evidence reads one train and its copy: no longer faults on both sides."""
+    from dataclasses import replace
+    res = _pair(two_source_case(1))
+    both = {"left": "faults on both sides", "right": "faults on both sides"}
+    c = res.verdict.evidence.lines[0].c_min
+    assert res.verdict.words == both and 0 < c <= C_INDEPENDENT
+    assert res.redecide(replace(REL, c_independent=1.01 * c)).words == both
+    for kw, how in (({"c_independent": 0.99 * c}, "partly coherent"), ({"z_min": 1e6}, "coherent"),
+                    ({"rho_min_db": 200.0}, "inconclusive")):
+        v = res.redecide(replace(REL, **kw))
+        r = v.evidence.lines[0]
+        assert r.line.line == "BPFO" and r.how == how and r.sources == ()
+        assert v.words != both and v.rule != "each side owns a line"
+        assert v.to_dict()["evidence"]["lines"][0]["timing"]["decision"] == how
 
 
 def test_the_fisher_test_never_fires_on_copies():
@@ -113,5 +135,5 @@ def test_the_fisher_test_never_fires_on_copies():
     for seed in range(6):
         res = _pair(copy_case(seed))
         ev = next(e for e in res.evidence if e.line == "BPFO")
-        zs += [h.z for p in ev.timing.pairs for h in p.harmonics if h.usable]
+        zs += [h.z for p in ev.timing.pairs for h in p.harmonics if h.is_usable()]
     assert len(zs) > 100 and max(zs) < Z_MIN and math.isfinite(sum(zs))

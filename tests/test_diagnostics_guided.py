@@ -89,21 +89,21 @@ def test_the_pair_searches_the_healthy_side_again_for_the_other_sides_line():
     assert res.left.band_source == "spectral kurtosis"
     assert res.right.band_source == "guided by BPFO" and "BPFO" in res.right.detected
     assert res.right == analyse(b, FS, SHAFT, ORDERS, BORE, guide="BPFO")   # only the band redone
-    assert res.verdicts["left"][0] == "real fault" and res.verdicts["right"][0] == "pseudo-fault"
-    bpfo = res.verdict.evidence["lines"][0]
-    assert bpfo["key"] == "BPFO" and bpfo["seen"] == {"left": True, "right": True}
+    assert res.verdict.words["left"] == "real fault" and res.verdict.words["right"] == "pseudo-fault"
+    bpfo = res.verdict.evidence.lines[0].line
+    assert bpfo.key == "BPFO" and bpfo.seen == {"left": True, "right": True}
     assert res.lag.leading == "a" and res.verdict.rule == "lag"
     off = analyse_pair(a, b, FS, SHAFT, ORDERS, BORE, rel, guided=False)
     assert off.right.band_source == "spectral kurtosis" and "BPFO" not in off.right.detected
     assert off.verdict.rule == "one side owns the lines" and off.verdict.real == "left"
-    assert "no fault line here" in off.verdicts["right"][1]
+    assert "no fault line here" in off.verdict.sentence("right")
     # with no line on either side nothing is searched again
     rng = np.random.default_rng(5)
     n = int(T * FS)
     quiet = [wheel_rail_noise(n, FS, rng) + shocks(n, rng) for _ in range(2)]
     h = analyse_pair(*quiet, FS, SHAFT, ORDERS, BORE, rel)
     assert {h.left.band_source, h.right.band_source} == {"spectral kurtosis"}
-    assert h.verdicts["left"][0] == h.verdicts["right"][0] == "healthy"
+    assert h.verdict.words["left"] == h.verdict.words["right"] == "healthy"
 
 
 def test_trying_many_bands_keeps_the_false_alarm_rate_of_one():

@@ -9,6 +9,7 @@ a VF difference in 0.8e4-7.49e4 Hz^2 means a pseudo-fault; the side with the lar
 is the real fault; the decision procedure around it (criterion.decide) is tested rule by rule
 on stand-in evidence.
 """
+import dataclasses
 import json
 from types import SimpleNamespace
 
@@ -22,7 +23,8 @@ from axlebox.bearing.diagnostics.lag import impulse_lag, time_lag
 from axlebox.bearing.diagnostics.pair import analyse_pair
 from axlebox.bearing.diagnostics.spectral import fc_vf
 from axlebox.bearing.diagnostics.synthetic import impulse_train, resonance, wheel_rail_noise
-from axlebox.bearing.diagnostics.verdict import RULES, SIDES, LineEvidence
+from axlebox.bearing.diagnostics.verdict import (RULES, SIDES, Evidence, LagReading, LineEvidence,
+                                                 LineReading, ShaftOrders, VFReading)
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.params import BearingParams
 
@@ -180,8 +182,8 @@ def synthetic(request):
 def test_impulses_are_real_and_their_transmitted_copy_pseudo(synthetic, name):
     noise, (a, b, _, _) = synthetic
     res = analyse_pair(a, b, FS, SHAFT, ORDERS, BORE, CRITERIA[name], names=("A", "B"))
-    assert res.verdicts["left"][0] == "real fault", res.verdicts
-    assert res.verdicts["right"][0] == "pseudo-fault", res.verdicts
+    assert res.verdict.words["left"] == "real fault", res.verdict.words
+    assert res.verdict.words["right"] == "pseudo-fault", res.verdict.words
     # what the verdict rests on, each against the paper's description:
     lo, hi = CRITERIA[name].range
     assert lo <= res.m <= hi                      # conclusion (3): the VF difference in range
@@ -204,7 +206,7 @@ def test_swapping_the_sides_swaps_the_verdicts(synthetic):
     """The criterion has no favourite side: B on the left, A on the right."""
     _, (a, b, _, _) = synthetic
     res = analyse_pair(b, a, FS, SHAFT, ORDERS, BORE)
-    assert (res.verdicts["left"][0], res.verdicts["right"][0]) == ("pseudo-fault", "real fault")
+    assert (res.verdict.words["left"], res.verdict.words["right"]) == ("pseudo-fault", "real fault")
     assert res.lag.leading == "b"
 
 
@@ -212,7 +214,7 @@ def test_swapping_the_sides_swaps_the_verdicts(synthetic):
 def test_noise_on_both_sides_is_healthy(synthetic, name):
     _, (_, _, na, nb) = synthetic
     res = analyse_pair(na, nb, FS, SHAFT, ORDERS, BORE, CRITERIA[name])
-    assert res.verdicts["left"][0] == res.verdicts["right"][0] == "healthy", res.verdicts
+    assert res.verdict.words["left"] == res.verdict.words["right"] == "healthy", res.verdict.words
     assert not res.left.detected and not res.right.detected
     # independent noises: the envelope correlation stays near 0 (about 1/sqrt(samples per
     # correlation length)), below what the criterion needs to quote a lag
@@ -233,7 +235,7 @@ def test_a_louder_transmitted_side_is_named_by_its_lag():
     for policy in ("decide", "veto", "off"):
         res = analyse_pair(a, b, FS, SHAFT, ORDERS, BORE,
                            Criterion(mode="relative", lag=policy, source="paper"))
-        got[policy] = (res.verdicts["left"][0], res.verdicts["right"][0])
+        got[policy] = (res.verdict.words["left"], res.verdict.words["right"])
         ours[policy] = res.redecide(Criterion(mode="relative", lag=policy)).words["left"]
     assert res.right.rms > res.left.rms and res.right.spm_db > res.left.spm_db
     assert res.lag.leading == "a" and res.lag.agreement == 1.0 and res.lag.n_impulses > 100
@@ -316,9 +318,9 @@ def side(VF, rms, spm_db, lines=("BPFO",)):
 
 
 def timing(decision, c_min=None):
-    """A stand-in :class:`.coherence.Timing` with its decision."""
-    return SimpleNamespace(decision=decision, c_min=c_min,
-                           to_dict=lambda: {"decision": decision, "c_min": c_min})
+    """A stand-in :class:`.coherence.Timing` with its decision (whatever the thresholds)."""
+    return SimpleNamespace(decide=lambda **kw: decision, coherent_fraction=lambda **kw: c_min,
+                           to_dict=lambda **kw: {"decision": decision, "c_min": c_min})
 
 
 def line(bearing="both", seen=("left", "right"), decision="coherent", best=(30.0, 30.0),
@@ -382,8 +384,61 @@ BELOW = (side(2e4, 2.0, 40), side(2.5e4, 1.0, 30))           # 5e3, below the pa
 def test_decision_table(sides, lines, words, rule):
     v = decide(*sides, None, Criterion(), lines)
     assert (v.words["left"], v.words["right"], v.rule) == words + (rule,)
-    assert v.rule in RULES and RULES[v.rule] in v["left"][1]
+    assert v.rule in RULES and RULES[v.rule] in v.sentence("left")
     json.dumps(v.to_dict(), allow_nan=False)
+    json.dumps(v.row(), allow_nan=True)
+
+
+def test_the_evidence_is_typed_and_frozen():
+    """decide() reads the evidence once into a frozen, typed :class:`.verdict.Evidence`; the
+    verdict is read by attributes (no ``(word, sentence)`` tuple), and its row holds the rule
+    and the evidence's fields, not only the sentence."""
+    v = decide(*IN_RANGE, impulses_lag("a"), Criterion(), [line(votes={"left": 12, "right": 2})])
+    ev = v.evidence
+    assert isinstance(ev, Evidence) and isinstance(ev.vf, VFReading) and isinstance(ev.lag, LagReading)
+    assert all(isinstance(r, LineReading) for r in ev.lines)
+    assert all(isinstance(o, ShaftOrders) for o in ev.orders.values())
+    assert ev.lines[0].how == "coherent" and ev.lines[0].sources == ()
+    assert ev.vf.m == pytest.approx(3e4) and ev.vf.in_range and ev.vf.where == "in"
+    assert ev.lag.leading == "left" and ev.ringing == "left" and ev.larger == {"rms": "left",
+                                                                               "spm_db": "left"}
+    assert ev.criterion == Criterion() and ev.rotor == "wheel"
+    for target, name in ((ev, "rotor"), (ev.vf, "m"), (ev.lines[0], "how"), (v, "evidence"),
+                         (ev.lag, "leading")):
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            setattr(target, name, None)
+    with pytest.raises(TypeError):
+        v["left"]                               # the old (word, sentence) reading is gone
+    assert not hasattr(v, "items")
+    row = v.row("verdict_")
+    assert row["verdict_rule"] == "lag" and row["verdict_real"] == "left"
+    assert row["verdict_vf_m"] == pytest.approx(3e4) and row["verdict_lag_leading"] == "left"
+    assert row["verdict_lines"] == "BPFO seen left, right: none by coherent"
+    assert all(isinstance(x, (str, float, int)) for x in row.values())
+    d = v.to_dict()
+    assert d["rule"] == "lag" and d["evidence"]["vf"]["in_range"] and d["evidence"]["rotor"] == "wheel"
+    assert d["evidence"]["lines"][0]["how"] == "coherent"
+
+
+def test_thresholds_on_the_criterion_move_the_verdict_their_way():
+    """Each threshold of step 3 is a field of Criterion: the same two own lines (30 and 12 dB
+    over their floors) are faults on both sides when a second fault needs 12 dB or less; with
+    15 (the default) the 18 dB between them name the clearer side real; once ``clearer_db``
+    exceeds those 18 dB neither is named."""
+    lines = [line(decision="independent", best=(30.0, 12.0))]
+    got = {}
+    for kw in ({"second_db": 12.0}, {}, {"clearer_db": 17.9}, {"clearer_db": 18.1}):
+        v = decide(*IN_RANGE, None, Criterion(**kw), lines)
+        got[tuple(kw.items())] = (v.words["left"], v.words["right"], v.rule)
+    assert list(got.values()) == [
+        ("faults on both sides", "faults on both sides", "each side owns a line"),
+        ("real fault", "undecided", "second line faint"),
+        ("real fault", "undecided", "second line faint"),
+        ("undecided", "undecided", "both lines faint")]
+    # the ringing's fewest bands: 12 of 14 bands name the left side, unless 13 are needed
+    copy = [line(votes={"left": 12, "right": 2})]
+    assert decide(*BELOW, None, Criterion(), copy).rule == "ringing"
+    assert decide(*BELOW, None, Criterion(ringing_bands=13), copy).rule == "VF below the range"
 
 
 def impulses_lag(leading, n=40, agreement=1.0):
@@ -401,7 +456,7 @@ def test_a_copys_source_by_its_lag_and_where_it_rings():
     v = decide(left, right, impulses_lag("b"), Criterion(), [line()])
     assert (v.words["left"], v.words["right"], v.rule, v.real) == ("pseudo-fault", "real fault",
                                                                   "lag", "right")
-    assert "right leads by 1.2 ms" in v["right"][1]
+    assert "right leads by 1.2 ms" in v.sentence("right")
     v = decide(left, right, impulses_lag("b"), Criterion(), [line(votes={"left": 2, "right": 9})])
     assert v.rule == "lag" and v.real == "right"
     v = decide(left, right, impulses_lag("b"), Criterion(), [line(votes={"left": 9, "right": 2})])
@@ -463,6 +518,13 @@ def test_relative_mode_is_invariant_to_a_frequency_scale():
                                       ({"lag": "trust"}, "lag"), ({"lines": ("BSF",)}, "lines"),
                                       ({"source": "RMS"}, "source"), ({"source_ratio": 1.0}, "source_ratio"),
                                       ({"second_db": -1.0}, "second_db"),
+                                      ({"clearer_db": float("nan")}, "clearer_db"),
+                                      ({"c_independent": 1.0}, "c_independent"),
+                                      ({"rho_min_db": -3.0}, "rho_min_db"),
+                                      ({"z_min": float("inf")}, "z_min"),
+                                      ({"ringing_bands": 0}, "ringing_bands"),
+                                      ({"gate_ratio": 1.0}, "gate_ratio"),
+                                      ({"shaft_p_fa": 0.0}, "shaft_p_fa"),
                                       ({"vf_band": (1000.0, 500.0)}, "vf_band"),
                                       ({"vf_band": (0.0, float("nan"))}, "vf_band")])
 def test_criterion_refuses_bad_settings(kw, field):

@@ -9,7 +9,9 @@ import pytest
 
 from axlebox.bearing.diagnostics import synthetic as syn
 from axlebox.bearing.diagnostics import wheel
+from axlebox.bearing.diagnostics.criterion import Criterion
 from axlebox.bearing.diagnostics.pair import analyse_pair
+from axlebox.bearing.diagnostics.verdict import ShaftOrders
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.params import BearingParams
 
@@ -46,11 +48,41 @@ def test_a_flat_is_named_the_wheels_and_no_bearing_fault_is_called(speed_kmh):
     p = analyse_pair(left, right, FS, f_w, DTRB, BORE)
     bearing = {"BPFO", "BPFI", "2BSF"}          # the criterion's lines (a cage line is not one)
     assert not bearing & set(p.left.detected) and not bearing & set(p.right.detected)
-    assert p.verdicts["left"][0] == p.verdicts["right"][0] == "healthy"
+    assert p.verdict.words["left"] == p.verdict.words["right"] == "healthy"
     assert p.verdict.rule == "wheel lines only"
     for s in ("left", "right"):
         assert {1, 2, 3} <= set(getattr(p, s).wheel_env)
-        assert "wheel: 1x, 2x, 3x" in p.verdicts[s][1]
+        assert "wheel: 1x, 2x, 3x" in p.verdict.sentence(s)
+
+
+def test_a_machines_shaft_lines_are_the_shafts_and_a_stricter_false_alarm_names_fewer():
+    """The flat's comb read as a machine's record (``rotor="shaft"``, what a speed given as
+    ``--rpm`` or ``--shaft-hz`` makes): the same verdict, its lines named the shaft's and no
+    railway word in the sentence.  ``Criterion.shaft_p_fa`` moves the verdict the way it should:
+    a stricter false-alarm probability names a subset of the orders, and at 1e-30 none, so the
+    rule falls from ``wheel lines only`` to ``no fault line``."""
+    from axlebox.bearing.diagnostics.criterion import decide
+    f_w = shaft_hz(40.0)
+    rng = np.random.default_rng(3)
+    n = int(T * FS)
+    hit = flat_train(n, f_w, rng)
+    left = 6.0 * hit + 0.5 * syn.wheel_rail_noise(n, FS, rng)
+    right = 10.0 * hit + 0.5 * syn.wheel_rail_noise(n, FS, rng)
+    p = analyse_pair(left, right, FS, f_w, DTRB, BORE)
+    assert p.verdict.rule == "wheel lines only" and p.verdict.evidence.rotor == "wheel"
+    assert "wheel: 1x, 2x, 3x" in p.verdict.sentence("left")
+    m = decide(p.left, p.right, p.lag, p.criterion, list(p.evidence), rotor="shaft")
+    assert m.words == p.verdict.words and m.rule == "shaft lines only"
+    for s in ("left", "right"):
+        assert "shaft: 1x, 2x, 3x" in m.sentence(s) and "wheel" not in m.sentence(s)
+    strict = analyse_pair(left, right, FS, f_w, DTRB, BORE, Criterion(shaft_p_fa=1e-12))
+    for s in ("left", "right"):
+        for k in ("wheel_env", "wheel_spec"):
+            assert set(getattr(getattr(strict, s), k)) <= set(getattr(getattr(p, s), k))
+    none = analyse_pair(left, right, FS, f_w, DTRB, BORE, Criterion(shaft_p_fa=1e-30))
+    assert not none.verdict.evidence.shaft_lines and none.verdict.rule == "no fault line"
+    assert none.verdict.words == p.verdict.words == {"left": "healthy", "right": "healthy"}
+    assert none.to_dict()["criterion"]["shaft_p_fa"] == 1e-30
 
 
 def test_a_flat_beside_a_bearing_defect_leaves_the_defect_side_real():
@@ -63,9 +95,9 @@ def test_a_flat_beside_a_bearing_defect_leaves_the_defect_side_real():
     right, left = syn.coaxial_pair(T, FS, DTRB.BPFO * f_w, rng, amplitude=2.0, f_res=2500.0)
     hit = flat_train(n, f_w, rng)
     p = analyse_pair(left + 1.0 * hit, right + 1.5 * hit, FS, f_w, DTRB, BORE)
-    assert (p.verdicts["right"][0], p.verdicts["left"][0]) == ("real fault", "pseudo-fault")
+    assert (p.verdict.words["right"], p.verdict.words["left"]) == ("real fault", "pseudo-fault")
     assert 1 in p.right.wheel_env or 1 in p.left.wheel_env
-    assert "wheel:" in p.verdicts["right"][1] or "wheel:" in p.verdicts["left"][1]
+    assert "wheel:" in p.verdict.sentence("right") or "wheel:" in p.verdict.sentence("left")
 
 
 def test_a_polygons_line_is_found_at_its_order():
@@ -101,6 +133,8 @@ def test_noise_alone_names_no_wheel_line():
 def test_the_text_names_the_orders():
     assert wheel.text((1, 2, 3), (20,)) == "1x, 2x, 3x in the envelope; 20x in the spectrum"
     assert wheel.text((), ()) == ""
+    assert ShaftOrders((1, 2, 3), (20,)).text() == "1x, 2x, 3x in the envelope; 20x in the spectrum"
+    assert ShaftOrders().text() == "" and not ShaftOrders() and ShaftOrders((), (20,))
 
 
 def test_a_hard_flat_is_blanked_and_the_copy_read_between_its_strikes():
@@ -108,10 +142,10 @@ def test_a_hard_flat_is_blanked_and_the_copy_read_between_its_strikes():
     at 80 km/h on ballasted track: 65-93 m/s^2 against 5-8; here 60 and 100 times the noise)
     swamps both envelopes: read as it comes, the pair names the healthy side real, the worst
     error.  The strikes, locked to the wheel's turn, stand out of the turn-folded envelope (ratio
-    over GATE_RATIO) and are blanked on both channels: right real, left pseudo, as without the
-    flat.  Without the flat nothing is blanked (the bearing's impulses are not locked to the
-    turn)."""
-    from axlebox.bearing.diagnostics.gate import GATE_RATIO, MAX_BLANK, wheel_gate
+    over ``Criterion.gate_ratio``) and are blanked on both channels: right real, left pseudo, as
+    without the flat.  Without the flat nothing is blanked (the bearing's impulses are not locked
+    to the turn)."""
+    from axlebox.bearing.diagnostics.gate import MAX_BLANK, wheel_gate
     f_w = shaft_hz(80.0)
     rng = np.random.default_rng(5)
     n = int(T * FS)
@@ -120,10 +154,14 @@ def test_a_hard_flat_is_blanked_and_the_copy_read_between_its_strikes():
     hit = flat_train(n, f_w, rng)
     L, R = left + 60.0 * hit, right + 100.0 * hit
     g = wheel_gate(L, R, FS, f_w)
-    assert g is not None and g.ratio > GATE_RATIO and 1 - MAX_BLANK - 0.01 < g.kept < 0.95
+    assert g is not None and g.ratio > Criterion.gate_ratio and 1 - MAX_BLANK - 0.01 < g.kept < 0.95
     p = analyse_pair(L, R, FS, f_w, DTRB, BORE)
-    assert (p.verdicts["right"][0], p.verdicts["left"][0]) == ("real fault", "pseudo-fault")
-    assert p.gate is not None and "strikes once a turn blanked" in p.verdicts["left"][1]
+    assert (p.verdict.words["right"], p.verdict.words["left"]) == ("real fault", "pseudo-fault")
+    assert p.gate is not None and "strikes once a turn blanked" in p.verdict.sentence("left")
     assert 1 in p.right.wheel_env                       # named from the record as it came
     off = analyse_pair(L, R, FS, f_w, DTRB, BORE, gate=False)
-    assert off.verdicts["left"][0] == "real fault"      # what the blanking is for
+    assert off.verdict.words["left"] == "real fault"      # what the blanking is for
+    # Criterion.gate_ratio over the fold's measured ratio: nothing blanked, the verdict as off's
+    high = analyse_pair(L, R, FS, f_w, DTRB, BORE, Criterion(gate_ratio=1.01 * g.ratio))
+    assert high.gate is None and high.verdict.words == off.verdict.words
+    assert high.to_dict()["criterion"]["gate_ratio"] == 1.01 * g.ratio

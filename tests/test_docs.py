@@ -59,14 +59,16 @@ def test_the_gallery_ran_at_build_time(site):
 
 
 def test_the_references_are_generated_from_the_code(site):
-    from axlebox.mbs.config import SCHEMA
+    import dataclasses
+
+    from axlebox.mbs.config import SECTIONS
     from axlebox.pipelines.cli import parser
     _, out, src = site
     config = (src / "docs" / "reference" / "config.md").read_text()
-    for sec, fields in SCHEMA.items():
+    for sec, cls in SECTIONS.items():
         assert f"## [{sec}]" in config, sec
-        for key in fields:
-            assert f"`{key}`" in config, f"{sec}.{key}"
+        for f in dataclasses.fields(cls):
+            assert f"`{f.name}`" in config, f"{sec}.{f.name}"
     cli = (src / "docs" / "reference" / "cli.md").read_text()
     sub = next(a for a in parser()._actions if hasattr(a, "choices") and isinstance(a.choices, dict))
     for name in sub.choices:

@@ -157,9 +157,9 @@ def test_the_validation_car_runs_on_quasi_dynamic_bearings():
     from axlebox.pipelines import simulate as psim
     over = {"bearing": {"model": "quasi-dynamic"}, "coupling": {"exchange_dt": 0.0},
             "integrator": {"method": "leapfrog", "dt": 5e-5, "output_rate_hz": 20000.0}}
-    cfg, _ = psim.load_config(configs.path("validation_48kmh"), 0.15, over)
+    cfg = psim.load_config(configs.path("validation_48kmh"), 0.15, over)
     model, y0 = psim.build_model(cfg, log=lambda *_: None)
-    run = integrate.simulate(model, 0.15, psim.settings(cfg), y0=y0)
+    run = integrate.simulate(model, 0.15, cfg.settings(), y0=y0)
     assert run.ok, run.message
     late = run.time > 0.05
     Fz_o = run.bearings[late, :, 1, 2].mean(axis=0)

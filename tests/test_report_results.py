@@ -45,7 +45,9 @@ def write_case(folder, speed, width, seed):
     bpfo = orders(BearingParams()).BPFO * shaft_hz(speed)
     amp = (width / 5.0) * (0.5 + speed / 96.0)
     left, right = coaxial_pair(4.0, FS, bpfo, rng, amplitude=amp, noise=0.25, delay_s=DELAY)
-    cfg = f"[run]\nspeed_kmh = {speed}\n[wheelset]\nr0 = 0.42\n"
+    # the axle-boxes on the DTRB (the defects' bearings) at a step it takes: a config a run accepts
+    cfg = f"[run]\nspeed_kmh = {speed}\n[wheelset]\nr0 = 0.42\n[joint]\nmodel = \"bearing\"\n" \
+          "[integrator]\ndt = 1e-5\n"
     if width:
         cfg += f"[[defects]]\nW = {width * 1e-3}\nrow = 2\nside = \"L\"\n"
     return write_pair_result(folder / f"v{speed:g}_w{width:g}.h5", left, right, cfg, FS, seed,

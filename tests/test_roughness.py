@@ -76,7 +76,7 @@ def test_the_element_reads_a_periodic_record_by_cubic_hermite_as_scipy_does():
 
 @pytest.fixture(scope="module")
 def car():
-    cfg, _ = vconfig.load(configs.path("vehicle"))
+    cfg = vconfig.load(configs.path("vehicle"))
     model, y0 = psim.build_model(cfg, log=lambda *_: None)
     return cfg, model, y0
 
@@ -113,7 +113,7 @@ def test_a_wheels_roughness_acts_as_its_rail_lifted_as_much(car):
 
 def test_the_config_gives_every_wheel_its_own_record(car):
     cfg, model, _ = car
-    cfg = {**cfg, "track": {**cfg["track"], "wheel_roughness": "composite"}}
+    cfg = cfg.replace(track={"wheel_roughness": "composite"})
     names = model.wheel_names
     recs = psim.wheel_records(cfg, names)
     assert set(recs) == set(names)
@@ -132,7 +132,7 @@ def test_the_config_gives_every_wheel_its_own_record(car):
 
 @pytest.mark.parametrize("fields, match", [
     ({"wheel_roughness": "steel"}, r"track.wheel_roughness = 'steel' is not allowed: expected one of "
-                                   r"\['none', 'cast-iron', 'composite', 'disc'\]"),
+                                   r"none, cast-iron, composite, disc"),
     ({"rail_roughness": "network", "irregularity": False},
      r"track.rail_roughness = 'network' is not allowed with track.irregularity = false"),
     ({"roughness_lambda_min": 0.5}, r"track.roughness_lambda_min = 0.5 is not allowed"),

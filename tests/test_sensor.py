@@ -1,12 +1,15 @@
 """The accelerometer and acquisition chain (pipelines/sensor.py) against the closed forms of its
 stages, and what it does to signals: in band untouched and on time, beyond fs/2 gone."""
+import dataclasses
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
 from axlebox.mbs import config as vconfig
 from axlebox.pipelines import sensor
 
-S = vconfig.defaults()["sensors"]
+S = vconfig.Sensors()
 
 
 def test_mounted_resonance_and_high_pass_are_the_closed_forms():
@@ -34,7 +37,7 @@ def test_in_band_tone_is_kept_on_time_and_an_out_of_band_tone_does_not_alias():
     tone = np.sin(2 * np.pi * 1000.0 * t)
     y = sensor.measure(np.c_[tone, np.sin(2 * np.pi * 7000.0 * t)], fs_in, S)
     mid = slice(500, -500)                                     # the filters' edge transients
-    expect = np.abs(sensor.response(1000.0, S["resonance_hz"], S["resonance_q"], S["highpass_hz"]))
+    expect = np.abs(sensor.response(1000.0, S.resonance_hz, S.resonance_q, S.highpass_hz))
     ref = expect * np.sin(2 * np.pi * 1000.0 * t[::4])
     assert np.abs(y[mid, 0] - ref[mid]).max() < 2e-3          # gain and timing (no group delay)
     # 7 kHz would alias to 3 kHz at 10 kHz sampling; the chain leaves a 1e-4 trace at most
@@ -56,10 +59,11 @@ def test_decimation_keeps_the_full_convolutions_samples_and_nothing_else():
     alive by it (a 60 s run's eleven sensors held 760 MB that way)."""
     fs_in = 50e3
     a = np.random.default_rng(1).standard_normal((4001, 2))
-    s = {**S, "resonance_hz": 1e16, "highpass_hz": 0.0}   # stages 1-2 out: gain 1 - 1e-13
+    # stages 1-2 out (gain 1 - 1e-13): a resonance beyond what a config allows
+    s = SimpleNamespace(**{**dataclasses.asdict(S), "resonance_hz": 1e16, "highpass_hz": 0.0})
     y = sensor.measure(a, fs_in, s)
-    h = sensor.antialias(fs_in, s["fs_hz"], s["passband"])
-    d, k = (h.size - 1) // 2, int(fs_in / s["fs_hz"])
+    h = sensor.antialias(fs_in, s.fs_hz, s.passband)
+    d, k = (h.size - 1) // 2, int(fs_in / s.fs_hz)
     ref = np.stack([np.convolve(a[:, j], h)[d:d + a.shape[0]][::k] for j in range(2)], axis=1)
     assert y.shape == ref.shape
     assert np.abs(y - ref).max() < 1e-12

@@ -4,6 +4,8 @@ Outside references: the FRA PSD formulas and class table as given in
 ../shared/REFERENCE_DATA.md (Hamid et al., FRA DOT/FRA/ORD-83/03.1, 1983, in the k = 0.25 form),
 and the ISO 3095:2013 Figure 2 rail roughness limit (= EN 15610:2009 Annex B.9.2).
 """
+import dataclasses
+
 import numpy as np
 import pytest
 from scipy import integrate, signal
@@ -135,9 +137,10 @@ def test_following_wheelsets_see_the_track_delayed(record):
 
 def test_roughness_is_off_by_default_and_leaves_the_geometry_alone():
     assert not IrregularityParams().roughness
-    p = IrregularityParams(length=100.0, lambda_max=50.0, seed=5, ds=1e-3)
+    # a 1 mm grid: 4 points on a 1 cm shortest roughness wavelength
+    p = IrregularityParams(length=100.0, lambda_max=50.0, seed=5, ds=1e-3, roughness_lambda_min=0.01)
     plain = generate(p)
-    rough = generate(IrregularityParams(length=100.0, lambda_max=50.0, seed=5, ds=1e-3, roughness=True))
+    rough = generate(dataclasses.replace(p, roughness=True))
     assert "roughness_L" not in plain.values
     # one random stream per component: on the same grid the geometry is unchanged by roughness
     for k in track.KINDS:

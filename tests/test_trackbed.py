@@ -6,10 +6,12 @@ import numpy as np
 import pytest
 
 from axlebox.mbs import trackbed
+from axlebox.mbs.config import Track
 
 ZHAI = dict(rail_mass=60.64, rail_EI=6.624e6, sleeper_spacing=0.6, pad_k=6.5e7, pad_c=7.5e4,
             sleeper_mass=125.5, ballast_mass=531.4, ballast_k=1.3775e8, ballast_c=5.88e4,
             subgrade_k=7.75e7, subgrade_c=3.115e4)
+SEATS = Track(model="ballasted", **ZHAI)       # the config's [track] with these seats
 
 
 def test_the_lumped_track_keeps_the_beam_on_elastic_foundation_stiffness():
@@ -17,14 +19,14 @@ def test_the_lumped_track_keeps_the_beam_on_elastic_foundation_stiffness():
     beta) (checked by quadrature), and the lumped chain's static stiffness is Hetenyi's 2 k_f /
     beta to rounding; with these seats 81 MN/m, 0.86 mm under a 70 kN wheel (ballasted track
     under a metro wheel deflects 0.5-1.5 mm)."""
-    m = trackbed.lumped(ZHAI)
+    m = trackbed.lumped(SEATS)
     x = np.linspace(0.0, 40.0 / m.beta, 400001)
     w = np.exp(-m.beta * x) * (np.cos(m.beta * x) + np.sin(m.beta * x))
     assert 2 * np.trapezoid(w * w, x) == pytest.approx(m.L, rel=1e-6)
     wpp = 2 * m.beta ** 2 * np.exp(-m.beta * x) * (np.sin(m.beta * x) - np.cos(m.beta * x))
     assert ZHAI["rail_EI"] * 2 * np.trapezoid(wpp * wpp, x) == pytest.approx(m.k_bend, rel=1e-5)
     K = trackbed.static_stiffness(m)
-    assert K == pytest.approx(trackbed.winkler_stiffness(ZHAI), rel=1e-12)
+    assert K == pytest.approx(trackbed.winkler_stiffness(SEATS), rel=1e-12)
     assert K == pytest.approx(81.3e6, rel=1e-3)
     assert m.m_rail == pytest.approx(ZHAI["rail_mass"] * 1.5 / m.beta, rel=1e-12)
 
@@ -38,16 +40,12 @@ def ballasted_car():
     from axlebox.mbs import integrate
     from axlebox.mbs.kernel_wheels import G_RAMP
     from axlebox.pipelines import simulate as psim
-    base, _ = vconfig.load(configs.path("vehicle"))
-    user = {sec: dict(v) for sec, v in base.items() if isinstance(v, dict) and sec != "bearing"}
-    user["run"]["speed_kmh"] = 40.0
-    user["track"]["irregularity"] = False
-    user["track"]["model"] = "ballasted"
-    user["wheel_defects"] = [{"wheelset": 2, "side": "R", "kind": "flat", "length": 0.04}]
-    cfg = vconfig.validate(user)
+    cfg = vconfig.load(configs.path("vehicle")).replace(
+        run={"speed_kmh": 40.0}, track={"irregularity": False, "model": "ballasted"},
+        wheel_defects=[{"wheelset": 2, "side": "R", "kind": "flat", "length": 0.04}])
     model, y0 = psim.build_model(cfg, log=lambda *_: None)
     model.S.glob[G_RAMP] = 0.02
-    run = integrate.simulate(model, 0.4, psim.settings(cfg), y0=y0)
+    run = integrate.simulate(model, 0.4, cfg.settings(), y0=y0)
     return cfg, model, y0, run
 
 
@@ -57,11 +55,11 @@ def test_the_car_stands_on_the_track_as_the_beam_theory_says(ballasted_car):
     tolerance)."""
     from axlebox.mbs.wheelrail import element_kernel as ek
     cfg, model, y0, run = ballasted_car
-    K = trackbed.static_stiffness(trackbed.lumped(cfg["track"]))
+    K = trackbed.static_stiffness(trackbed.lumped(cfg.track))
     for w, name in enumerate(model.wheel_names):
         z = model.body_state(model.system.index(f"rail_{name}"), y0)["r"][2]
         Q = run.wheels[0, w, ek.OUT_F + 2]
-        assert Q > 0.5 * 9.81 * cfg["carbody"]["mass"] / 8
+        assert Q > 0.5 * 9.81 * cfg.carbody.mass / 8
         assert z == pytest.approx(-Q / K, rel=1e-3), name
 
 

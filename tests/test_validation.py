@@ -123,7 +123,7 @@ def test_the_demo_concludes_as_the_paper(run):
     from axlebox.pipelines.diagnose import analyse_file
     path, _, _, _ = run
     _, _, pair = analyse_file(path, criterion=Criterion(mode="relative"))
-    assert (pair.verdicts["right"][0], pair.verdicts["left"][0]) == ("real fault", "pseudo-fault")
+    assert (pair.verdict.words["right"], pair.verdict.words["left"]) == ("real fault", "pseudo-fault")
     assert pair.lag.leading == "b" and 0.5e-3 < pair.lag.lag_s < 5e-3, pair.lag
     lines = conclusion(pair)
     assert lines[0].startswith("defect side ws2_R: real fault; healthy side ws2_L: pseudo-fault")

@@ -20,7 +20,7 @@ G = 9.81
 def car():
     """The shipped config (front bogie flexible, coarse reduced bodies built into the test
     cache), in equilibrium on the track as it lies at t = 0."""
-    cfg, text = vconfig.load(configs.path("vehicle"))
+    cfg = vconfig.load(configs.path("vehicle"))
     model, y0 = psim.build_model(cfg, log=lambda *_: None)
     return cfg, model, y0
 
@@ -57,7 +57,7 @@ def test_car_at_rest_carries_its_weight_and_the_gearbox_offset(car):
 def run48(car):
     cfg, model, y0 = car
     T = 5.0 if full_size() else 1.5
-    s = psim.settings(cfg)
+    s = cfg.settings()
     return T, model, integrate.simulate(model, T, s, y0=y0)
 
 

@@ -71,17 +71,14 @@ def car_run():
     from axlebox.mbs import integrate
     from axlebox.mbs.kernel_wheels import G_RAMP
     from axlebox.pipelines import simulate as psim
-    base, _ = vconfig.load(configs.path("vehicle"))
-    user = {sec: dict(v) for sec, v in base.items() if isinstance(v, dict) and sec != "bearing"}
-    user["run"]["speed_kmh"] = 40.0
-    user["track"]["irregularity"] = False
-    user["wheel_defects"] = [{"wheelset": 2, "side": "R", "kind": "flat", "length": 0.04},
-                             {"wheelset": 3, "side": "L", "kind": "polygon", "orders": [20],
-                              "amplitudes_um": [50.0]}]
-    cfg = vconfig.validate(user)
+    cfg = vconfig.load(configs.path("vehicle")).replace(
+        run={"speed_kmh": 40.0}, track={"irregularity": False},
+        wheel_defects=[{"wheelset": 2, "side": "R", "kind": "flat", "length": 0.04},
+                       {"wheelset": 3, "side": "L", "kind": "polygon", "orders": [20],
+                        "amplitudes_um": [50.0]}])
     model, y0 = psim.build_model(cfg, log=lambda *_: None)
     model.S.glob[G_RAMP] = 0.02
-    run = integrate.simulate(model, 1.0, psim.settings(cfg), y0=y0)
+    run = integrate.simulate(model, 1.0, cfg.settings(), y0=y0)
     return cfg, model, run
 
 
@@ -103,7 +100,7 @@ def test_a_flat_lifts_the_wheel_off_the_rail_and_strikes_once_a_turn(car_run):
     assert N[late].max() > 2 * static                    # and regained with an impact
     # each pass of the flat: the wheel leaves the rail, strikes, bounces for some milliseconds
     # (rigid rails: no pad to take it) and settles within half a turn; the passes a turn apart
-    turn = 2 * math.pi * cfg["wheelset"]["r0"] / (cfg["run"]["speed_kmh"] / 3.6)
+    turn = 2 * math.pi * cfg.wheelset.r0 / (cfg.run.speed_kmh / 3.6)
     lost = t[late & (N == 0.0)]
     starts = lost[np.r_[True, np.diff(lost) > 0.5 * turn]]
     assert starts.size >= 3
@@ -125,7 +122,7 @@ def test_a_polygon_shakes_its_wheel_at_its_order_times_the_wheel_rate(car_run):
     f, P = periodogram(N - N.mean(), fs)
     band = f > 20.0
     peak = f[band][np.argmax(P[band])]
-    want = 20 * (cfg["run"]["speed_kmh"] / 3.6) / (2 * math.pi * cfg["wheelset"]["r0"])
+    want = 20 * (cfg.run.speed_kmh / 3.6) / (2 * math.pi * cfg.wheelset.r0)
     assert abs(peak - want) <= f[1] - f[0]
 
 
@@ -143,10 +140,10 @@ def test_the_criterion_names_the_flats_lines_and_calls_no_bearing_fault(car_run)
     fs = 1.0 / np.median(np.diff(run.time))       # the run's output, the field system's 10 kHz
     x = {s: run.sensors[f"ws2_{s}"][:, 2] for s in "LR"}
     k0 = int(0.1 * fs)
-    p = analyse_pair(x["L"][k0:], x["R"][k0:], fs, shaft_hz(40.0, cfg["wheelset"]["r0"]),
+    p = analyse_pair(x["L"][k0:], x["R"][k0:], fs, shaft_hz(40.0, cfg.wheelset.r0),
                      orders(BearingParams()), 0.13, lines=("BPFO", "BPFI", "2BSF"))
     assert not p.left.detected and not p.right.detected
-    assert p.verdicts["left"][0] == p.verdicts["right"][0] == "healthy"
+    assert p.verdict.words["left"] == p.verdict.words["right"] == "healthy"
     assert p.verdict.rule == "no fault line"
 
 

@@ -15,11 +15,16 @@ from axlebox.mbs.wheelrail.kalker import creep_coefficients
 from axlebox.mbs.wheelrail.standard import s1002, uic60
 
 V = 20.0
+# the element as these tests were written for it, not the car config's defaults: exact tables
+# (no smoothing), FASTSIM's second-order slip step on a 16 x 16 grid, the LM wheelset's
+# back-to-back
+EXACT = dict(nx=16, ny=16, update="rotate", smooth_y=0.0)
+LM = dict(back_to_back=1.353)
 
 
 @pytest.fixture(scope="module")
 def tables():
-    return el.build_tables(s1002(), uic60(), TrackLayout(), el.WheelRailParams())
+    return el.build_tables(s1002(), uic60(), TrackLayout(**LM), el.WheelRailParams(**EXACT))
 
 
 def force(T, side, c, e, v, w, Vr=V, z_rail=0.0, y_rail=0.0, dz=0.0, dy=0.0):
@@ -124,7 +129,7 @@ def test_small_creepage_is_kalker_linear(tables, side, law, rel):
     above the linear law (tangential.py) and |F| / mu N = beta is under 1 % here: 2 %.  SHE
     departs by beta/3 < 0.3 %: 0.5 %.  The linear law is exact to the rounding of the
     cancelled spin (1e-14 1/m, 1e-10 N): 1e-9."""
-    T = tables.with_params(el.WheelRailParams(law=law))
+    T = tables.with_params(el.WheelRailParams(**EXACT, law=law))
     i = len(T.u) // 2 + 40
     col, c, e = node(T, side, i)
     c[2] -= 60e-6
@@ -175,7 +180,7 @@ GROUPS = {"F": slice(0, 3), "M": slice(3, 6), "N": ek.OUT_N, "Fx": ek.OUT_FX, "F
 def test_kernel_equals_numpy_reference(tables, law):
     """200 random states per law: every out slot within 1e-9 relative (forces relative to |F|,
     moments to |M|; kinematic slots to themselves plus 1e-12)."""
-    T = tables.with_params(el.WheelRailParams(law=law))
+    T = tables.with_params(el.WheelRailParams(**EXACT, law=law))
     worst, counts = 0.0, np.zeros(3, int)
     for st in random_states(T, 200, seed=3):
         k = force(T, *st)
@@ -304,9 +309,9 @@ def test_penetration_under_extra_roll_matches_the_profiles(tables):
     wheel-centre index misses by 43 um on the tread (|u| <= 6 mm) and 340 um at the flange,
     because the extra roll moves the tread 0.84 mm against the centre and S1002's contact
     point jumps across the tread (why the kernel looks up by the tread)."""
-    layout = TrackLayout()
+    layout = TrackLayout(**LM)
     geo = _sides(s1002(), uic60(), layout, None, None, 2e-5)
-    centre = el.build_tables(s1002(), uic60(), layout, el.WheelRailParams(index="centre"))
+    centre = el.build_tables(s1002(), uic60(), layout, el.WheelRailParams(**EXACT, index="centre"))
     r0, l0 = layout.r0, geo[0].y_wheel
     errs = {"tread": [], "centre": []}
     for T, name in ((tables, "tread"), (centre, "centre")):
@@ -332,7 +337,7 @@ def test_penetration_under_extra_roll_matches_the_profiles(tables):
 def test_tables_are_cached_on_disk(tables):
     """A second build (memory cache cleared) reads the same arrays back from the disk cache."""
     el._MEMO.clear()
-    again = el.build_tables(s1002(), uic60(), TrackLayout(), el.WheelRailParams(mu=0.2))
+    again = el.build_tables(s1002(), uic60(), TrackLayout(**LM), el.WheelRailParams(**EXACT, mu=0.2))
     assert again.key == tables.key
     np.testing.assert_array_equal(again.tab, tables.tab)
     assert again.par[ek.P_MU] == 0.2 and again.par[ek.P_U0] == tables.par[ek.P_U0]
@@ -354,7 +359,7 @@ def test_bad_build_inputs_are_refused(tables):
     with pytest.raises(ParameterError, match="params ="):
         el.build_tables(s1002(), uic60(), params={"mu": 0.3})
     with pytest.raises(ParameterError, match=r"WheelRailParams\.E = "):
-        tables.with_params(el.WheelRailParams(E=2.0e11))
+        tables.with_params(el.WheelRailParams(**EXACT, E=2.0e11))
 
 
 def test_smoothing_spreads_the_tread_contact_jump_and_keeps_the_smooth_tread():
@@ -367,8 +372,8 @@ def test_smoothing_spreads_the_tread_contact_jump_and_keeps_the_smooth_tread():
     where r'' is large, the smoothing moves r by up to 0.1 mm 5 mm from the jumps: the price of
     one width for the whole profile.)"""
     layout = TrackLayout(back_to_back=1.360)
-    raw = el.build_tables(s1002(), uic60(), layout, el.WheelRailParams())
-    sm = el.build_tables(s1002(), uic60(), layout, el.WheelRailParams(smooth_y=1e-3))
+    raw = el.build_tables(s1002(), uic60(), layout, el.WheelRailParams(**EXACT))
+    sm = el.build_tables(s1002(), uic60(), layout, el.WheelRailParams(**{**EXACT, "smooth_y": 1e-3}))
     pen = {k: (60e3 / T.column(ek.COL_KH, 0)) ** (2.0 / 3.0) for k, T in (("raw", raw), ("sm", sm))}
     assert np.abs(np.diff(pen["raw"])).max() > 15e-6
     assert np.abs(np.diff(pen["sm"])).max() < 0.4e-6

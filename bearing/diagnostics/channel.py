@@ -34,6 +34,7 @@ from . import faultlines, spm
 from .envelope import _signal, check_fs, envelope_spectrum, select_band
 from .guided import guided_band
 from .indicators import time_indicators
+from .criterion import Criterion
 from .spectral import check_band, fc_vf
 from .wheel import spectrum_orders, wheel_orders
 
@@ -65,7 +66,8 @@ class ChannelResult:
     ``env_f``/``env_A``: the envelope spectrum (for figures; not in :meth:`to_dict`);
     ``wheel_env``/``wheel_spec``: the whole shaft orders standing over their floors in the
     envelope spectrum and in the acceleration's own spectrum (:mod:`.wheel`: a wheel flat's
-    comb, a polygon's line; never a bearing's)."""
+    comb, a polygon's line; never a bearing's), named at the false-alarm probability
+    ``shaft_p_fa`` a record."""
 
     fs: float
     n_samples: int
@@ -95,6 +97,7 @@ class ChannelResult:
     nperseg: int | None = None
     wheel_env: tuple[int, ...] = ()
     wheel_spec: tuple[int, ...] = ()
+    shaft_p_fa: float = Criterion.shaft_p_fa
 
     @property
     def duration_s(self) -> float:
@@ -114,7 +117,7 @@ class ChannelResult:
         d = {k: getattr(self, k) for k in ("fs", "n_samples", "shaft_hz", "D", "rms", "peak",
                                            "kurtosis", "crest", "FC", "VF", "MSF", "SV", "spm_db",
                                            "spm_class", "band_source", "p_fa", "fault_hz",
-                                           "carried_hz", "wheel_env", "wheel_spec")}
+                                           "carried_hz", "wheel_env", "wheel_spec", "shaft_p_fa")}
         d["duration_s"] = self.duration_s
         d["band"] = list(self.band)
         d["vf_band"] = None if self.vf_band is None else list(self.vf_band)
@@ -164,7 +167,8 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
             p_fa: float = 1e-3, n_required: int = 2, nperseg: int | None = None,
             spm_periods: float = 4.0, spm_segments: int = 16, max_imf: int = 4,
             guide: str | None = None, other: FaultOrders | None = None,
-            vf_band: tuple[float, float] | None = None, keep=None) -> ChannelResult:
+            vf_band: tuple[float, float] | None = None, keep=None,
+            shaft_p_fa: float = Criterion.shaft_p_fa) -> ChannelResult:
     """Indicators of the 1-D acceleration ``x`` (m/s^2) sampled at ``fs`` Hz, on a bearing
     turning at ``shaft_hz`` with fault ``orders`` (multiples of the shaft frequency) and bore
     ``D`` (m).  ``band``: envelope band (Hz), default by spectral kurtosis.  ``guide``: instead,
@@ -173,7 +177,7 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
     are searched too (module docstring).  ``nperseg``: Welch segment of the PSD for FC/VF;
     ``vf_band``: their band ``(lo, hi)`` Hz (:func:`.spectral.fc_vf`), default the whole.  The
     rest go to :func:`.faultlines.detect` and :func:`.spm.shock_value` (``keep``: where the
-    record was not blanked, :mod:`.gate`)."""
+    record was not blanked, :mod:`.gate`); ``shaft_p_fa`` to :mod:`.wheel` (the criterion's)."""
     x = _signal(x)
     fs = check_fs(fs)
     for name, v in (("shaft_hz", shaft_hz), ("D", D)):
@@ -192,7 +196,7 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
                              f" line at {f_lo:g} Hz needs at least {2.0 / f_lo:g} s")
     freqs = dict(fault_hz=fault_hz, carried_hz=carried_hz, sideband_hz=sideband_hz)
     env = _band_and_lines(x, fs, shaft_hz, freqs, band, guide, n_harmonics, slip,
-                          threshold_db, p_fa, n_required)
+                          threshold_db, p_fa, n_required, shaft_p_fa)
     t = time_indicators(x)
     vf_band = check_band(vf_band, fs)
     FC, VF, MSF = fc_vf(x, fs, nperseg, vf_band)
@@ -203,8 +207,8 @@ def analyse(x, fs: float, shaft_hz: float, orders: FaultOrders, D: float,
                          rms=t["rms"], peak=t["peak"], kurtosis=t["kurtosis"], crest=t["crest"],
                          FC=FC, VF=VF, MSF=MSF, SV=SV, spm_db=level,
                          spm_class=spm.classify(level), **freqs, **env,
-                         vf_band=vf_band, nperseg=nperseg,
-                         wheel_spec=spectrum_orders(x, fs, shaft_hz))
+                         vf_band=vf_band, nperseg=nperseg, shaft_p_fa=shaft_p_fa,
+                         wheel_spec=spectrum_orders(x, fs, shaft_hz, p_fa=shaft_p_fa))
 
 
 LINE_OPTIONS = ("n_harmonics", "slip", "threshold_db", "p_fa", "n_required")   # of reguide
@@ -217,7 +221,7 @@ def reguide(res: ChannelResult, x, guide: str, *, n_harmonics: int = 3, slip: fl
     the band guided by line ``guide``: the same as ``analyse(x, ..., guide=guide)`` without
     computing again what does not depend on the band (time indicators, FC/VF, SPM)."""
     env = _band_and_lines(_signal(x), res.fs, res.shaft_hz, _freqs(res), None, guide,
-                          n_harmonics, slip, threshold_db, p_fa, n_required)
+                          n_harmonics, slip, threshold_db, p_fa, n_required, res.shaft_p_fa)
     return replace(res, **env)
 
 
@@ -227,7 +231,7 @@ def in_band(res: ChannelResult, x, band: tuple[float, float], *, n_harmonics: in
     """``res`` (of :func:`analyse` on ``x``) with its envelope spectrum and lines redone in the
     given ``band``: the same as ``analyse(x, ..., band=band)`` without the band-free parts."""
     env = _band_and_lines(_signal(x), res.fs, res.shaft_hz, _freqs(res), band, None,
-                          n_harmonics, slip, threshold_db, p_fa, n_required)
+                          n_harmonics, slip, threshold_db, p_fa, n_required, res.shaft_p_fa)
     return replace(res, **env)
 
 
@@ -252,7 +256,7 @@ def _freqs(res: ChannelResult) -> dict:
 
 
 def _band_and_lines(x, fs, shaft_hz, freqs, band, guide, n_harmonics, slip, threshold_db,
-                    p_fa, n_required) -> dict:
+                    p_fa, n_required, shaft_p_fa) -> dict:
     """The band-dependent fields of a :class:`ChannelResult`: the envelope band (given, by
     spectral kurtosis, or guided by line ``guide``, a key of this bearing's lines or ``~`` and
     a carried line's), its spectrum and the fault lines in it."""
@@ -285,5 +289,6 @@ def _band_and_lines(x, fs, shaft_hz, freqs, band, guide, n_harmonics, slip, thre
     return dict(band=(float(band[0]), float(band[1])), band_source=source, p_fa=float(p_fa),
                 lines=lines, carried=carried, env_f=f, env_A=A,
                 wheel_env=wheel_orders(f, A, shaft_hz, faultlines.welch_averages(x.size, seg),
+                                       p_fa=shaft_p_fa,
                                        taken=[k * r.f_found for r in found.values() if r.detected
                                               for k in range(1, int(f[-1] / r.f_found) + 1)]))

@@ -39,16 +39,18 @@ The estimate, for one line seen on both sides (:func:`line_timing`):
   ``1 / sqrt(2 K - 2)`` (ibid.).  The noise beside the line holds some of the line's spread, so
   ``g2_copy`` is biased low and a copy's ``z`` mostly negative: the test errs on the copy's side.
 
-The decision (:class:`Timing`): a harmonic is *usable* when both sides' ``rho`` reach
-``RHO_MIN_DB`` and *significant* when also ``z >= Z_MIN``; the two lines are *independent* when
-a significant harmonic of some pair has ``c <= C_INDEPENDENT``; *partly coherent* when the
+The decision (:meth:`Timing.decide`, with the thresholds of the
+:class:`.criterion.Criterion` that asks): a harmonic is *usable* when both sides' ``rho`` reach
+``rho_min_db`` and *significant* when also ``z >= z_min``; the two lines are *independent* when
+a significant harmonic of some pair has ``c <= c_independent``; *partly coherent* when the
 lowest is under ``C_COPY``; *coherent* otherwise; *inconclusive* when no harmonic is usable (a
 weak line is never shown to be its own: it is then read as a copy, the safe side).
 
 Where the thresholds come from (synthetic families with known answers and the model, never the
-real records; benchmarks/README.md "Copy or source"):
+real records; benchmarks/README.md "Copy or source"); they are fields of
+:class:`.criterion.Criterion`, whose defaults these are:
 
-* ``C_INDEPENDENT = 0.2``: copies of the synthetic family (one source, its copy through a delay
+* ``c_independent = 0.2``: copies of the synthetic family (one source, its copy through a delay
   of 0-5 ms and a path resonance of 300-3000 Hz, transmission 0.05-1, signal to noise 0-20 dB,
   10 s) read ``c`` of 0.98 and over on every usable harmonic of every pair; the coupled car's
   copies, whose path is not quite fixed (the wheelset turns; the healthy side's arrival is the
@@ -57,9 +59,9 @@ real records; benchmarks/README.md "Copy or source"):
   synthetic family 0.000-0.1 (median 0.003), and in the car (its two cages wander against each
   other by a millisecond or so over a second) 0.004-0.09 once the record holds 2.5 s at 40 km/h
   (1.5 s reads 0.39 there: the drift needs seconds to show);
-* ``RHO_MIN_DB = 15``: at 10 dB the car's copies read down to 0.22 on single harmonics in bands
+* ``rho_min_db = 15``: at 10 dB the car's copies read down to 0.22 on single harmonics in bands
   where the defect side's own line barely clears its floor;
-* ``Z_MIN = 5``: with up to five harmonics of a few hundred pairs, a chance dip of a copy's
+* ``z_min = 5``: with up to five harmonics of a few hundred pairs, a chance dip of a copy's
   coherence stays under it;
 * ``C_COPY = 0.8`` only labels the middle ground (partly coherent: a copy through a path that
   changes, or two trains locked together) for the report; it calls nothing.
@@ -80,11 +82,10 @@ from scipy.signal import get_window
 from axlebox._params import ParameterError
 
 from . import faultlines
+from .criterion import Criterion
 from .envelope import _signal, check_fs, envelope
 
-RHO_MIN_DB = 15.0       # a harmonic is usable when both sides' line is 30x its noise
-Z_MIN = 5.0             # ... and significant when the coherence is 5 sigma under a copy's
-C_INDEPENDENT = 0.2     # coherent fraction at or under which the lines are two trains
+# the thresholds that decide (rho_min_db, z_min, c_independent) are Criterion's fields
 C_COPY = 0.8            # over which (or not significantly under) they are one train (a label)
 NEAR_DB = 3.0           # bands within 3 dB of a side's best for its line are its own bands
 N_PERIODS = 8           # a segment holds at least 8 line periods ...
@@ -109,14 +110,14 @@ class Harmonic:
     c: float
     z: float
 
-    @property
-    def usable(self) -> bool:
-        return min(self.rho_a_db, self.rho_b_db) >= RHO_MIN_DB
+    def is_usable(self, rho_min_db: float = Criterion.rho_min_db) -> bool:
+        """Both sides' line-to-noise ratio at least ``rho_min_db``."""
+        return min(self.rho_a_db, self.rho_b_db) >= rho_min_db
 
-    @property
-    def significant(self) -> bool:
-        """Usable, and its coherence significantly under a copy's."""
-        return self.usable and self.z >= Z_MIN
+    def is_significant(self, rho_min_db: float = Criterion.rho_min_db,
+                       z_min: float = Criterion.z_min) -> bool:
+        """Usable, and its coherence ``z_min`` standard deviations under a copy's."""
+        return self.is_usable(rho_min_db) and self.z >= z_min
 
 
 @dataclass(frozen=True)
@@ -132,42 +133,58 @@ class BandPair:
 class Timing:
     """Whether the line on the two sides is one impulse train (module docstring).  ``line``;
     ``f``: its frequency (Hz); ``K``: equivalent averages; ``pairs``: every pair of the two
-    sides' own bands, the first the pair of their best bands."""
+    sides' own bands, the first the pair of their best bands.  The thresholds of
+    :meth:`decide` and :meth:`coherent_fraction` are the criterion's (default its defaults);
+    :attr:`decision` and :attr:`c_min` are their readings under the defaults."""
 
     line: str
     f: float
     K: float
     pairs: tuple[BandPair, ...]
 
-    def _least(self):
+    def _least(self, rho_min_db: float, z_min: float):
         """``(c, pair, harmonic)`` of the significant harmonic with the lowest ``c``, or None."""
-        sig = [(h.c, p, h) for p in self.pairs for h in p.harmonics if h.significant]
+        sig = [(h.c, p, h) for p in self.pairs for h in p.harmonics
+               if h.is_significant(rho_min_db, z_min)]
         return min(sig, key=lambda t: t[0]) if sig else None
 
-    @property
-    def c_min(self) -> float | None:
+    def coherent_fraction(self, rho_min_db: float = Criterion.rho_min_db,
+                          z_min: float = Criterion.z_min) -> float | None:
         """The lowest coherent fraction of a significant harmonic (None: none is)."""
-        t = self._least()
+        t = self._least(rho_min_db, z_min)
         return None if t is None else float(t[0])
 
-    @property
-    def decision(self) -> str:
-        if not any(h.usable for p in self.pairs for h in p.harmonics):
+    def decide(self, c_independent: float = Criterion.c_independent,
+               rho_min_db: float = Criterion.rho_min_db, z_min: float = Criterion.z_min) -> str:
+        """One of :data:`DECISIONS` under these thresholds (module docstring)."""
+        if not any(h.is_usable(rho_min_db) for p in self.pairs for h in p.harmonics):
             return "inconclusive"
-        c = self.c_min
-        if c is not None and c <= C_INDEPENDENT:
+        c = self.coherent_fraction(rho_min_db, z_min)
+        if c is not None and c <= c_independent:
             return "independent"
         return "partly coherent" if c is not None and c <= C_COPY else "coherent"
 
-    def to_dict(self) -> dict:
-        t = self._least()
-        return {"line": self.line, "f": self.f, "K": self.K, "decision": self.decision,
-                "c_min": self.c_min, "n_pairs": len(self.pairs),
+    @property
+    def c_min(self) -> float | None:
+        """:meth:`coherent_fraction` under the default criterion."""
+        return self.coherent_fraction()
+
+    @property
+    def decision(self) -> str:
+        """:meth:`decide` under the default criterion."""
+        return self.decide()
+
+    def to_dict(self, c_independent: float = Criterion.c_independent,
+                rho_min_db: float = Criterion.rho_min_db, z_min: float = Criterion.z_min) -> dict:
+        t = self._least(rho_min_db, z_min)
+        return {"line": self.line, "f": self.f, "K": self.K,
+                "decision": self.decide(c_independent, rho_min_db, z_min),
+                "c_min": None if t is None else float(t[0]), "n_pairs": len(self.pairs),
                 "best_pair": asdict(self.pairs[0]) if self.pairs else None,
                 "least_coherent": None if t is None else
                 {"band_a": t[1].band_a, "band_b": t[1].band_b, **asdict(t[2])},
-                "thresholds": {"rho_min_db": RHO_MIN_DB, "z_min": Z_MIN,
-                               "c_independent": C_INDEPENDENT, "c_copy": C_COPY,
+                "thresholds": {"rho_min_db": rho_min_db, "z_min": z_min,
+                               "c_independent": c_independent, "c_copy": C_COPY,
                                "near_db": NEAR_DB}}
 
 

@@ -8,14 +8,17 @@ axle-box signals of a wheelset lies in 0.8e4-7.49e4 Hz^2, a pseudo-fault is pres
 side; the side with the larger RMS and SPM (Eq. 17) is the real fault, the other the
 pseudo-fault.  It names the source of one fault seen on both sides; it cannot say whether there
 is a fault, nor whether both bearings have one.  :func:`decide` asks those first, from the fault
-lines' evidence (:class:`.verdict.LineEvidence`, built by :mod:`.pair`):
+lines' evidence (:class:`.verdict.LineEvidence`, built by :mod:`.pair`), read once into a frozen
+:class:`.verdict.Evidence` from which the rule follows:
 
 1. *No line* (rule ``no fault line``): none of ``Criterion.lines`` (BPFO outer ring, BPFI inner
    ring, 2BSF a rolling element with its cage sidebands; :mod:`.faultlines`) is detected on
    either side, for either side's bearing -> both healthy; ``wheel lines only`` where lines at
    whole multiples of the shaft's rate stand there (:mod:`.wheel`: a wheel flat's comb, a
    polygon's line; a fault line found on one is the shaft's, :func:`.faultlines.mask_sidebands`),
-   named in the evidence and the sentence.
+   named in the evidence and the sentence; ``shaft lines only`` on a machine's record (``rotor
+   = "shaft"``: a speed given as ``--rpm`` or ``--shaft-hz``, its rotor's unbalance and
+   misalignment).
 2. *Whose line*.  Each line seen gets its source side(s) (``how`` in the evidence):
 
    * ``bearing order``: where the two sides' bearings differ (the CWRU motor's 6205 and 6203),
@@ -23,7 +26,9 @@ lines' evidence (:class:`.verdict.LineEvidence`, built by :mod:`.pair`):
    * ``one side only``: a line of a bearing type both sides share, seen on one side only (the
      other side was searched again in the band where the line stands highest);
    * seen on both sides, the copy-or-source test (:mod:`.coherence`): two impulse trains
-     (``own timing``: a harmonic whose coherent fraction is ``C_INDEPENDENT``, 0.2, or less)
+     (``own timing``: a harmonic whose line-to-noise ratio reaches ``Criterion.rho_min_db``
+     (15 dB) on both sides, whose coherence lies ``Criterion.z_min`` (5) standard deviations
+     under a copy's and whose coherent fraction is ``Criterion.c_independent`` (0.2) or less)
      are a fault on each side; otherwise one fault and its copy (``coherent``, ``partly coherent``,
      ``inconclusive``: a weak line is never shown to be its own, the safe side).
 
@@ -32,8 +37,8 @@ lines' evidence (:class:`.verdict.LineEvidence`, built by :mod:`.pair`):
    bearing shows its own pass lines faintly (rollers passing the load zone; the model's healthy
    bearings, no-defect runs at 20-80 km/h, reach 13 dB with a detected line, benchmarks/
    README.md "Copy or source"), so a fainter own line beside the other side's clear one is
-   ``second line faint``: the side whose own line stands ``CLEARER_DB`` (3 dB, twice the
-   scatter of a line's SNR read over a median floor of some 40 bins) over the other's is real,
+   ``second line faint``: the side whose own line stands ``Criterion.clearer_db`` (3 dB, twice
+   the scatter of a line's SNR read over a median floor of some 40 bins) over the other's is real,
    the faint one undecided; lines within 3 dB of each other, neither clear, are ``both lines
    faint`` (both undecided): a healthy bearing called faulty is the worst error.
 4. *One owns* (``one side owns the lines``): that side the real fault; the other a pseudo-fault
@@ -53,10 +58,10 @@ lines' evidence (:class:`.verdict.LineEvidence`, built by :mod:`.pair`):
      by 1.1-4.2 ms; :func:`.lag.impulse_lag`: at least five impulses, 90 % of the bootstrap
      agreeing; with ``Criterion.lag = "decide"``) and by where the line rings (``ringing``: the
      side whose line stands higher in at least ``source_ratio`` times as many bands of the grid
-     as the other's, and in at least 3, :func:`.pair.band_votes`: a copy is its source through
-     a path that passes some bands and stops others).  Where both speak and disagree: ``lag
-     and ringing disagree``, both undecided (the lag is ambiguous by whole fault periods; a
-     path resonance can lift a copy over its source in that band);
+     as the other's, and in at least ``ringing_bands`` (3), :func:`.pair.band_votes`: a copy is
+     its source through a path that passes some bands and stops others).  Where both speak and
+     disagree: ``lag and ringing disagree``, both undecided (the lag is ambiguous by whole fault
+     periods; a path resonance can lift a copy over its source in that band);
    * else by the paper's criterion: the VF difference ``m`` against the range, below (``VF below
      the range``) or above (``VF above the range``) -> both undecided; in range, the side where
      every indicator of ``Criterion.compare`` (RMS and SPM) is larger (``RMS and SPM``), unless
@@ -123,8 +128,8 @@ import numpy as np
 
 from axlebox._params import ParameterError
 
-from .spectral import check_band
-from .verdict import SIDES, LineEvidence, Verdict
+from .verdict import (LINES_ONLY, ROTORS, SIDES, Evidence, LagReading, LineEvidence, LineReading,
+                      ShaftOrders, Verdict, VFReading)
 
 VF_RANGE_PAPER = (0.8e4, 7.49e4)        # Hz^2, paper Fig. 14 and conclusion (3)
 VF_METRO = 5.72e4                       # Hz^2, VF of a flat PSD on 0-200 and 300-800 Hz (Fig. 12)
@@ -134,7 +139,6 @@ REL_RANGE_DEFAULT = (round(VF_RANGE_PAPER[0] / VF_METRO, 2), 1.0)
 MODES = ("absolute", "relative")
 LAG_POLICIES = ("decide", "veto", "off")
 SOURCE_RULES = ("ringing", "paper")
-CLEARER_DB = 3.0        # one side's own line this much over the other's: the clearer one is real
 COMPARABLE = ("rms", "spm_db", "peak", "kurtosis", "crest", "SV")
 FAULT_LINES = ("BPFO", "BPFI", "2BSF")
 _LABEL = {"rms": "RMS", "spm_db": "SPM", "peak": "peak", "kurtosis": "kurtosis", "crest": "crest",
@@ -143,18 +147,48 @@ _LABEL = {"rms": "RMS", "spm_db": "SPM", "peak": "peak", "kurtosis": "kurtosis",
 
 @dataclass(frozen=True)
 class Criterion:
-    """Thresholds of the criterion (module docstring).  ``vf_range``: Hz^2, used in absolute
-    mode; ``rel_range``: dimensionless, used in relative mode; ``compare``: ChannelResult fields
-    that must all be larger on the real side; ``lines``: fault lines whose detection counts as a
-    fault; ``lag``: how the lag between the sides enters (one of ``LAG_POLICIES``, module
-    docstring, step 4); ``lag_min_peak``: envelope correlation needed to use a lag read by
-    correlation (one read on the impulses carries its own test); ``source``: how one fault and
-    its copy get their source, ``"ringing"`` (the lag and the bands' votes, then the paper's
-    criterion) or ``"paper"`` (the paper's criterion alone); ``source_ratio``: the votes a side
-    needs over the other's; ``second_db``: how far over its floor each side's own line must
-    stand for faults on both sides (module docstring, steps 3 and 5); ``vf_band``: the band
-    ``(lo, hi)`` Hz over which each side's FC and VF are taken (:func:`.spectral.fc_vf`), None
-    for the record's whole band (the default)."""
+    """Every setting and threshold that decides a verdict (module docstring), each with where it
+    comes from.
+
+    The paper's criterion: ``mode`` (``"absolute"`` or ``"relative"``); ``vf_range``: Hz^2, used
+    in absolute mode (the paper's Fig. 14 and conclusion 3); ``rel_range``: dimensionless, used in
+    relative mode (the paper's lower bound over ``VF_METRO``, module docstring); ``compare``:
+    ChannelResult fields that must all be larger on the real side (the paper: RMS and SPM);
+    ``vf_band``: the band ``(lo, hi)`` Hz over which each side's FC and VF are taken
+    (:func:`.spectral.fc_vf`), None for the record's whole band (the default).
+
+    Which lines count and whose they are: ``lines``: fault lines whose detection counts as a
+    fault; ``c_independent``: the coherent fraction at or under which a line seen on both sides
+    is two impulse trains, a fault on each side (0.2: the synthetic family's copies read 0.98
+    and over, the coupled car's down to 0.34; two faults 0.000-0.1 and in the car 0.004-0.09,
+    :mod:`.coherence` "Where the thresholds come from"); ``rho_min_db``: the line-to-noise ratio
+    both sides' line must reach at a harmonic for that harmonic to count (15 dB: at 10 dB the
+    car's copies read down to 0.22 on single harmonics, ibid.); ``z_min``: how many standard
+    deviations (Fisher transform) a harmonic's coherence must lie under a copy's (5: with up to
+    five harmonics of a few hundred band pairs a copy's chance dip stays under it, ibid.).
+
+    Two own lines (step 3): ``second_db``: how far over its floor each side's own line must
+    stand for faults on both sides (15 dB: the model's healthy bearings' own lines reach 13 dB,
+    benchmarks/README.md "Copy or source"); ``clearer_db``: how far one side's own line must
+    stand over the other's for the clearer one to be real (3 dB: twice the scatter of a line's
+    SNR read over a median floor of some 40 bins).
+
+    The source of a copy (step 5): ``source``: ``"ringing"`` (the lag and the bands' votes, then
+    the paper's criterion) or ``"paper"`` (the paper's criterion alone); ``source_ratio``: the
+    votes a side needs over the other's (2); ``ringing_bands``: the fewest bands a side's votes
+    must reach (3: a path resonance can lift a copy over its source in a band or two; a
+    judgement, not a measurement); ``lag``: how the lag between the sides enters (one of
+    ``LAG_POLICIES``); ``lag_min_peak``: envelope correlation needed to use a lag read by
+    correlation (one read on the impulses carries its own test).
+
+    Read in the analysis (:func:`.pair.analyse_pair`), not again by
+    :meth:`.pair.PairResult.redecide`: ``gate_ratio``: the turn-folded envelope's peak over its
+    median from which a wheel's strikes once a turn are blanked (5: the car's records without a
+    flat and the twelve CWRU records fold to 1.1-1.9, the car's flats to 35-75, :mod:`.gate`);
+    ``shaft_p_fa``: the false-alarm probability, over a record's whole orders, of naming a line
+    at a whole multiple of the shaft's rate (the wheel's or the rotor's; 1e-3: noise alone names
+    one in a record of a thousand, :mod:`.wheel`), which makes a record without a bearing line
+    ``wheel lines only`` rather than ``no fault line``."""
 
     mode: str = "absolute"
     vf_range: tuple[float, float] = VF_RANGE_PAPER
@@ -167,6 +201,13 @@ class Criterion:
     source_ratio: float = 2.0
     second_db: float = 15.0
     vf_band: tuple[float, float] | None = None
+    clearer_db: float = 3.0
+    c_independent: float = 0.2
+    rho_min_db: float = 15.0
+    z_min: float = 5.0
+    ringing_bands: int = 3
+    gate_ratio: float = 5.0
+    shaft_p_fa: float = 1e-3
 
     def __post_init__(self):
         if self.mode not in MODES:
@@ -191,10 +232,19 @@ class Criterion:
         if not 0 <= self.lag_min_peak <= 1:
             raise ParameterError(f"Criterion.lag_min_peak = {self.lag_min_peak!r} is not allowed: "
                                  "expected a correlation in [0, 1]")
-        if not (np.isfinite(self.second_db) and self.second_db >= 0):
-            raise ParameterError(f"Criterion.second_db = {self.second_db!r} is not allowed: "
-                                 "expected a level >= 0 dB")
+        _check(self, "second_db", lambda v: v >= 0, "a level >= 0 dB")
+        _check(self, "clearer_db", lambda v: v >= 0, "a level >= 0 dB")
+        _check(self, "c_independent", lambda v: 0 <= v < 1, "a coherent fraction in [0, 1)")
+        _check(self, "rho_min_db", lambda v: v >= 0, "a level >= 0 dB")
+        _check(self, "z_min", lambda v: v >= 0, "a number of standard deviations >= 0")
+        _check(self, "gate_ratio", lambda v: v > 1, "a ratio > 1 (inf: never blank)", finite=False)
+        _check(self, "shaft_p_fa", lambda v: 0 < v < 1, "a probability in (0, 1)")
+        if isinstance(self.ringing_bands, bool) or not isinstance(self.ringing_bands, (int, np.integer)) \
+                or self.ringing_bands < 1:
+            raise ParameterError(f"Criterion.ringing_bands = {self.ringing_bands!r} is not allowed: "
+                                 "expected a whole number of bands >= 1")
         if self.vf_band is not None:
+            from .spectral import check_band    # here: the command line's parser reads Criterion
             object.__setattr__(self, "vf_band", check_band(self.vf_band, math.inf, "Criterion.vf_band"))
         if self.source not in SOURCE_RULES:
             raise ParameterError(f"Criterion.source = {self.source!r} is not allowed: expected one "
@@ -216,10 +266,34 @@ class Criterion:
     def unit(self) -> str:
         return "Hz^2" if self.mode == "absolute" else "(relative)"
 
+    @property
+    def coherence(self) -> dict:
+        """The copy-or-source thresholds, as keywords of :meth:`.coherence.Timing.decide`."""
+        return {"c_independent": self.c_independent, "rho_min_db": self.rho_min_db,
+                "z_min": self.z_min}
+
     def to_dict(self) -> dict:
         d = asdict(self)
         d["range"] = list(self.range)
         return d
+
+
+# the command-line option of each threshold `axlebox diagnose` sets (pipelines/cli.py)
+OPTIONS = {"second_db": "--second-db", "clearer_db": "--clearer-db",
+           "c_independent": "--c-independent", "gate_ratio": "--gate-ratio",
+           "shaft_p_fa": "--shaft-p-fa"}
+ANALYSIS = ("gate_ratio", "shaft_p_fa")     # read by the analysis, not by decide()
+
+
+def _check(c: Criterion, name: str, ok, expected: str, finite: bool = True) -> None:
+    """A ParameterError naming the field (and its option), the value and what is allowed,
+    unless ``ok(value)`` holds for a real number (finite unless ``finite`` is False)."""
+    v = getattr(c, name)
+    real = isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) \
+        and not math.isnan(v) and (math.isfinite(v) or not finite)
+    if not (real and ok(v)):
+        opt = f" ({OPTIONS[name]})" if name in OPTIONS else ""
+        raise ParameterError(f"Criterion.{name}{opt} = {v!r} is not allowed: expected {expected}")
 
 
 PAPER = Criterion()                     # the paper's absolute range; the source by lag and ringing
@@ -235,21 +309,22 @@ def vf_difference(vf_left: float, vf_right: float, criterion: Criterion = PAPER)
     return float(d / top) if top > 0 else 0.0
 
 
-
-
-def _sources(ev: LineEvidence, criterion: Criterion) -> tuple[tuple[str, ...], str]:
-    """``(source sides, how)`` of one line (module docstring, step 2)."""
+def _reading(ev: LineEvidence, criterion: Criterion) -> LineReading:
+    """How one line is read (module docstring, step 2): its source side(s) and how they were
+    found, and its least coherent fraction under the criterion's thresholds."""
+    c_min = None if ev.timing is None else ev.timing.coherent_fraction(
+        rho_min_db=criterion.rho_min_db, z_min=criterion.z_min)
     seen = [s for s in SIDES if ev.seen[s]]
     if not seen:
-        return (), "not seen"
+        return LineReading(ev, (), "not seen", c_min)
     if ev.bearing in SIDES:
-        return (ev.bearing,), "bearing order"
+        return LineReading(ev, (ev.bearing,), "bearing order", c_min)
     if len(seen) == 1:
-        return (seen[0],), "one side only"
-    decision = "inconclusive" if ev.timing is None else ev.timing.decision
+        return LineReading(ev, (seen[0],), "one side only", c_min)
+    decision = "inconclusive" if ev.timing is None else ev.timing.decide(**criterion.coherence)
     if decision == "independent":
-        return SIDES, "own timing"
-    return (), decision
+        return LineReading(ev, SIDES, "own timing", c_min)
+    return LineReading(ev, (), decision, c_min)
 
 
 def evidence_from_channels(left, right, lines) -> list[LineEvidence]:
@@ -275,68 +350,80 @@ def _snr(found: dict, key: str) -> float:
 
 
 def decide(left, right, lag=None, criterion: Criterion = PAPER,
-           lines: list[LineEvidence] | None = None, gate: dict | None = None) -> Verdict:
+           lines: list[LineEvidence] | None = None, gate=None, rotor: str = "wheel") -> Verdict:
     """The :class:`.verdict.Verdict` on two :class:`.channel.ChannelResult` (``FC``/``VF``,
     ``rms``, ``spm_db``, ``lines``), an optional :class:`.lag.LagResult` whose channel ``a`` is
     ``left``, and the lines' evidence (default :func:`evidence_from_channels`: no timing, so a
     line seen on both sides is a copy); ``gate``: the wheel's strikes blanked before (the
-    windows, :class:`.gate.Gate` as a dict), quoted in the evidence."""
+    :class:`.gate.Gate`), quoted in the evidence; ``rotor``: what turns the shaft, ``"wheel"``
+    (a vehicle) or ``"shaft"`` (a machine's rotor), the words of the whole orders' lines.  The
+    :class:`.verdict.Evidence` is read once, here; the rule follows from it alone."""
+    if rotor not in ROTORS:
+        raise ParameterError(f"rotor = {rotor!r} is not allowed: expected one of " + ", ".join(ROTORS))
     ch = {"left": left, "right": right}
-    other = {"left": "right", "right": "left"}
     lines = evidence_from_channels(left, right, criterion.lines) if lines is None else \
         [ev for ev in lines if ev.line in criterion.lines]
-    src = {}
-    for ev in lines:
-        sides, how = _sources(ev, criterion)
-        src[ev.key] = {"sources": list(sides), "how": how}
-    m = vf_difference(left.VF, right.VF, criterion)
-    lo, hi = criterion.range
-    evidence = {
-        "lines": [{**ev.to_dict(), **src[ev.key]} for ev in lines],
-        "vf": {"left": float(left.VF), "right": float(right.VF), "m": m, "range": [lo, hi],
-               "unit": criterion.unit, "in_range": bool(lo <= m <= hi)},
-        "indicators": {c: {s: float(getattr(ch[s], c)) for s in SIDES} for c in criterion.compare},
-        "lag": _lag_evidence(lag, criterion),
-        "gate": gate,
-        "wheel": {s: {"envelope": list(getattr(ch[s], "wheel_env", ())),
-                      "spectrum": list(getattr(ch[s], "wheel_spec", ()))} for s in SIDES},
-    }
-    owns = {s: [e for e in lines if s in src[e.key]["sources"]] for s in SIDES}
-    copies = [e for e in lines if all(e.seen.values()) and not src[e.key]["sources"]]
-    shows = {s: [e for e in lines if e.seen[s]] for s in SIDES}
-
-    def verdict(words, rule, real=None, **more):
-        return Verdict(dict(zip(SIDES, words)), rule, real, {**evidence, **more})
-    if not shows["left"] and not shows["right"]:
-        wheel = any(v for w in evidence["wheel"].values() for v in w.values())
-        return verdict(("healthy", "healthy"), "wheel lines only" if wheel else "no fault line")
+    read = tuple(_reading(ev, criterion) for ev in lines)
+    owns = {s: [r for r in read if s in r.sources] for s in SIDES}
+    strength = None
     if owns["left"] and owns["right"]:
-        strength = {s: max(e.best_snr_db.get(s, e.snr_db[s]) for e in owns[s]) for s in SIDES}
-        evidence["strength_db"] = strength
-        evidence["second_db"] = criterion.second_db
-        if min(strength.values()) >= criterion.second_db:
-            return verdict(("faults on both sides",) * 2, "each side owns a line")
-        s = max(SIDES, key=strength.get)
-        if strength[s] < min(strength.values()) + CLEARER_DB:
-            return verdict(("undecided",) * 2, "both lines faint")
-        return verdict(tuple("real fault" if x == s else "undecided" for x in SIDES),
-                       "second line faint", real=s)
+        strength = {s: float(max(r.line.best_snr_db.get(s, r.line.snr_db[s]) for r in owns[s]))
+                    for s in SIDES}
+    copies = [r.line for r in read if all(r.line.seen.values()) and not r.sources]
+    ev = Evidence(
+        lines=read,
+        vf=VFReading(float(left.VF), float(right.VF), vf_difference(left.VF, right.VF, criterion),
+                     tuple(criterion.range), criterion.unit),
+        indicators={c: {s: float(getattr(ch[s], c)) for s in SIDES} for c in criterion.compare},
+        larger={c: ("left" if getattr(left, c) > getattr(right, c) else "right")
+                for c in criterion.compare},
+        lag=_lag_reading(lag, criterion),
+        orders={s: ShaftOrders(tuple(getattr(ch[s], "wheel_env", ())),
+                               tuple(getattr(ch[s], "wheel_spec", ()))) for s in SIDES},
+        rotor=rotor, criterion=criterion, gate=gate, strength_db=strength,
+        ringing=_ringing(copies, criterion) if criterion.source == "ringing" else None)
+    words, rule, real = _rule(ev)
+    return Verdict(dict(zip(SIDES, words)), rule, real, ev)
+
+
+def _named(real: str, other: str) -> tuple[str, str]:
+    """The words: ``real`` a real fault, the other side ``other``."""
+    return tuple("real fault" if s == real else other for s in SIDES)
+
+
+UNDECIDED = ("undecided", "undecided")
+
+
+def _rule(ev: Evidence) -> tuple[tuple[str, str], str, str | None]:
+    """``(words, rule, real side)`` from the evidence alone (module docstring, steps 1-5)."""
+    crit = ev.criterion
+    shows = {s: ev.shown(s) for s in SIDES}
+    if not shows["left"] and not shows["right"]:
+        return ("healthy", "healthy"), LINES_ONLY[ev.rotor] if ev.shaft_lines else "no fault line", None
+    st = ev.strength_db
+    if st is not None:
+        if min(st.values()) >= crit.second_db:
+            return ("faults on both sides",) * 2, "each side owns a line", None
+        s = max(SIDES, key=st.get)
+        if st[s] < min(st.values()) + crit.clearer_db:
+            return UNDECIDED, "both lines faint", None
+        return _named(s, "undecided"), "second line faint", s
+    other = {"left": "right", "right": "left"}
     for s in SIDES:
-        if owns[s] and not owns[other[s]]:
-            o = other[s]
-            alone = all(src[e.key]["how"] == "one side only" for e in owns[s])
+        owns, o = ev.owned(s), other[s]
+        if owns and not ev.owned(o):
+            alone = all(r.how == "one side only" for r in owns)
             if alone and not shows[o]:
-                if evidence["vf"]["m"] < evidence["vf"]["range"][0]:
-                    return verdict(("undecided",) * 2, "one side only, spectra alike")
-                if any(getattr(ch[s], c) <= getattr(ch[o], c) for c in criterion.compare):
-                    return verdict(("undecided",) * 2, "one side only, not the louder")
-            word_o = "pseudo-fault" if shows[o] or evidence["vf"]["in_range"] else "healthy"
-            return verdict(tuple("real fault" if x == s else word_o for x in SIDES),
-                           "one side owns the lines", real=s)
-    return _paper(ch, copies, evidence, criterion, verdict)
+                if ev.vf.m < ev.vf.range[0]:
+                    return UNDECIDED, "one side only, spectra alike", None
+                if any(d[s] <= d[o] for d in ev.indicators.values()):
+                    return UNDECIDED, "one side only, not the louder", None
+            word_o = "pseudo-fault" if shows[o] or ev.vf.in_range else "healthy"
+            return _named(s, word_o), "one side owns the lines", s
+    return _source(ev)
 
 
-def _lag_evidence(lag, criterion) -> dict | None:
+def _lag_reading(lag, criterion) -> LagReading | None:
     """The lag as the verdict reads it: the leading side where it may be used, else None."""
     if lag is None:
         return None
@@ -344,67 +431,58 @@ def _lag_evidence(lag, criterion) -> dict | None:
     lead = None
     if lag.leading in ("a", "b") and (method == "impulses" or lag.peak >= criterion.lag_min_peak):
         lead = "left" if lag.leading == "a" else "right"
-    return {"leading": lead, "lag_s": float(lag.lag_s), "method": method,
-            "n_impulses": int(getattr(lag, "n_impulses", 0)),
-            "agreement": float(getattr(lag, "agreement", 1.0)), "peak": float(lag.peak)}
+    return LagReading(lead, float(lag.lag_s), method, int(getattr(lag, "n_impulses", 0)),
+                      float(getattr(lag, "agreement", 1.0)), float(lag.peak))
 
 
 def _ringing(copies, criterion) -> str | None:
     """The source of one fault and its copy by where the lines ring (step 5): the side whose
     line stands higher in at least ``source_ratio`` times as many bands of the grid as the
-    other's (:func:`.pair.band_votes`; a copy is its source through a path that passes some
-    bands and stops others); None where no line tells or the lines disagree."""
+    other's, and in at least ``ringing_bands`` (:func:`.pair.band_votes`; a copy is its source
+    through a path that passes some bands and stops others); None where no line tells or the
+    lines disagree."""
     named = set()
     for e in copies:
         v = e.votes
         if not v:
             continue
         hi, lo = sorted(SIDES, key=v.get, reverse=True)
-        if v[hi] >= criterion.source_ratio * max(v[lo], 1) and v[hi] >= 3:
+        if v[hi] >= criterion.source_ratio * max(v[lo], 1) and v[hi] >= criterion.ringing_bands:
             named.add(hi)
     return named.pop() if len(named) == 1 else None
 
 
-def _paper(ch, copies, evidence, criterion, verdict) -> Verdict:
+def _source(ev: Evidence) -> tuple[tuple[str, str], str, str | None]:
     """Step 5: one fault and its copy, the source named by where the lines ring, else by the
     paper's criterion and the lag."""
-    def named(real, rule):
-        return verdict(tuple("real fault" if s == real else "pseudo-fault" for s in SIDES), rule,
-                       real=real)
-    lag = evidence["lag"]
-    if criterion.source == "ringing":
-        lead = lag["leading"] if lag is not None and lag["method"] == "impulses" and \
-            criterion.lag == "decide" else None
-        ring = _ringing(copies, criterion)
-        evidence["ringing"] = ring
+    crit, lag = ev.criterion, ev.lag
+    if crit.source == "ringing":
+        lead = lag.leading if lag is not None and lag.method == "impulses" and \
+            crit.lag == "decide" else None
+        ring = ev.ringing
         if lead is not None and ring is not None and lead != ring:
-            return verdict(("undecided",) * 2, "lag and ringing disagree")
+            return UNDECIDED, "lag and ringing disagree", None
         if lead is not None or ring is not None:
-            return named(lead or ring, "lag" if lead is not None else "ringing")
-    m = evidence["vf"]["m"]
-    lo, hi = evidence["vf"]["range"]
-    if m < lo:
-        return verdict(("undecided",) * 2, "VF below the range")
-    if m > hi:
-        return verdict(("undecided",) * 2, "VF above the range")
-    larger = {c: ("left" if getattr(ch["left"], c) > getattr(ch["right"], c) else "right")
-              for c in criterion.compare}
-    evidence["indicators_larger"] = larger
-    split = len(set(larger.values())) > 1
-    by_indicators = None if split else next(iter(larger.values()))
-    lead = None if lag is None else lag["leading"]
-    sure = lag is not None and lag["method"] == "impulses"
-    seen = {s: any(e.seen[s] for e in copies) for s in SIDES}
-    if lead is not None and criterion.lag != "off" and seen[lead] and (
-            (sure and criterion.lag == "decide") or split):
+            return _named(lead or ring, "pseudo-fault"), "lag" if lead is not None else "ringing", \
+                lead or ring
+    if ev.vf.m < ev.vf.range[0]:
+        return UNDECIDED, "VF below the range", None
+    if ev.vf.m > ev.vf.range[1]:
+        return UNDECIDED, "VF above the range", None
+    split = len(set(ev.larger.values())) > 1
+    by_indicators = None if split else next(iter(ev.larger.values()))
+    lead = None if lag is None else lag.leading
+    sure = lag is not None and lag.method == "impulses"
+    seen = {s: any(e.seen[s] for e in ev.copies) for s in SIDES}
+    if lead is not None and crit.lag != "off" and seen[lead] and (
+            (sure and crit.lag == "decide") or split):
         real, rule = lead, "lag"
     elif split:
-        return verdict(("undecided",) * 2, "indicators disagree")
+        return UNDECIDED, "indicators disagree", None
     else:
         real, rule = by_indicators, "RMS and SPM"
-        if lead is not None and lead != real and criterion.lag != "off":
-            return verdict(("undecided",) * 2, "lag contradicts")
+        if lead is not None and lead != real and crit.lag != "off":
+            return UNDECIDED, "lag contradicts", None
     if not seen[real]:
-        return verdict(("undecided",) * 2, "no line on the source", real=real)
-    return verdict(tuple("real fault" if s == real else "pseudo-fault" for s in SIDES), rule,
-                   real=real)
+        return UNDECIDED, "no line on the source", real
+    return _named(real, "pseudo-fault"), rule, real

@@ -13,7 +13,7 @@ channels over the turn, in bins of one sample, averaging the record's N turns.  
 turn stands ``ratio`` = peak / median of the fold over the rest; what is not locked to the turn
 averages out: for N >= 5 turns the fold of the car's records without a flat reads 1.1-1.9, and
 so do the twelve two-sensor CWRU records (benchmarks/README.md "Wheel flats and polygons");
-the car's flats 35-75.  From ``GATE_RATIO`` (5) the strike's window is blanked (set to zero) on
+the car's flats 35-75.  From ``Criterion.gate_ratio`` (5) the strike's window is blanked (set to zero) on
 both channels every turn: from the fold's peak back and forward to where the fold, smoothed over
 5 ms (the modes a strike rings beat), first falls below twice its median (the strike and its
 ring), widened by a millisecond each side, at most
@@ -28,9 +28,9 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from .criterion import Criterion
 from .envelope import envelope
 
-GATE_RATIO = 5.0        # fold peak over median from which the strikes are blanked (docstring)
 MIN_TURNS = 5           # turns the fold must average: fewer leave non-locked impulses standing
 MAX_BLANK = 0.3         # at most this share of each turn blanked
 MARGIN_S = 1e-3         # s each side of the window: the strike's onset and the ring's tail
@@ -70,9 +70,10 @@ def fold(x_left, x_right, fs: float, shaft_hz: float) -> np.ndarray:
 
 
 def wheel_gate(x_left, x_right, fs: float, shaft_hz: float,
-               ratio: float = GATE_RATIO) -> Gate | None:
+               ratio: float = Criterion.gate_ratio) -> Gate | None:
     """The strikes' windows of a wheel flat on the two channels, or None where the record holds
-    no strike once a turn (module docstring)."""
+    no strike once a turn: the fold's peak under ``ratio`` times its median (module docstring;
+    the criterion's ``gate_ratio``)."""
     n = min(np.size(x_left), np.size(x_right))
     if n / fs * shaft_hz < MIN_TURNS:
         return None

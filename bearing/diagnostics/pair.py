@@ -18,12 +18,12 @@ from .channel import LINE_OPTIONS, LINES, ChannelResult, analyse, reguide, welch
 from .coherence import line_timing
 from .gate import wheel_gate
 from .guided import band_scan
-from .criterion import PAPER, Criterion, decide, vf_difference
+from .criterion import ANALYSIS, PAPER, Criterion, decide, vf_difference
 from .envelope import _signal, check_fs
 from .lag import LagResult, impulse_lag, time_lag
 from .spectral import fc_vf
 from .own import shares as line_shares
-from .verdict import SIDES, LineEvidence, Verdict
+from .verdict import ROTORS, SIDES, LineEvidence, Verdict, sentence
 
 
 @dataclass(frozen=True)
@@ -32,7 +32,8 @@ class PairResult:
     ``|VF_L - VF_R|`` (Hz^2); ``m``: what the criterion compared (``vf_diff``, or relative);
     ``verdict``: the :class:`.verdict.Verdict`; ``evidence``: the lines'
     :class:`.verdict.LineEvidence` it read; ``names``: the channels' names in the source;
-    ``bearings``: each side's bearing name."""
+    ``bearings``: each side's bearing name; ``rotor``: what turns the shaft, ``"wheel"`` (a
+    vehicle) or ``"shaft"`` (a machine; :data:`.verdict.ROTORS`)."""
 
     left: ChannelResult
     right: ChannelResult
@@ -47,11 +48,7 @@ class PairResult:
     x_left: np.ndarray = field(default=None, repr=False, compare=False)
     x_right: np.ndarray = field(default=None, repr=False, compare=False)
     gate: object | None = None
-
-    @property
-    def verdicts(self) -> dict[str, tuple[str, str]]:
-        """side -> (verdict, the sentence that gives its reason)."""
-        return dict(self.verdict.items())
+    rotor: str = "wheel"
 
     @property
     def shares(self) -> dict:
@@ -60,9 +57,17 @@ class PairResult:
 
     def redecide(self, criterion: Criterion) -> Verdict:
         """The verdict under another criterion, from the same indicators and evidence (each
-        side's FC and VF taken again from its signal where the criterion's ``vf_band`` differs)."""
+        side's FC and VF taken again from its signal where the criterion's ``vf_band`` differs).
+        The thresholds the analysis reads (``Criterion.gate_ratio``, ``shaft_p_fa``) must be the
+        analysis' own: another needs :func:`analyse_pair` again."""
+        for name in ANALYSIS:
+            if getattr(criterion, name) != getattr(self.criterion, name):
+                raise ParameterError(f"Criterion.{name} = {getattr(criterion, name)!r} differs from "
+                                     f"the analysis' {getattr(self.criterion, name)!r}: it is read "
+                                     "by the analysis, not by the verdict; analyse the pair again")
         p = self if criterion.vf_band == self.criterion.vf_band else self.in_vf_band(criterion.vf_band)
-        return decide(p.left, p.right, p.lag, criterion, list(p.evidence), gate=_gd(p.gate))
+        return decide(p.left, p.right, p.lag, criterion, list(p.evidence), gate=p.gate,
+                      rotor=p.rotor)
 
     def in_vf_band(self, band) -> "PairResult":
         """This pair with both sides' FC, VF and MSF over ``band`` (Hz, None: the whole), from
@@ -75,16 +80,17 @@ class PairResult:
         return replace(self, left=left, right=right, criterion=crit,
                        vf_diff=abs(left.VF - right.VF), m=vf_difference(left.VF, right.VF, crit),
                        verdict=decide(left, right, self.lag, crit, list(self.evidence),
-                                      gate=_gd(self.gate)))
+                                      gate=self.gate, rotor=self.rotor))
 
     def to_dict(self) -> dict:
         return {"names": {"left": self.names[0], "right": self.names[1]}, "gate": _gd(self.gate),
                 "bearings": {"left": self.bearings[0], "right": self.bearings[1]},
                 "left": self.left.to_dict(), "right": self.right.to_dict(),
                 "lag": self.lag.to_dict(), "vf_diff_hz2": self.vf_diff,
-                "criterion": {**self.criterion.to_dict(), "m": self.m},
+                "criterion": {**self.criterion.to_dict(), "m": self.m}, "rotor": self.rotor,
                 "verdict": self.verdict.to_dict(),
-                "verdicts": {s: {"verdict": v, "reason": r} for s, (v, r) in self.verdicts.items()}}
+                "verdicts": {s: {"verdict": self.verdict.words[s], "reason": sentence(self.verdict, s)}
+                             for s in SIDES}}
 
     def summary(self) -> str:
         """A few lines for a terminal."""
@@ -149,7 +155,8 @@ class PairResult:
             ax[1][j].legend(fontsize=7, loc="upper right")
         axt = fig.add_subplot(gs[2, :])
         axt.axis("off")
-        text = self.summary().splitlines() + [f"{s}: {v}: {r}" for s, (v, r) in self.verdict.items()]
+        text = self.summary().splitlines() + [f"{s}: {self.verdict.words[s]}: "
+                                              f"{sentence(self.verdict, s)}" for s in SIDES]
         wrapped = "\n".join(textwrap.fill(line, 150, subsequent_indent="    ") for line in text)
         t = axt.text(0.0, 1.0, wrapped, va="top", ha="left", fontsize=7, family="monospace",
                      transform=axt.transAxes)
@@ -185,7 +192,7 @@ def _gd(g):
 def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
                  criterion: Criterion = PAPER, band=None, *, names=("left", "right"),
                  max_lag_s: float | None = None, guided: bool = True,
-                 bearings: tuple[str, str] = ("", ""), gate: bool = True,
+                 bearings: tuple[str, str] = ("", ""), gate: bool = True, rotor: str = "wheel",
                  _wheel: dict | None = None, **channel_kw) -> PairResult:
     """Analyse both channels (same rate ``fs``; ``shaft_hz`` as in :func:`.channel.analyse`;
     fault ``orders`` and bore ``D`` in m, one for both sides or a (left, right) pair: each side
@@ -203,10 +210,15 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
     broadband, else in either side's band; only a record without impulses falls back to the
     envelopes' correlation within ``max_lag_s`` (default half a BPFO period: periodic impulses
     make the lag ambiguous by whole periods).  ``gate``: where a wheel flat strikes both sides
-    once a turn (:func:`.gate.wheel_gate`), the strikes are blanked on both channels and
-    everything is read on what is left, the wheel's lines named from the record as it came
-    (``PairResult.gate`` holds the windows)."""
+    once a turn (:func:`.gate.wheel_gate`, from the criterion's ``gate_ratio``), the strikes are
+    blanked on both channels and everything is read on what is left, the wheel's lines named
+    from the record as it came (``PairResult.gate`` holds the windows); lines at whole orders of
+    the shaft are named at the criterion's ``shaft_p_fa``.  ``rotor``: what turns the shaft,
+    ``"wheel"`` (a vehicle's wheelset, the default) or ``"shaft"`` (a machine's rotor): the
+    words the verdict names those lines with."""
     fs = check_fs(fs)
+    if rotor not in ROTORS:
+        raise ParameterError(f"rotor = {rotor!r} is not allowed: expected one of " + ", ".join(ROTORS))
     xs = []
     for side, x, n in (("left", x_left, names[0]), ("right", x_right, names[1])):
         xs.append(_signal(x, f"{side} channel {n!r}"))
@@ -233,19 +245,20 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
     for i, (side, x, n) in enumerate((("left", xs[0], names[0]), ("right", xs[1], names[1]))):
         try:
             res[side] = analyse(x, fs, shaft_hz, fo[i], bore[i], band, lines=lines,
-                                other=fo[1 - i], vf_band=criterion.vf_band, **channel_kw)
+                                other=fo[1 - i], vf_band=criterion.vf_band,
+                                shaft_p_fa=criterion.shaft_p_fa, **channel_kw)
         except ParameterError as err:
             raise ParameterError(f"{side} channel {n!r}: {err}") from None
-    g = wheel_gate(xs[0], xs[1], fs, shaft_hz) if gate else None
+    g = wheel_gate(xs[0], xs[1], fs, shaft_hz, ratio=criterion.gate_ratio) if gate else None
     if g is not None:               # a flat's strikes: read the bearings between them
         keep = g.mask(xs[0].size, fs)
         p = analyse_pair(xs[0] * keep, xs[1] * keep, fs, shaft_hz, orders, D, criterion, band,
                          names=names, max_lag_s=max_lag_s, guided=guided, bearings=bearings,
-                         gate=False, lines=lines, keep=keep,
+                         gate=False, rotor=rotor, lines=lines, keep=keep,
                          _wheel={s: (r.wheel_env, r.wheel_spec) for s, r in res.items()},
                          **channel_kw)
         return replace(p, gate=g, verdict=decide(p.left, p.right, p.lag, criterion,
-                                                 list(p.evidence), gate=g.to_dict()))
+                                                 list(p.evidence), gate=g, rotor=rotor))
     if _wheel is not None:          # the wheel's lines as the record came, before the blanking
         res = {s: replace(r, wheel_env=_wheel[s][0], wheel_spec=_wheel[s][1]) for s, r in res.items()}
     line_kw = {k: v for k, v in channel_kw.items() if k in LINE_OPTIONS}
@@ -260,11 +273,11 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
     lag = _lag(xs, fs, res, fo, shaft_hz, max_lag_s)
     evidence = _evidence(xs, res, criterion, line_kw)
     m = vf_difference(res["left"].VF, res["right"].VF, criterion)
-    v = decide(res["left"], res["right"], lag, criterion, evidence)
+    v = decide(res["left"], res["right"], lag, criterion, evidence, rotor=rotor)
     return PairResult(left=res["left"], right=res["right"], lag=lag,
                       vf_diff=abs(res["left"].VF - res["right"].VF), m=m, criterion=criterion,
                       verdict=v, names=tuple(names), evidence=tuple(evidence),
-                      bearings=tuple(bearings), x_left=xs[0], x_right=xs[1])
+                      bearings=tuple(bearings), x_left=xs[0], x_right=xs[1], rotor=rotor)
 
 
 def _lag(xs, fs, res, fo, shaft_hz, max_lag_s) -> LagResult:

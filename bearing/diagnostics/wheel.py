@@ -14,7 +14,8 @@ a fault line found on a shaft harmonic, and this module names what stands there.
 window ``|f - k f_shaft| <= max(df, 0.005 k f_shaft)`` (the wheel turns at the shaft's rate: no
 slip, only the record's speed drift), against the median floor of the ring beside it and the
 false-alarm threshold of :func:`.faultlines.window_threshold_db` at ``p_fa / K`` per window (so
-that noise alone names a wheel line in at most ``p_fa`` of records, over all ``K`` windows).
+that noise alone names a wheel line in at most ``p_fa`` of records, over all ``K`` windows;
+``p_fa`` is the criterion's ``shaft_p_fa``, 1e-3 by default: one record in a thousand).
 The window's highest bin must be a narrow peak, ``NARROW`` times the bins two away on either
 side (a steady line's Hann main lobe falls at least threefold there, whatever its offset from
 the bin; the crest of a structural resonance does not: the healthy car's spectra hold such crests
@@ -31,15 +32,15 @@ import math
 import numpy as np
 from scipy.signal import welch
 
+from .criterion import Criterion
 from .faultlines import _window, is_peak, welch_averages
 
 MAX_ORDER = 40          # a polygon's orders reach 30 (module docstring); a flat's comb, its first 40
-P_FA = 1e-3             # noise alone names a wheel line in one record of a thousand
 NARROW = 2.0            # a line's peak over the bins two away: a Hann main lobe's is 3 or more
 
 
 def wheel_orders(f, A, shaft_hz: float, n_avg: float = 1.0, max_order: int = MAX_ORDER,
-                 p_fa: float = P_FA, taken=()) -> tuple[int, ...]:
+                 p_fa: float = Criterion.shaft_p_fa, taken=()) -> tuple[int, ...]:
     """The orders ``k`` (1..``max_order``, up to the spectrum's top) whose line ``k shaft_hz``
     stands over its floor in the amplitude spectrum ``(f, A)`` (equally spaced from 0 Hz) of
     ``n_avg`` independent averages (module docstring): the window's highest bin must be a peak
@@ -64,7 +65,7 @@ def wheel_orders(f, A, shaft_hz: float, n_avg: float = 1.0, max_order: int = MAX
 
 
 def spectrum_orders(x, fs: float, shaft_hz: float, max_order: int = MAX_ORDER,
-                    p_fa: float = P_FA) -> tuple[int, ...]:
+                    p_fa: float = Criterion.shaft_p_fa) -> tuple[int, ...]:
     """:func:`wheel_orders` in the acceleration's own amplitude spectrum (Welch, Hann segments of
     ten shaft turns, or the whole record where shorter): a polygon's line."""
     n = int(np.asarray(x).size)

@@ -33,8 +33,8 @@ right, left = coaxial_pair(3.0, fs, f_bpfo, rng, amplitude=1.0, delay_s=1.2e-3, 
 res = analyse_pair(left, right, fs, f_shaft, dtrb.orders, dtrb.bore, Criterion(mode="relative"),
                    names=("left axle box", "right axle box"))
 print(res.summary())
-for side, (verdict, reason) in res.verdicts.items():
-    print(f"{side}: {verdict} ({reason})")
+for side in ("left", "right"):
+    print(f"{side}: {res.verdict.words[side]} ({res.verdict.sentence(side)})")
 
 # %%
 # The known answer: the right side is the real fault, the left side its copy.

@@ -50,7 +50,7 @@ import numpy as np
 from scipy.ndimage import gaussian_filter1d
 
 from axlebox._cache import cache_dir
-from axlebox._params import ParameterError, check_ranges, digest, param, require
+from axlebox._params import ParameterError, check_ranges, choice, digest, param, require
 
 from . import element_kernel as ek
 from . import fastsim_kernel as fk
@@ -90,18 +90,21 @@ class WheelRailParams:
                        doc="Hunt-Crossley damping; Lankarani & Nikravesh 1990 "
                            "chi = 3 (1 - e^2) / (4 v0): e = 0.9 at v0 = 0.5 m/s")
     v_min: float = param(0.5, 1e-3, 10.0, unit="m/s", doc="floor of V in the creepages")
-    law: str = "fastsim"            # 'fastsim' | 'kalker' (linear) | 'she' (Shen-Hedrick-Elkins)
-    nx: int = param(16, 2, 400, unit="", doc="FASTSIM elements per strip")
-    ny: int = param(16, 2, 400, unit="", doc="FASTSIM strips")
+    law: str = choice("fastsim", LAWS, doc="creep force law: 'fastsim' (Kalker's FASTSIM), "
+                      "'kalker' (linear) or 'she' (Shen-Hedrick-Elkins)")
+    nx: int = param(8, 2, 400, unit="", doc="FASTSIM elements per strip")
+    ny: int = param(8, 2, 400, unit="", doc="FASTSIM strips")
     bound: str = "parabolic"        # FASTSIM traction bound: 'parabolic' (Kalker) | 'elliptic'
-    update: str = "rotate"          # FASTSIM slip step: 'rotate' | 'cutback' (tangential.py)
+    update: str = choice("cutback", UPDATES, doc="FASTSIM slip step: 'cutback' (Kalker's, "
+                          "continuous in the creepages, as an implicit Newton needs) or 'rotate' "
+                          "(second order in the grid, jumps at stick-slip changes; tangential.py)")
     index: str = "tread"            # look-up offset: 'tread' | 'centre' (element_kernel.py)
     y_max: float = param(0.012, 0.002, 0.03, doc="half range of the geometry table")
     n_geom: int = param(601, 21, 10001, unit="", doc="points of the geometry table")
     n_grid: int = param(1201, 11, 100001, unit="", doc="points of the uniform look-up grid")
     step: float = param(2e-5, 1e-6, 1e-4, doc="grid of the minimum-gap search")
     B_min: float = param(0.1, 1e-3, 10.0, unit="1/m", doc="floor of the relative curvature B")
-    smooth_y: float = param(0.0, 0.0, 0.005, doc="Gaussian smoothing of the geometry columns over "
+    smooth_y: float = param(1.0e-3, 0.0, 0.005, doc="Gaussian smoothing of the geometry columns over "
                                                  "u (0: exact single-point tables)")
 
     def __post_init__(self):

@@ -41,11 +41,12 @@ _SIGN = (1.0, -1.0)
 class TrackLayout:
     """Where the wheels and rails sit (m); defaults: a Chinese B-type metro car as in W. Zhao et al.,
     Scientific Reports (2025), doi:10.1038/s41598-025-93857-x (typical values: 840 mm new wheels,
-    1353 mm back-to-back, standard gauge, 1:40 rail cant)."""
+    standard gauge, 1:40 rail cant; the back-to-back of the built-in S1002/60E1 pair)."""
 
     r0: float = param(0.420, 0.2, 0.7, doc="nominal rolling radius at the taping line")
     gauge: float = param(1.435, 0.9, 1.7, doc="track gauge between the gauge points")
-    back_to_back: float = param(1.353, 0.9, 1.6, doc="distance between the wheels' back faces")
+    back_to_back: float = param(1.360, 0.9, 1.6, doc="distance between the wheels' back faces "
+                                "(the S1002/60E1 standard pair; the LM wheelset's is 1.353)")
     cant: float = param(1.0 / 40.0, 0.0, 0.1, unit="", doc="rail inclination (tan of the cant angle)")
     gauge_depth: float = param(0.014, 0.005, 0.02, doc="depth of the gauge point below the rail top")
 

@@ -92,10 +92,10 @@ def main(out):
     from axlebox import configs
     from axlebox.mbs import integrate
     from axlebox.pipelines import simulate as psim
-    cfg, _ = psim.load_config(configs.path("validation_48kmh"), duration=DURATION,
+    cfg = psim.load_config(configs.path("validation_48kmh"), duration=DURATION,
                               overrides={"bodies": {"flexible": []}})
     model, y0 = psim.build_model(cfg, log=lambda *_: None)
-    run = integrate.simulate(model, DURATION, psim.settings(cfg), y0=y0)
+    run = integrate.simulate(model, DURATION, cfg.settings(), y0=y0)
     assert run.ok, run.message
     nb = model.n_body_states
     Z = BearingParams().Z
