@@ -88,7 +88,7 @@ def test_galpha_and_defects_without_bearings_are_refused():
     # the leapfrog's limit on the rollers' tilt mode is tighter than RK4's (mbs/config.py)
     with pytest.raises(ParameterError, match="integrator.dt = 2e-05 .*'leapfrog'"):
         coupled_config(integrator={"method": "leapfrog", "dt": 2e-5})
-    assert coupled_config(integrator={"method": "rk4", "dt": 2e-5})["integrator"]["dt"] == 2e-5
+    assert coupled_config(integrator={"method": "rk4", "dt": 2e-5}).integrator.dt == 2e-5
     with pytest.raises(ParameterError, match="joint.model"):
         coupled_config(joint={"model": "bushing"})
     with pytest.raises(ParameterError, match="defects"):

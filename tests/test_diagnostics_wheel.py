@@ -31,6 +31,16 @@ def flat_train(n: int, f_w: float, rng) -> np.ndarray:
     return x / x.std()
 
 
+def flat_pair(f_w: float) -> tuple[np.ndarray, np.ndarray]:
+    """A flat striking both axle boxes (the far side 0.6 of the near), ten times the wheel-rail
+    noise on the near side."""
+    rng = np.random.default_rng(3)
+    n = int(T * FS)
+    hit = flat_train(n, f_w, rng)
+    return (6.0 * hit + 0.5 * syn.wheel_rail_noise(n, FS, rng),
+            10.0 * hit + 0.5 * syn.wheel_rail_noise(n, FS, rng))
+
+
 @pytest.mark.parametrize("speed_kmh", [20.0, 40.0, 48.0, 60.0, 80.0, 88.0, 100.0])
 def test_a_flat_is_named_the_wheels_and_no_bearing_fault_is_called(speed_kmh):
     """A flat strikes both axle boxes (the far side 0.6 of the near), ten times the wheel-rail
@@ -40,11 +50,7 @@ def test_a_flat_is_named_the_wheels_and_no_bearing_fault_is_called(speed_kmh):
     a shaft harmonic's main lobe masked what it covers, 48, 88 and 100 km/h read a bearing
     fault here.)"""
     f_w = shaft_hz(speed_kmh)
-    rng = np.random.default_rng(3)
-    n = int(T * FS)
-    hit = flat_train(n, f_w, rng)
-    left = 6.0 * hit + 0.5 * syn.wheel_rail_noise(n, FS, rng)
-    right = 10.0 * hit + 0.5 * syn.wheel_rail_noise(n, FS, rng)
+    left, right = flat_pair(f_w)
     p = analyse_pair(left, right, FS, f_w, DTRB, BORE)
     bearing = {"BPFO", "BPFI", "2BSF"}          # the criterion's lines (a cage line is not one)
     assert not bearing & set(p.left.detected) and not bearing & set(p.right.detected)
@@ -63,11 +69,7 @@ def test_a_machines_shaft_lines_are_the_shafts_and_a_stricter_false_alarm_names_
     rule falls from ``wheel lines only`` to ``no fault line``."""
     from axlebox.bearing.diagnostics.criterion import decide
     f_w = shaft_hz(40.0)
-    rng = np.random.default_rng(3)
-    n = int(T * FS)
-    hit = flat_train(n, f_w, rng)
-    left = 6.0 * hit + 0.5 * syn.wheel_rail_noise(n, FS, rng)
-    right = 10.0 * hit + 0.5 * syn.wheel_rail_noise(n, FS, rng)
+    left, right = flat_pair(f_w)
     p = analyse_pair(left, right, FS, f_w, DTRB, BORE)
     assert p.verdict.rule == "wheel lines only" and p.verdict.evidence.rotor == "wheel"
     assert "wheel: 1x, 2x, 3x" in p.verdict.sentence("left")
