@@ -1,0 +1,95 @@
+"""Computed order tracking (bearing/diagnostics/ordertrack.py) against closed forms: the angle of a
+constant acceleration, a tacho's pulses, a line at a fixed order that a speed sweep smears over a
+band in time and that the angle domain gathers into one bin, and a constant-speed record resampled
+at its own rate being itself."""
+import numpy as np
+import pytest
+
+from axlebox._params import ParameterError
+from axlebox.bearing.diagnostics import ordertrack as ot
+from axlebox.bearing.frequencies import shaft_hz
+
+FS = 10_000.0
+T = 20.0
+
+
+def sweep_angle(t, v0=20.0, v1=80.0):
+    """A car from v0 to v1 km/h at constant acceleration over T s: the shaft's speed (Hz) and
+    angle (revolutions), in closed form."""
+    f0, f1 = shaft_hz(v0), shaft_hz(v1)
+    a = (f1 - f0) / T
+    return f0 + a * t, f0 * t + 0.5 * a * t ** 2
+
+
+def test_the_angle_of_a_constant_acceleration_is_the_closed_form():
+    """The trapezoid rule is exact for a speed linear in time: to rounding over 20 s."""
+    t = np.arange(int(T * FS)) / FS
+    f, theta = sweep_angle(t)
+    assert np.max(np.abs(ot.angle_from_speed(t, f) - theta)) < 1e-9
+
+
+def test_a_tacho_gives_the_angle_between_its_pulses():
+    """Once-per-turn pulses of the sweep: each pulse's time within 1 us (linear interpolation of
+    the crossing; 100 us sampling), the angle between pulses within 1e-4 turn (PCHIP through
+    the pulses; the speed changes 0.3 % a turn at most)."""
+    t = np.arange(int(T * FS)) / FS
+    _, theta = sweep_angle(t)
+    tacho = (np.mod(theta, 1.0) < 0.1).astype(float)          # a 10 % wide pulse a turn
+    p = ot.tacho_times(tacho, FS)
+    turns = np.arange(1, p.size + 1)
+    f0, f1 = shaft_hz(20.0), shaft_hz(80.0)
+    a = (f1 - f0) / T
+    exact = (-f0 + np.sqrt(f0 ** 2 + 2 * a * turns)) / a        # theta(t_k) = k
+    # a step pulse rises between samples: the threshold crossing is within one sample of it
+    assert np.max(np.abs(p - exact)) < 1.0 / FS
+    inside = t[(t > p[0]) & (t < p[-1])]
+    got = ot.angle_from_tacho(p, inside)
+    want = np.interp(inside, t, theta) - 1.0
+    assert np.max(np.abs(got - want)) < 1e-3
+
+
+def test_a_line_at_a_fixed_order_is_one_bin_in_the_angle_domain():
+    """A tone at 8.72 orders (the DTRB's BPFO) through a 20-80 km/h sweep: in time its energy
+    spreads over 16-64 Hz x 8.72; resampled to the angle, one order bin holds nearly all of it."""
+    t = np.arange(int(T * FS)) / FS
+    f, theta = sweep_angle(t)
+    order = 8.72
+    x = np.sin(2 * np.pi * order * theta)
+    rec = ot.to_angle(x, FS, ot.angle_from_speed(t, f), per_rev=128)
+    n = rec.x.size
+    spec = np.abs(np.fft.rfft(rec.x * np.hanning(n))) ** 2
+    orders = np.fft.rfftfreq(n, 1.0 / rec.per_rev)
+    peak = int(np.argmax(spec))
+    assert abs(orders[peak] - order) <= orders[1]
+    assert spec[peak - 2:peak + 3].sum() / spec.sum() > 0.99
+    # the same record read in time: no bin holds more than a tenth of it
+    st = np.abs(np.fft.rfft(x * np.hanning(x.size))) ** 2
+    assert st.max() / st.sum() < 0.1
+
+
+def test_a_constant_speed_record_at_its_own_rate_is_itself():
+    """fs = per_rev x shaft speed: the angle samples are the time samples, no filter applies."""
+    f = FS / 256
+    t = np.arange(40_000) / FS
+    x = np.random.default_rng(1).standard_normal(t.size)
+    rec = ot.to_angle(x, FS, f * t, per_rev=256)
+    np.testing.assert_allclose(rec.x, x, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(rec.t, t, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("make, words", [
+    (lambda: ot.angle_from_speed([0.0, 0.1, 0.1, 0.2], [5.0] * 4), "speed time[2] = 0.1"),
+    (lambda: ot.angle_from_speed([0.0, 0.1, 0.2], [5.0, -1.0, 5.0]), "speed[1] = -1.0 Hz"),
+    (lambda: ot.angle_from_speed([0.0, 0.1, 0.2], [5.0, np.nan, 5.0]), "speed[1] = nan Hz"),
+    (lambda: ot.tacho_times(np.zeros(100), FS), "tacho has 0 pulses"),
+    (lambda: ot.angle_from_tacho(np.r_[0.0, 0.1, 0.2, 0.4, 0.5, 0.6], [0.3]), "tacho pulse 3 at 0.4 s"),
+    (lambda: ot.angle_from_tacho(np.r_[0.0, 0.1, 0.2, 0.25, 0.3, 0.4, 0.5], [0.3]),
+     "a pulse is an extra"),
+    (lambda: ot.angle_from_tacho(np.r_[0.0, 0.1, 0.2, 0.3], [0.5]), "outside the tacho's pulses"),
+    (lambda: ot.to_angle(np.zeros(100), FS, np.zeros(100), 64), "expected one increasing angle"),
+    (lambda: ot.to_angle(np.zeros(100), FS, np.arange(100.0), 4), "per_rev = 4"),
+])
+def test_bad_input_is_one_line_naming_the_field(make, words):
+    with pytest.raises(ParameterError) as err:
+        make()
+    assert words in str(err.value) and "\n" not in str(err.value), str(err.value)
