@@ -77,6 +77,36 @@ def test_a_constant_speed_record_at_its_own_rate_is_itself():
     np.testing.assert_allclose(rec.t, t, rtol=0, atol=1e-12)
 
 
+def test_a_bearing_fault_through_a_speed_sweep_is_its_order_in_the_tracked_envelope():
+    """Outer-ring hits every 1/BPFO of a turn (the DTRB's order) through the 20-80 km/h sweep, each
+    ringing a 2.5 kHz mode (fixed in Hz), in noise: the order-tracked envelope spectrum stands a
+    line at BPFO within one order bin, ten times its median over 1-30 orders; the envelope
+    spectrum in time, read at the mean speed's BPFO, has none (the line is smeared over a
+    factor of four in Hz)."""
+    from axlebox.bearing import models
+    from axlebox.bearing.diagnostics.envelope import envelope_spectrum
+    from axlebox.bearing.diagnostics.synthetic import resonance
+    from axlebox.bearing.params import BearingParams
+    bpfo = models.orders(BearingParams()).BPFO
+    t = np.arange(int(T * FS)) / FS
+    f, theta = sweep_angle(t)
+    rng = np.random.default_rng(4)
+    hits = np.zeros(t.size)
+    k = np.arange(1, int(theta[-1] * bpfo))
+    hits[np.searchsorted(theta, k / bpfo)] = 1.0
+    x = resonance(hits, FS, 2500.0, 0.05)
+    x = x / x.std() + 0.5 * rng.standard_normal(t.size)
+    band = (2000.0, 3000.0)
+    o, A = ot.envelope_orders(x, FS, ot.angle_from_speed(t, f), band=band, turns=64)
+    near = np.abs(o - bpfo) <= o[1]
+    floor = np.median(A[(o >= 1) & (o <= 30)])
+    assert A[near].max() > 10 * floor
+    assert abs(o[np.argmax(np.where((o > 1) & (o < 30), A, 0))] - bpfo) <= o[1]
+    fh, Ah = envelope_spectrum(x, FS, band, nperseg=int(64 / f.mean() * FS))
+    at = np.abs(fh - bpfo * f.mean()) <= 2 * fh[1]
+    assert Ah[at].max() < 3 * np.median(Ah[(fh >= f.mean()) & (fh <= 30 * f.mean())])
+
+
 @pytest.mark.parametrize("make, words", [
     (lambda: ot.angle_from_speed([0.0, 0.1, 0.1, 0.2], [5.0] * 4), "speed time[2] = 0.1"),
     (lambda: ot.angle_from_speed([0.0, 0.1, 0.2], [5.0, -1.0, 5.0]), "speed[1] = -1.0 Hz"),
@@ -88,6 +118,7 @@ def test_a_constant_speed_record_at_its_own_rate_is_itself():
     (lambda: ot.angle_from_tacho(np.r_[0.0, 0.1, 0.2, 0.3], [0.5]), "outside the tacho's pulses"),
     (lambda: ot.to_angle(np.zeros(100), FS, np.zeros(100), 64), "expected one increasing angle"),
     (lambda: ot.to_angle(np.zeros(100), FS, np.arange(100.0), 4), "per_rev = 4"),
+    (lambda: ot.envelope_orders(np.ones(1000), FS, np.arange(1000.0) / 100, turns=50.0), "turns = 50.0"),
 ])
 def test_bad_input_is_one_line_naming_the_field(make, words):
     with pytest.raises(ParameterError) as err:
