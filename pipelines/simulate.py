@@ -166,6 +166,31 @@ def build_model(cfg: vconfig.CarConfig, log=print):
     return model, y0
 
 
+def shafts(run: integrate.Run, model, block: int = 4096) -> dict:
+    """``ws<k>/angle`` (rad, 0 at the first output, increasing as the car runs forwards) and
+    ``ws<k>/speed`` (rad/s) of each wheelset at the output instants: the cubic Hermite through
+    the state snapshots' spin angle and spin rate (exact for a spin angle cubic in time between
+    snapshots, so for a constant acceleration), read a block of snapshots at a time."""
+    from scipy.interpolate import CubicHermiteSpline
+    ks = [k for k, b in enumerate(model.bodies) if b.name.startswith("ws")]
+    if not ks or run.time.size == 0 or len(run.state_time) < 2:
+        return {}
+    cols = [c for k in ks for c in (int(model.S.bi[k, 0]) + 7, int(model.S.bi[k, 1]) + 4)]
+    n = len(run.state_time)
+    read = run.states.rows if hasattr(run.states, "rows") else (lambda r0, r1: run.states[r0:r1])
+    Y = np.concatenate([np.asarray(read(r0, min(r0 + block, n)))[:, cols] for r0 in range(0, n, block)])
+    out = {}
+    for j, k in enumerate(ks):
+        beta, w = Y[:, 2 * j], Y[:, 2 * j + 1]
+        sign = -1.0 if np.mean(w) < 0 else 1.0          # the spin's sign as the wheels roll forwards
+        h = CubicHermiteSpline(np.asarray(run.state_time), sign * beta, sign * w)
+        name = model.bodies[k].name
+        out[f"{name}/angle"] = (h(run.time) - h(run.time[0]),
+                                {"unit": "rad", "from": "the state snapshots' spin (cubic Hermite)"})
+        out[f"{name}/speed"] = (h(run.time, 1), {"unit": "rad/s"})
+    return out
+
+
 def write(path, run: integrate.Run, model, cfg: vconfig.CarConfig,
           ride: list[comfort.RideComfort] = ()) -> Path:
     """The result file, its config stored whole (every default filled in); ``ride``: the
@@ -198,6 +223,7 @@ def write(path, run: integrate.Run, model, cfg: vconfig.CarConfig,
     groups = {"wheelrail": wr,
               **({"bearings": br} if br else {}),
               **({"comfort": cm} if cm else {}),
+              **({"shafts": sh} if (sh := shafts(run, model)) else {}),
               "states": {"time": run.state_time, "y": run.states,
                          "y_end": (run.y_end, {"t": float(run.time[-1]) if run.time.size else 0.0})}}
     return resultfile.write(path, config_toml=cfg.to_toml(), seed=cfg.run.seed, time=run.time, fs_hz=fs,

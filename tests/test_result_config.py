@@ -83,17 +83,25 @@ def test_every_optional_field_removal_is_accepted_or_refused_in_one_line():
         assert re.search(r"\w+\.\w+ = ", str(err)), (name, field, err)       # names a field
 
 
-def test_a_car_run_stores_its_whole_config_and_the_package_version(tmp_path):
-    """The issue's case: ``[run] speed_kmh`` left out runs at the default 48 km/h, and the result
-    says so: its stored config is the whole validated one (what ``load_config`` gives), so the
-    reader finds the shaft speed without a flag."""
-    raw = tomllib.loads(configs.path("vehicle").read_text())     # rigid bodies, bushings: quick
+@pytest.fixture(scope="module")
+def no_speed_run(tmp_path_factory):
+    """The shipped car (rigid bodies, bushings: quick) without ``[run] speed_kmh``, 0.05 s:
+    ``(config text, result file)``."""
+    raw = tomllib.loads(configs.path("vehicle").read_text())
     del raw["run"]["speed_kmh"]
     raw["run"]["duration"] = 0.05
     raw["bodies"]["flexible"] = []
     text = tomli_w.dumps(raw)
-    out = tmp_path / "run.h5"
+    out = tmp_path_factory.mktemp("no_speed") / "run.h5"
     psim.run(psim.Config(text, "no_speed"), out, log=lambda *_: None, checkpoint_every=0)
+    return text, out
+
+
+def test_a_car_run_stores_its_whole_config_and_the_package_version(no_speed_run):
+    """The issue's case: ``[run] speed_kmh`` left out runs at the default 48 km/h, and the result
+    says so: its stored config is the whole validated one (what ``load_config`` gives), so the
+    reader finds the shaft speed without a flag."""
+    text, out = no_speed_run
     with h5py.File(out, "r") as f:
         stored, version = str(f.attrs["config"]), str(f.attrs["package_version"])
     assert stored == psim.load_config(psim.Config(text, "no_speed")).to_toml()
@@ -157,6 +165,22 @@ def test_diagnose_report_and_dataset_run_on_results_of_shipped_configs_without_a
     import xarray as xr
     with xr.open_dataset(tmp_path / "ds" / "dataset.nc") as ds:
         assert ds.attrs["n_cases"] == len(END_TO_END) - 1
+
+
+def test_a_car_result_stores_each_wheelsets_shaft_angle_and_speed(no_speed_run):
+    """Issue 51, item 2: ``shafts/ws<k>/angle`` and ``speed`` at the output rate.  At 48 km/h on
+    0.42 m wheels the spin is V / r0 to the creep (under 0.5 %), and the stored angle is the
+    integral of the stored speed (trapezoid, to 1e-6 of a turn over 500 outputs)."""
+    _, out = no_speed_run
+    with h5py.File(out, "r") as f:
+        t = f["time"][()]
+        for k in range(1, 5):
+            angle, speed = f[f"shafts/ws{k}/angle"][()], f[f"shafts/ws{k}/speed"][()]
+            assert angle.shape == speed.shape == t.shape
+            assert f[f"shafts/ws{k}/angle"].attrs["unit"] == "rad"
+            assert np.all(np.abs(speed / (48.0 / 3.6 / 0.42) - 1.0) < 5e-3), k
+            integral = np.concatenate([[0.0], np.cumsum(0.5 * (speed[1:] + speed[:-1]) * np.diff(t))])
+            assert np.max(np.abs(angle - integral)) < 2 * np.pi * 1e-6, k
 
 
 def test_older_result_files_read_and_a_config_this_version_refuses_is_one_line(tmp_path):
