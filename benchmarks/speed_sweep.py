@@ -20,9 +20,10 @@ from collections import Counter
 import numpy as np
 
 from axlebox.bearing import models
+from axlebox.bearing.diagnostics import ordertrack as ot
 from axlebox.bearing.diagnostics.criterion import Criterion
 from axlebox.bearing.diagnostics.pair import analyse_pair
-from axlebox.bearing.diagnostics.synthetic import resonance, wheel_rail_noise
+from axlebox.bearing.diagnostics.synthetic import swept_coaxial_pair
 from axlebox.bearing.frequencies import shaft_hz
 from axlebox.bearing.params import BearingParams
 
@@ -31,29 +32,17 @@ VERDICTS = ("real fault", "pseudo-fault", "faults on both sides", "healthy", "un
 
 
 def swept_pair(T: float, seed: int, v0: float = 20.0, v1: float = 80.0):
-    """``(defect side, healthy side, mean shaft Hz)`` of one seed (module docstring)."""
-    rng = np.random.default_rng(seed)
-    t = np.arange(int(T * FS)) / FS
-    f0, f1 = shaft_hz(v0), shaft_hz(v1)
-    theta = f0 * t + 0.5 * (f1 - f0) / T * t ** 2
-    bpfo = models.orders(BearingParams()).BPFO
-    k = np.arange(1, int(theta[-1] * bpfo))
-    angles = (k + 0.01 * rng.standard_normal(k.size)) / bpfo
-    hits = np.zeros(t.size)
-    hits[np.clip(np.searchsorted(theta, angles), 0, t.size - 1)] = 1.0
-    a = resonance(hits, FS, 600.0, 0.05)
-    a /= a.std()
-    b = resonance(np.roll(a, int(round(1.2e-3 * FS))), FS, 546.0, 0.05)
-    b *= 0.3 / b.std()
-    n = t.size
-    return (a + 0.5 * wheel_rail_noise(n, FS, rng), b + 0.5 * wheel_rail_noise(n, FS, rng),
-            0.5 * (f0 + f1))
+    """``(defect side, healthy side, angle)`` of one seed (module docstring)."""
+    return swept_coaxial_pair(T, FS, models.orders(BearingParams()).BPFO, shaft_hz(v0), shaft_hz(v1),
+                              np.random.default_rng(seed))
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--seeds", type=int, default=100)
     ap.add_argument("--duration", type=float, default=20.0)
+    ap.add_argument("--tracked", action="store_true", help="read with the speed: each record "
+                    "order-tracked to its mean speed (ordertrack.equivalent)")
     ap.add_argument("--kmh", type=float, nargs=2, default=(20.0, 80.0), metavar=("FROM", "TO"),
                     help="the sweep's speeds (equal: a constant-speed control)")
     a = ap.parse_args()
@@ -62,13 +51,16 @@ def main():
     tally = {"defect": Counter(), "healthy": Counter()}
     t0 = time.perf_counter()
     for seed in range(a.seeds):
-        right, left, f_mean = swept_pair(a.duration, seed, *a.kmh)
-        p = analyse_pair(left, right, FS, f_mean, o, 0.13, crit)
+        right, left, angle = swept_pair(a.duration, seed, *a.kmh)
+        fs, f_mean = FS, angle[-1] / a.duration          # the mean speed, turns/s
+        if a.tracked:
+            (left, fs, f_mean), (right, _, _) = (ot.equivalent(x, FS, angle) for x in (left, right))
+        p = analyse_pair(left, right, fs, f_mean, o, 0.13, crit)
         tally["defect"][p.verdict.words["right"]] += 1
         tally["healthy"][p.verdict.words["left"]] += 1
     wall = time.perf_counter() - t0
-    print(f"{a.seeds} seeds, {a.duration:g} s at {FS:g} Hz, {a.kmh[0]:g}-{a.kmh[1]:g} km/h, read at "
-          "the mean speed "
+    how = "order-tracked to the mean speed" if a.tracked else "read at the mean speed"
+    print(f"{a.seeds} seeds, {a.duration:g} s at {FS:g} Hz, {a.kmh[0]:g}-{a.kmh[1]:g} km/h, {how} "
           f"({wall:.1f} s wall, {wall / a.seeds:.2f} s a record)")
     print("| side | " + " | ".join(VERDICTS) + " |")
     print("| --- |" + " --- |" * len(VERDICTS))

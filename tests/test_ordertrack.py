@@ -107,6 +107,34 @@ def test_a_bearing_fault_through_a_speed_sweep_is_its_order_in_the_tracked_envel
     assert Ah[at].max() < 3 * np.median(Ah[(fh >= f.mean()) & (fh <= 30 * f.mean())])
 
 
+def test_a_constant_speed_record_is_its_own_equivalent():
+    f = FS / 250
+    t = np.arange(30_000) / FS
+    x = np.random.default_rng(2).standard_normal(t.size)
+    y, fs, f_mean = ot.equivalent(x, FS, f * t)
+    assert fs == pytest.approx(FS, rel=1e-12) and f_mean == pytest.approx(f, rel=1e-12)
+    np.testing.assert_allclose(y, x, rtol=0, atol=1e-9)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_a_source_and_its_copy_through_a_sweep_read_at_their_mean_speed_are_real_and_pseudo(seed):
+    """benchmarks/speed_sweep.py's record (the coaxial family, 20-80 km/h over 20 s): read at one
+    mean speed today both sides are "healthy" (the fault missed); order-tracked to the mean
+    speed, the defect side is the real fault and the healthy side the pseudo-fault (100 of 100
+    seeds in benchmarks/README.md; three here)."""
+    from axlebox.bearing import models
+    from axlebox.bearing.diagnostics.criterion import Criterion
+    from axlebox.bearing.diagnostics.pair import analyse_pair
+    from axlebox.bearing.diagnostics.synthetic import swept_coaxial_pair
+    from axlebox.bearing.params import BearingParams
+    bpfo = models.orders(BearingParams()).BPFO
+    right, left, angle = swept_coaxial_pair(T, FS, bpfo, shaft_hz(20.0), shaft_hz(80.0),
+                                            np.random.default_rng(seed))
+    (L, fs, f_mean), (R, _, _) = (ot.equivalent(x, FS, angle) for x in (left, right))
+    p = analyse_pair(L, R, fs, f_mean, models.orders(BearingParams()), 0.13, Criterion(mode="relative"))
+    assert (p.verdict.words["right"], p.verdict.words["left"]) == ("real fault", "pseudo-fault")
+
+
 @pytest.mark.parametrize("make, words", [
     (lambda: ot.angle_from_speed([0.0, 0.1, 0.1, 0.2], [5.0] * 4), "speed time[2] = 0.1"),
     (lambda: ot.angle_from_speed([0.0, 0.1, 0.2], [5.0, -1.0, 5.0]), "speed[1] = -1.0 Hz"),

@@ -21,6 +21,14 @@ then read at the instants the angle passes each ``1 / per_rev`` of a turn by a c
 record everywhere no filter is needed and none is applied: a constant-speed record resampled at
 its own rate is itself.
 
+The record at its mean speed (:func:`equivalent`): resampled to ``per_rev`` samples a turn, with
+``per_rev`` the record's rate over its mean shaft speed (rounded), and labelled at the mean speed,
+``fs' = per_rev f_mean``, it is the record the shaft would have given turning at its mean speed
+throughout: every line at an order of the shaft lies at that order times ``f_mean``, so the
+whole constant-speed analysis reads it unchanged (a source and its copy swept from 20 to 80 km/h:
+benchmarks/speed_sweep.py).  The structure's resonances, fixed in Hz, move in it by the speed's
+ratio to the mean; time spans (the lag) are at the mean speed.
+
 The envelope in orders (:func:`envelope_orders`): a fault's impulses ring the structure's
 resonances, fixed in Hz whatever the speed, so the band-pass and the Hilbert envelope are taken
 in time (:func:`.envelope.envelope`) and the envelope, whose lines are the fault's orders, is
@@ -137,6 +145,17 @@ def to_angle(x, fs: float, angle, per_rev: int) -> AngleRecord:
     # the instants refined on the angle's own spline, then the record read there
     t_k = _invert(CubicSpline(t, a), k / per_rev, t_k, t)
     return AngleRecord(CubicSpline(t, x)(t_k), int(per_rev), float(k[0] / per_rev), t_k)
+
+
+def equivalent(x, fs: float, angle) -> tuple[np.ndarray, float, float]:
+    """``(x', fs', f_mean)``: ``x`` (at ``fs``, its shaft at ``angle`` revolutions at each sample)
+    as the record at its mean shaft speed ``f_mean`` (module docstring), sampled at ``fs'``."""
+    fs = check_fs(fs)
+    a = np.asarray(angle, float)
+    f_mean = (a[-1] - a[0]) * fs / max(a.size - 1, 1)
+    per_rev = max(8, int(round(fs / f_mean))) if f_mean > 0 else 8
+    rec = to_angle(x, fs, a, per_rev)
+    return rec.x, per_rev * f_mean, f_mean
 
 
 def _invert(spline, target, t0, t, iters: int = 3) -> np.ndarray:
