@@ -31,6 +31,7 @@ import numpy as np
 from axlebox._params import ParameterError
 from axlebox.bearing import catalogue, resultfile
 from axlebox.bearing.frequencies import FaultOrders, shaft_hz
+from axlebox.mbs.config import CarConfig, validate
 from axlebox.mbs.system import TRACK_RAMP_S
 
 HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
@@ -127,16 +128,13 @@ def _read_result(path, left, right, fs, column: int) -> Record:
                                      f"has columns 0..{ds.shape[1] - 1}")
             chans.append(_channel(ds[:, column], n, side))
         fs_file = f[f"signals/{names[0]}/acceleration"].attrs.get("fs_hz")
-        raw = _stored_config(path, str(f.attrs.get("config", "")))
-        # a vehicle run: its config has [run] (a rig's has [rig]), or it has wheel-rail outputs
-        vehicle = "rig" not in raw and ("run" in raw or "wheelrail" in f)
+        cfg = _file_config(f, path)
     rec = Record(chans[0], chans[1], _need_fs(fs if fs is not None else fs_file, "this result file"),
                  tuple(names), "axlebox-result")
-    cfg = stored_config(path, raw, vehicle)
+    vehicle = isinstance(cfg, CarConfig)
     if cfg is not None:                       # the run's own speed, wheel and bearing
-        rig = "rig" in raw
-        rec.shaft_hz = shaft_hz(*((cfg.speed_kmh, cfg.r_wheel) if rig
-                                  else (cfg.run.speed_kmh, cfg.wheelset.r0)))
+        rec.shaft_hz = shaft_hz(*((cfg.run.speed_kmh, cfg.wheelset.r0) if vehicle
+                                  else (cfg.speed_kmh, cfg.r_wheel)))
         rec.bearing = catalogue.of(cfg.bearing, "the file's [bearing]")
         rec.orders = rec.bearing.orders
     if vehicle:                               # drop the track irregularity's fade-in
@@ -147,37 +145,31 @@ def _read_result(path, left, right, fs, column: int) -> Record:
     return rec
 
 
-def _stored_config(path, text: str) -> dict:
+def _file_config(f: h5py.File, path):
+    """The config the open result file ``f`` stores, through the loader that ran it: a
+    :class:`~axlebox.bearing.rig.RigConfig` (``[rig]``), a :class:`~axlebox.mbs.config.CarConfig`
+    (a vehicle run: its config has ``[run]`` or the file wheel-rail outputs) or None (neither);
+    a config this version refuses is one line naming the file and the field."""
+    from axlebox.bearing.rig import config_from_dict
     try:
-        return tomllib.loads(text)
+        raw = tomllib.loads(str(f.attrs.get("config", "")))
     except tomllib.TOMLDecodeError as err:
         raise ParameterError(f"input file {str(path)!r}: its stored config is not valid TOML "
                              f"({err})") from None
-
-
-def stored_config(path, raw: dict, vehicle: bool):
-    """The config a result file stores, through the loader that ran it: a
-    :class:`~axlebox.bearing.rig.RigConfig` (``[rig]``), a
-    :class:`~axlebox.mbs.config.CarConfig` (``vehicle``) or None (neither); a config this
-    version refuses is one line naming the file and the field."""
-    from axlebox.bearing.rig import config_from_dict
-    from axlebox.mbs import config as vconfig
     try:
         if "rig" in raw:
             return config_from_dict(raw)
-        return vconfig.validate(raw) if vehicle else None
+        return validate(raw) if "run" in raw or "wheelrail" in f else None
     except ParameterError as err:
         raise ParameterError(f"input file {str(path)!r}: its stored config is not one this version "
                              f"runs ({err})") from None
 
 
 def result_config(path):
-    """The config an axlebox-result file stores, as its run had it (:func:`stored_config`): a
+    """The config an axlebox-result file stores, as its run had it (:func:`_file_config`): a
     rig's, a car's, or None for a file of neither."""
     with resultfile.reading(path) as f:
-        raw = _stored_config(path, str(f.attrs.get("config", "")))
-        vehicle = "rig" not in raw and ("run" in raw or "wheelrail" in f)
-    return stored_config(path, raw, vehicle)
+        return _file_config(f, path)
 
 
 def _h5_datasets(f: h5py.File) -> dict[str, h5py.Dataset]:

@@ -172,10 +172,13 @@ def shafts(run: integrate.Run, model, block: int = 4096) -> dict:
     the state snapshots' spin angle and spin rate (exact for a spin angle cubic in time between
     snapshots, so for a constant acceleration), read a block of snapshots at a time."""
     from scipy.interpolate import CubicHermiteSpline
-    ks = [k for k, b in enumerate(model.bodies) if b.name.startswith("ws")]
+
+    from axlebox.mbs.kernel_body import BI_POS, BI_VEL, SPIN_ANGLE, SPIN_RATE
+    ks = [k for k, b in enumerate(model.bodies) if b.spin]          # the wheelsets
     if not ks or run.time.size == 0 or len(run.state_time) < 2:
         return {}
-    cols = [c for k in ks for c in (int(model.S.bi[k, 0]) + 7, int(model.S.bi[k, 1]) + 4)]
+    bi = model.S.bi
+    cols = [c for k in ks for c in (int(bi[k, BI_POS]) + SPIN_ANGLE, int(bi[k, BI_VEL]) + SPIN_RATE)]
     n = len(run.state_time)
     read = run.states.rows if hasattr(run.states, "rows") else (lambda r0, r1: run.states[r0:r1])
     Y = np.concatenate([np.asarray(read(r0, min(r0 + block, n)))[:, cols] for r0 in range(0, n, block)])
