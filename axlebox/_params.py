@@ -49,6 +49,13 @@ def numbers(default, lo: float, hi: float, unit: str = "", doc: str = ""):
                              metadata={"range": (lo, hi), "numbers": True, "unit": unit, "doc": doc})
 
 
+def rows(default, columns, doc: str = ""):
+    """A dataclass field of a table: any number of rows (a tuple of tuples), each with one number
+    a column; ``columns``: ``(name, lo, hi, unit)`` for each, its range inclusive."""
+    return dataclasses.field(default=tuple(tuple(float(v) for v in r) for r in default),
+                             metadata={"rows": tuple(columns), "doc": doc})
+
+
 def members(default, allowed, doc: str = "", at_least: int = 1):
     """A dataclass field of distinct items of ``allowed`` (names or numbers), ``at_least`` of
     them (a tuple)."""
@@ -107,6 +114,16 @@ def _check_field(where: str, f, value) -> None:
             raise ParameterError(f"{where} = {list(value) if isinstance(value, tuple) else value!r} "
                                  "is not allowed: expected distinct items of "
                                  f"{', '.join(map(str, allowed))}" + (f", at least {n}" if n else ""))
+    elif "rows" in md:
+        cols = md["rows"]
+        heads = ", ".join(f"{n} in [{lo:g}, {hi:g}] {u}".rstrip() for n, lo, hi, u in cols)
+        if not isinstance(value, tuple):
+            raise ParameterError(f"{where} = {value!r} is not allowed: expected rows of ({heads})")
+        for i, r in enumerate(value):
+            if (not isinstance(r, tuple) or len(r) != len(cols)
+                    or not all(_is_number(v) and lo <= v <= hi for v, (_, lo, hi, _) in zip(r, cols))):
+                raise ParameterError(f"{where}[{i}] = {list(r) if isinstance(r, tuple) else r!r} is "
+                                     f"not allowed: expected ({heads})")
     elif "range" in md:
         lo, hi = md["range"]
         unit = md.get("unit", "")
@@ -138,6 +155,9 @@ def check_ranges(obj) -> None:
 def _coerce(f, value):
     """A value as read from a file (TOML) in its field's Python form: a list as a tuple, an
     integer as a float where the field is a float."""
+    if isinstance(value, list) and "rows" in f.metadata:
+        return tuple(tuple(float(v) if _is_number(v) else v for v in r) if isinstance(r, list) else r
+                     for r in value)
     if isinstance(value, list):
         return tuple(float(v) if ("length" in f.metadata or "numbers" in f.metadata) and _is_number(v)
                      else v for v in value)

@@ -68,7 +68,7 @@ def _stage(which, nrep, t, y, dy, S, W):
                 position_rates(b, y, bi, omfb[b], dy)
             marker_kinematics(y, bi, mk_i, mk_f, shp, Ab, rb, vb, omfb, mku, mkp, mkv, mkR, mkw)
         elif which == 1:
-            element_forces(t, el_i, el_f, mkp, mkv, mkR, mkw, mkF, mkM, elout)
+            element_forces(t, el_i, el_f, glob, mkp, mkv, mkR, mkw, mkF, mkM, elout)
         elif which == 2:
             bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, elout)
         elif which == 3:

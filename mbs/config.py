@@ -30,11 +30,12 @@ from pathlib import Path
 import tomli_w
 
 from axlebox._params import (ParameterError, choice, flag, from_table, like, members, numbers, param,
-                             section, text, vector)
+                             rows, section, text, vector)
 from axlebox._params import check_ranges as _check_fields
 from axlebox.bearing import models
 from axlebox.bearing.defects import Defect
 from axlebox.mbs.integrate import Settings
+from axlebox.mbs.profile import SpeedProfile
 from axlebox.mbs.track import IrregularityParams
 from axlebox.mbs.trackbed import MODELS as TRACK_MODELS
 from axlebox.mbs.wheelrail.element import WheelRailParams
@@ -52,8 +53,13 @@ class Run:
 
     duration: float = param(5.0, 1e-4, 10000.0, "s", "simulated time; the track must be long enough "
                             "(track.length)")
-    speed_kmh: float = param(48.0, 1.0, 200.0, "km/h", "vehicle speed, in km/h by name (the one run field "
-                             "not in SI)")
+    speed_kmh: float = param(48.0, 1.0, 200.0, "km/h", "vehicle speed, in km/h by name (the run's speeds "
+                             "are the fields not in SI); with a profile its speed at t = 0")
+    profile: tuple = rows((), (("time", 0.0, 10000.0, "s"), ("speed", 1.0, 200.0, "km/h")),
+                          "speed profile: points (time, speed), the first at 0 s and speed_kmh, times "
+                          "increasing; constant acceleration between points, the last speed held "
+                          "(mbs/profile.py); traction and braking torques at the wheelsets drive the "
+                          "car along it (mbs/vehicle.py); empty: the constant speed_kmh")
     seed: int = like(IrregularityParams, "seed", doc="seed of the track irregularity's random phases and "
                      "the wheels' roughness")
 
@@ -520,11 +526,17 @@ class CarConfig:
         return IrregularityParams(grade=t.fra_class, lambda_min=t.lambda_min, lambda_max=t.lambda_max,
                                   length=t.length, seed=self.run.seed, **extra)
 
+    def speed_profile(self) -> SpeedProfile:
+        """The run's speed over time: ``run.profile``, or the constant ``run.speed_kmh``."""
+        if self.run.profile:
+            return SpeedProfile.from_kmh(self.run.profile)
+        return SpeedProfile.constant(self.run.speed_kmh / 3.6)
+
     def track_needed(self, duration: float | None = None) -> float:
         """Metres of track the car covers in ``duration`` s (default: the run's): the distance
         run plus its length (the bogie distance and 5 m)."""
         T = self.run.duration if duration is None else duration
-        return self.run.speed_kmh / 3.6 * T + self.geometry.bogie_distance + 5.0
+        return float(self.speed_profile().distance(T)) + self.geometry.bogie_distance + 5.0
 
     # -- another one, and the file ----------------------------------------------------------------
     def replace(self, **changes) -> CarConfig:
@@ -564,7 +576,9 @@ _NAMES = (*SECTIONS, "bearing", "defects", "wheel_defects")
 
 
 def _table(obj) -> dict:
-    return {k: (list(v) if isinstance(v, tuple) else v) for k, v in dataclasses.asdict(obj).items()}
+    def plain(v):
+        return [plain(x) for x in v] if isinstance(v, tuple) else v
+    return {k: plain(v) for k, v in dataclasses.asdict(obj).items()}
 
 
 def _section(name: str, fields):
@@ -599,6 +613,12 @@ def _cross_checks(c: CarConfig) -> None:
             for theirs, ours in _THEIR_NAMES:
                 msg = msg.replace(theirs, ours)
             raise ParameterError(msg) from None
+    r = c.run
+    if r.profile:
+        c.speed_profile()                   # its own checks: times from 0, increasing
+        if r.profile[0][1] != r.speed_kmh:
+            raise ParameterError(f"run.speed_kmh = {r.speed_kmh:g} is not allowed with run.profile: "
+                                 f"expected its speed at 0 s, {r.profile[0][1]:g} km/h")
     t = c.track
     if not t.irregularity and t.rail_roughness != "none":
         raise ParameterError(f"track.rail_roughness = {t.rail_roughness!r} is not allowed with "

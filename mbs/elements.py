@@ -15,6 +15,10 @@ the field and what is allowed) and packs itself into one row of the element tabl
 ``BumpStop``   clearance, then ``k over^e`` along one axis of marker 1 (lateral stops)
 ``Load``       force (and moment) on one marker, ``F0 + A sin(omega t + phase)`` in a
                time window (tests, load histories)
+``Drive``      traction and braking along the system's speed profile: the force the
+               profile's acceleration asks of a mass (feed-forward) plus a gain on a
+               marker's speed against the profile's, as a torque about marker 1's axle
+               (reaction on marker 2) or a force along x on marker 1
 =============  ==========================================================================
 """
 from __future__ import annotations
@@ -140,3 +144,32 @@ class Load:
         row[ke.L_OM], row[ke.L_PH], row[ke.L_T0] = self.omega, self.phase, self.t_on
         row[ke.L_T1] = min(self.t_off, 1e300)
         return (ke.LOAD, self.m1, self.m1, 0), row
+
+
+@dataclass
+class Drive:
+    """Traction or braking that drives marker ``aux`` along the speed profile
+    (:mod:`axlebox.mbs.profile`, kernel: :func:`axlebox.mbs.kernel_elements._drive`):
+    ``F = mass a(t) + kd (v(t) - v_aux)``; ``radius > 0``: the torque
+    ``F radius + inertia a / radius`` about marker 1's y axis (a wheelset's axle; the spin's own
+    inertia ``inertia``), its reaction on marker 2 (the gearbox or frame); ``radius = 0``: the
+    force along the track on marker 1 (``m2`` unused)."""
+
+    name: str
+    m1: int
+    m2: int
+    aux: int
+    mass: float                    # kg it accelerates
+    radius: float = 0.0            # m, the rolling radius (0: a force, not a torque)
+    inertia: float = 0.0           # kg m^2, the spin inertia about the axle
+    kd: float = 0.0                # N s/m, on marker aux's speed against the profile's
+
+    def pack(self):
+        for what in ("mass", "radius", "inertia", "kd"):
+            v = getattr(self, what)
+            if not (np.isfinite(v) and v >= 0):
+                raise ParameterError(f"{self.name}.{what} = {v!r} is not allowed: expected a number >= 0")
+        row = np.zeros(ke.EL_WIDTH)
+        row[ke.D_M], row[ke.D_R], row[ke.D_J] = self.mass, self.radius, self.inertia
+        row[ke.D_KD] = self.kd
+        return (ke.DRIVE, self.m1, self.m2, self.aux), row

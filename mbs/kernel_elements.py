@@ -13,14 +13,16 @@ import numpy as np
 from numba import njit
 
 from .kernel_body import cross
+from .kernel_profile import profile_at
 
-BUSHING, SPRING, BUMPSTOP, LOAD = 1, 2, 3, 4
+BUSHING, SPRING, BUMPSTOP, LOAD, DRIVE = 1, 2, 3, 4, 5
 EL_KIND, EL_M1, EL_M2, EL_AUX = range(4)
 # parameter slots
 B_K, B_C, B_F0, B_D0 = 0, 6, 12, 18      # bushing: k (6), c (6), preload (6), offset (3)
 S_K, S_C, S_L0, S_F0, S_NPT, S_TAB = 0, 1, 2, 3, 4, 8   # spring: table (x, f) pairs from S_TAB
 P_GAP, P_K, P_EXP, P_C = 0, 1, 2, 3       # bump stop along axis aux of marker 1
 L_F0, L_A, L_OM, L_PH, L_T0, L_T1, L_M0 = 0, 3, 6, 7, 8, 9, 10   # load on marker 1
+D_M, D_R, D_J, D_KD = 0, 1, 2, 3       # drive: mass, radius, spin inertia, speed gain
 EL_WIDTH = 48
 
 
@@ -54,8 +56,31 @@ def _table(x, tab, npt):
 
 
 @njit(cache=True)
-def element_forces(t, el_i, el_f, mkp, mkv, mkR, mkw, mkF, mkM, elout):
-    """Evaluate all elements; ``elout (ne, 6)`` gets each element's local force/moment on m2."""
+def _drive(t, m1, m2, aux, P, glob, mkv, mkR, mkF, mkM, out):
+    """Traction or braking along the speed profile (:class:`axlebox.mbs.elements.Drive`): the
+    force ``F = M a(t) + kd (v(t) - v_aux)`` the profile asks of mass ``M`` (feed-forward, and
+    a gain on marker ``aux``'s speed along the track against the profile's); with a radius
+    ``r > 0`` a torque ``F r + J a / r`` about marker 1's y axis (the axle), its reaction on
+    marker 2, else the force along x on marker 1 (reaction on the ground)."""
+    _, v, a = profile_at(glob, t)
+    F = P[D_M] * a + P[D_KD] * (v - mkv[aux, 0])
+    if P[D_R] > 0.0:
+        T = F * P[D_R] + P[D_J] * a / P[D_R]
+        R1 = mkR[m1]
+        for c in range(3):
+            mkM[m1, c] += T * R1[c, 1]
+            mkM[m2, c] -= T * R1[c, 1]
+        out[0] = T
+    else:
+        mkF[m1, 0] += F
+        out[0] = 0.0
+    out[1] = F
+
+
+@njit(cache=True)
+def element_forces(t, el_i, el_f, glob, mkp, mkv, mkR, mkw, mkF, mkM, elout):
+    """Evaluate all elements; ``elout (ne, 6)`` gets each element's local force/moment on m2;
+    ``glob``: the system's globals (the speed profile, for the drives)."""
     F2 = np.empty(3)
     M2 = np.empty(3)
     dp = np.empty(3)
@@ -70,6 +95,9 @@ def element_forces(t, el_i, el_f, mkp, mkv, mkR, mkw, mkF, mkM, elout):
     for e in range(el_i.shape[0]):
         kind, m1, m2 = el_i[e, EL_KIND], el_i[e, EL_M1], el_i[e, EL_M2]
         P = el_f[e]
+        if kind == DRIVE:
+            _drive(t, m1, m2, el_i[e, EL_AUX], P, glob, mkv, mkR, mkF, mkM, elout[e])
+            continue
         if kind == LOAD:
             on = P[L_T0] <= t < P[L_T1]
             s = math.sin(P[L_OM] * t + P[L_PH]) if on else 0.0

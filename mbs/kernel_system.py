@@ -71,7 +71,7 @@ def kinematics(t, y, dy, S, W):
                       W.mkR, W.mkw)
     W.mkF[:, :] = 0.0
     W.mkM[:, :] = 0.0
-    element_forces(t, S.el_i, S.el_f, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.elout)
+    element_forces(t, S.el_i, S.el_f, S.glob, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.elout)
 
 
 @njit(cache=True)

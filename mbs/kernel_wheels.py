@@ -15,6 +15,7 @@ rate is taken as slope times the rolling speed, as the rails' (creep: 1e-3 of it
 On a ballasted track (``track >= 0``, :mod:`axlebox.mbs.trackbed`) the rail body's height and
 vertical velocity add to the rail's, and the contact's vertical force acts on it (the track is
 rigid laterally and along the rail).
+The creepages' reference speed is the car's speed profile's at ``t`` (:mod:`.kernel_profile`).
 The contact itself is :func:`axlebox.mbs.wheelrail.element_kernel.wheel_rail_force`.
 """
 from __future__ import annotations
@@ -27,9 +28,12 @@ from numba import njit
 from axlebox.mbs.wheelrail.element_kernel import wheel_rail_force
 
 from .kernel_body import BI_POS, BI_SPIN, cross
+from .kernel_profile import G_PROF, G_V, profile_at  # noqa: F401  (G_V: glob's slot, here with the rest)
 
-G_GRAV, G_V, G_S0, G_DS, G_TRACK, G_RAMP = 0, 3, 4, 5, 6, 7   # glob slots
-N_GLOB = 8
+# glob slots (G_V, the constant speed, and G_PROF, the speed profile's count with its points
+# after it, are kernel_profile.py's)
+G_GRAV, G_S0, G_DS, G_TRACK, G_RAMP = 0, 4, 5, 6, 7
+N_GLOB = G_PROF + 1
 WH_MARKER, WH_SIDE, WH_BODY, WH_TRACK = 0, 1, 2, 3   # WH_TRACK: the rail body's marker, -1 none
 WF_RC, WF_DS = 0, 1                    # wh_f columns: r_c; the wheel record's grid step (0: none)
 
@@ -77,7 +81,7 @@ def track_at(trk, row, s, glob, t):
 @njit(cache=True)
 def wheel_forces(t, y, bi, wh_i, wh_f, wtab, wpar, trk, wrk, glob, Ab, omb, mkp, mkv, mkR, mkw, mkF,
                  mkM, whout):
-    V = glob[G_V]
+    V = profile_at(glob, t)[1]        # the creepages' reference speed: the profile's at t
     c = np.empty(3)
     e = np.empty(3)
     vc = np.empty(3)

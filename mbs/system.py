@@ -54,9 +54,12 @@ def quaternion(rotation) -> np.ndarray:
 class System:
     """A multibody system under construction (names are unique; ``None`` body is the ground)."""
 
-    def __init__(self, gravity=(0.0, 0.0, -9.81), speed: float = 0.0):
+    def __init__(self, gravity=(0.0, 0.0, -9.81), speed: float = 0.0, profile=None):
+        """``speed`` (m/s): the contact's reference speed; ``profile``: a
+        :class:`~axlebox.mbs.profile.SpeedProfile` that replaces it over time."""
         self.gravity = np.asarray(gravity, float)
         self.speed = float(speed)
+        self.profile = profile
         self.bodies: list[Body] = []
         self.init: list[_Init] = []
         self.markers: list[tuple[int, str | None, np.ndarray, str]] = []
@@ -113,7 +116,7 @@ class System:
         return len(self.markers) - 1
 
     def add(self, element):
-        for m in (element.m1, getattr(element, "m2", element.m1)):
+        for m in (element.m1, getattr(element, "m2", element.m1), getattr(element, "aux", element.m1)):
             if not 0 <= m < len(self.markers):
                 raise ParameterError(f"{element.name}: marker {m!r} does not exist")
         self.elements.append(element)
@@ -214,11 +217,13 @@ class System:
         el_i = np.array([r[0] for r in rows], np.int64).reshape(-1, 4)
         el_f = np.array([r[1] for r in rows]).reshape(-1, EL_WIDTH)
 
-        from .kernel_wheels import G_DS, G_GRAV, G_RAMP, G_S0, G_TRACK, G_V, N_GLOB
+        from .kernel_wheels import G_DS, G_GRAV, G_PROF, G_RAMP, G_S0, G_TRACK, G_V, N_GLOB
         glob = np.zeros(N_GLOB)
         glob[G_RAMP] = self.track_ramp
         glob[G_GRAV:G_GRAV + 3] = self.gravity
         glob[G_V] = self.speed
+        if self.profile is not None:
+            glob = np.concatenate([glob[:G_PROF], self.profile.pack()])
         trk = np.zeros((8, 2))
         if self.track is not None:
             tr = self.track
@@ -419,6 +424,7 @@ class Model:
         adj = np.eye(nb, dtype=bool)
         mk_body = self.S.mk_i[:, 0]
         pairs = [(e.m1, getattr(e, "m2", e.m1)) for e in self.system.elements]
+        pairs += [(e.m1, e.aux) for e in self.system.elements if hasattr(e, "aux")]   # drives
         pairs += [(w[1], w[4]) for w in self.system.wheels if w[4] >= 0]    # wheel on its rail
         for m1, m2 in pairs:
             b1, b2 = mk_body[m1], mk_body[m2]

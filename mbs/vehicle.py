@@ -20,6 +20,20 @@ Track frame: x forward, y left, z up, z = 0 at the crown of the rails.  Suspensi
   lateral bump stop;
 * the static loads are preloads so the nominal geometry is near equilibrium;
   :func:`axlebox.mbs.statics.equilibrium` removes the rest.
+
+Speed: the car starts at ``run.speed_kmh`` (every body at that speed, the wheelsets rolling
+freely) and, without a profile, coasts.  Along a speed profile that changes (``run.profile``,
+:mod:`axlebox.mbs.profile`) it is driven as a metro motor car is, by torques at its four
+wheelsets (traction, and electric braking the same way): each wheelset's torque reacts on its
+gearbox (on the frame where there is none), so the wheelsets' spin follows with the creep their
+contacts give and the car with the creep forces (:class:`~axlebox.mbs.elements.Drive`: the
+profile's acceleration times the car's mass, a quarter a wheelset, plus a gain on the
+wheelset's speed against the profile's, :data:`DRIVE_HZ`).  The gain is on the wheelset's own
+speed, where the torque acts through the stiff creep: on the carbody's, across the suspension,
+it excites the car's longitudinal modes; and none on position, which would tie the car to a
+point along the track and spoil its statics (the car is neutral along the track).  Prescribing the carbody's motion instead would
+pull the car through its suspension and leave the wheels braking it, the reverse of a motor
+car.  The ballasted track's bodies under the wheels follow the profile by forces of their own.
 """
 from __future__ import annotations
 
@@ -31,7 +45,7 @@ from axlebox.fem.bodyfile import ReducedBody
 from axlebox.fem.damping import modal as modal_damping
 
 from .body import Body, add_point_masses, flexible, mode_count, rigid
-from .elements import BumpStop, Bushing, Spring
+from .elements import BumpStop, Bushing, Drive, Spring
 from . import trackbed
 from .system import System
 from .wheelrail.element_kernel import COL_C0Z, COL_KH, COL_PZ, P_L0
@@ -87,6 +101,11 @@ def _marker(s: System, body: Body, node: str, at, align: bool = False, place: bo
 
 
 TIE_HZ = 300.0              # the track layers' ties along, across and in rotation (unloaded)
+#: Hz, the drives' speed gain over the mass each drives (kd = 2 pi DRIVE_HZ M / 4): it trims
+#: what the feed-forward leaves (rolling resistance, the creep's share) within about 1/(2 pi
+#: DRIVE_HZ) s
+DRIVE_HZ = 0.5
+TRACK_FOLLOW_HZ = 5.0       # the ballasted track bodies' own following of the profile
 
 
 def _track_under(s: System, cfg: CarConfig, name: str, x: float, y: float, V: float) -> int:
@@ -137,7 +156,8 @@ def build(cfg: CarConfig, tables, track=None, reduced: dict[str, ReducedBody] | 
     V = cfg.run.speed_kmh / 3.6
     geo, prim, sec, gb, jt = cfg.geometry, cfg.primary, cfg.secondary, cfg.gearbox, cfg.joint
     r0 = cfg.wheelset.r0
-    s = System(gravity=(0.0, 0.0, -G), speed=V)
+    profile = cfg.speed_profile()
+    s = System(gravity=(0.0, 0.0, -G), speed=V, profile=profile if profile.accelerates else None)
     s.set_wheel_rail(tables.tab, tables.par)
     if track is not None:
         s.track = track
@@ -247,4 +267,33 @@ def build(cfg: CarConfig, tables, track=None, reduced: dict[str, ReducedBody] | 
                 p_h = s.initial_marker_pose(hm)[0]
                 fh = s.marker(fr.name, at=p_h - s.init[fi].r + (0, 0, 0.3))
                 s.add(Spring(f"hanger{k}", fh, hm, k=gb.hanger_k, c=gb.hanger_c, preload=-F_h))
+    if profile.accelerates:
+        _drives(s, z_ws - float(tables.tab[ic, COL_PZ]))
     return s
+
+
+TRACK_LAYERS = ("rail_", "sleeper_", "ballast_")
+
+
+def _drives(s: System, r_roll: float) -> None:
+    """Traction and braking along the speed profile (module docstring): a drive a wheelset, its
+    torque reacting on the wheelset's gearbox (else its bogie frame), a quarter of the car's mass
+    each; a force a track body.  ``r_roll``: the wheels' rolling radius at the loaded contact."""
+    names = [b.name for b in s.bodies]
+    car = [b for b in s.bodies if not b.name.startswith(TRACK_LAYERS)]
+    M = sum(b.mass for b in car)
+    wheelsets = [b for b in car if b.spin]
+    w = 2 * np.pi * DRIVE_HZ
+    share = M / len(wheelsets)
+    for ws in wheelsets:
+        k = ws.name[2:]
+        react = f"gb{k}" if f"gb{k}" in names else f"frame{(int(k) + 1) // 2}"
+        J = float(ws.P0[0, 0] + ws.P0[2, 2])          # about the axle: int rho (x^2 + z^2)
+        m = s.marker(ws.name, name=f"drive_{ws.name}")
+        s.add(Drive(f"drive{k}", m, s.marker(react, name=f"drive_reaction{k}"), m, mass=share,
+                    radius=r_roll, inertia=J, kd=share * w))
+    wt = 2 * np.pi * TRACK_FOLLOW_HZ
+    for b in s.bodies:
+        if b.name.startswith(TRACK_LAYERS):
+            m = s.marker(b.name, name=f"drive_{b.name}")
+            s.add(Drive(f"drive_{b.name}", m, m, m, mass=b.mass, kd=b.mass * wt))

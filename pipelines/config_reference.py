@@ -132,6 +132,8 @@ def _type(f) -> str:
         return f"list of {md['length']} float"
     if "numbers" in md:
         return "list of float"
+    if "rows" in md:
+        return f"list of [{', '.join(c[0] for c in md['rows'])}]"
     if "members" in md:
         return f"list of {type(md['members'][0]).__name__}"
     return {"float": "float", "int": "int", "str": "str", "bool": "bool"}.get(typ, typ)
@@ -162,6 +164,8 @@ def _dataclass_rows(cls, choices: dict | None = None, skip=(), constraints: dict
             allowed = "`true`, `false`"
         elif "text" in md:
             allowed = "any string"
+        elif "rows" in md:
+            allowed = "rows of " + ", ".join(f"{n} in {_range(lo, hi)} {u}".rstrip() for n, lo, hi, u in md["rows"])
         elif "members" in md:
             allowed = (f"distinct, at least {md['at_least']}, of " if md["at_least"] else "distinct, of ") \
                 + _choices(md["members"])
