@@ -189,9 +189,24 @@ def _analysis_options(a) -> dict:
                 nperseg=a.nperseg, guided=not a.no_guide)
 
 
+def _speed_options(a) -> dict:
+    """``diagnose``'s speed over time (:mod:`axlebox.pipelines.speed`)."""
+    return dict(speed_channel=a.speed_channel, speed_unit=a.speed_unit, tacho=a.tacho,
+                tacho_threshold=a.tacho_threshold, speed_csv=a.speed_csv,
+                order_tracking=a.order_tracking)
+
+
 def _cmd_diagnose(a) -> None:
-    from .diagnose import run
-    run(a.file, json_out=a.json, figures=a.figures, **_analysis_options(a))
+    options = {**_analysis_options(a), **_speed_options(a)}
+    if a.window_turns is None:
+        from .diagnose import run
+        for opt in ("windows_out",):
+            if getattr(a, opt) is not None:
+                raise ParameterError("--windows-out needs --window-turns: the windows' length in shaft turns")
+        run(a.file, json_out=a.json, figures=a.figures, **options)
+        return
+    from .windows import run_windows
+    run_windows(a.file, a.window_turns, a.window_overlap, out=a.windows_out, **options)
 
 
 def _cmd_report(a) -> None:
@@ -482,6 +497,26 @@ def parser() -> argparse.ArgumentParser:
     _add_analysis_options(dg)
     dg.add_argument("--json", metavar="OUT", help="write the indicators and verdicts as JSON")
     dg.add_argument("--figures", metavar="DIR", help="write <file>_diagnose.png into DIR")
+    sp = dg.add_argument_group("speed over the record (a result file of a run along a speed profile "
+                               "gives its own: the stored shaft angle)")
+    sp.add_argument("--speed-channel", metavar="NAME", help="a channel of the same file holding the "
+                    "speed, one sample a sample, in --speed-unit")
+    sp.add_argument("--speed-unit", default="km/h", metavar="UNIT",
+                    help="km/h (with --wheel-radius), rpm or Hz (default: km/h)")
+    sp.add_argument("--tacho", metavar="NAME", help="a once-per-revolution pulse channel of the same "
+                    "file (the record is cut to its pulses' span)")
+    sp.add_argument("--tacho-threshold", type=float, metavar="LEVEL", help="the level a pulse rises "
+                    "through (default: midway between the channel's 1st and 99th percentiles)")
+    sp.add_argument("--speed-csv", metavar="FILE", help="a speed profile: CSV of time s (from the "
+                    "record's first sample) and speed in --speed-unit, covering the record")
+    sp.add_argument("--order-tracking", default="auto", metavar="MODE", help="auto (order-track where "
+                    "the speed's range exceeds 0.5 %% of its mean), on or off (default: auto)")
+    sp.add_argument("--window-turns", type=float, metavar="N", help="read the record in windows of N "
+                    "shaft turns (at least about 5: two cage turns), one verdict a window")
+    sp.add_argument("--window-overlap", type=float, default=0.5, metavar="SHARE",
+                    help="share of a window the next one overlaps (default: 0.5)")
+    sp.add_argument("--windows-out", metavar="FILE", help="the windows as JSON Lines, one object a "
+                    "window, the summary last")
     dg.set_defaults(func=_cmd_diagnose)
 
     rp = sub.add_parser("report", help="the paper's result figures (Figs. 9-14), a summary table and "

@@ -138,40 +138,110 @@ def write_json(path, data: dict) -> Path:
     return write_text(path, json.dumps(data, indent=2, allow_nan=False) + "\n")
 
 
-def analyse_file(path, *, left=None, right=None, fs=None, column: int = 2, scale: float = 1.0,
-                 shaft=None, speed_kmh=None, wheel_radius: float = 0.42, rpm=None,
-                 orders_text=None, bore=None, band=None, criterion=None, nperseg=None,
-                 guided: bool = True, bearing=None, orders_left=None, orders_right=None,
-                 bearing_left=None, bearing_right=None, bore_left=None, bore_right=None):
-    """Read ``path`` and analyse both sides: ``(record, input info, PairResult)``.  The shaft
-    speed comes from the options, else from the file (and with it the verdict's words for the
-    lines at its whole orders, :func:`rotor_of`); each side's bearing as :func:`side_bearings`
-    says."""
+def read_input(path, *, left=None, right=None, fs=None, column: int = 2, speed_channel=None,
+               speed_unit: str = "km/h", tacho=None, tacho_threshold=None, speed_csv=None,
+               wheel_radius: float = 0.42):
+    """The record and its shaft speed over time (:mod:`.speed`; None where nothing gives it):
+    ``(Record, Speed | None)``; a tacho's record is cut to the span of its pulses."""
+    from . import speed as sp
+    given = [o for o, v in (("--speed-channel", speed_channel), ("--tacho", tacho),
+                            ("--speed-csv", speed_csv)) if v is not None]
+    if len(given) > 1:
+        raise ParameterError(f"{' and '.join(given)} both given: expected one source of the speed")
+    rec = read(path, left, right, fs, column)
+    if given and rec.kind == "axlebox-result":
+        raise ParameterError(f"{given[0]} is not allowed on a result file: it stores its own shaft "
+                             "angle (a run along a speed profile) or speed (its config)")
+    speed = None
+    for name, make in ((speed_channel, lambda x: sp.from_channel(x, rec.fs, speed_unit, wheel_radius,
+                                                                 speed_channel)),
+                       (tacho, lambda x: sp.from_tacho(x, rec.fs, tacho_threshold, tacho))):
+        if name is None:
+            continue
+        opt = "--speed-channel" if name is speed_channel else "--tacho"
+        try:
+            x = read(path, name, name, rec.fs, column).left
+        except ParameterError as err:
+            raise ParameterError(str(err).replace("--left", opt)) from None
+        if x.size != rec.left.size:
+            raise ParameterError(f"{opt} {name!r} has {x.size} samples, not allowed: the channels "
+                                 f"have {rec.left.size}; expected one a sample")
+        speed = make(x)
+    if speed_csv is not None:
+        speed = sp.from_csv(speed_csv, rec.left.size, rec.fs, speed_unit, wheel_radius)
+    if rec.angle is not None:
+        speed = sp.Speed(rec.angle, f"the file's shaft angle ({rec.names[0].split('_')[0]})")
+    if speed is not None and not np.all(np.isfinite(speed.angle)):      # a tacho's pulses' span
+        keep = np.flatnonzero(np.isfinite(speed.angle))
+        sl = slice(keep[0], keep[-1] + 1)
+        rec.left, rec.right = rec.left[sl], rec.right[sl]
+        speed = sp.Speed(speed.angle[sl], speed.source)
+        rec.notes.append(f"cut to the tacho's pulses: samples {keep[0]} to {keep[-1]}")
+    return rec, speed
+
+
+def analyse_record(rec: Record, speed, *, scale: float = 1.0, shaft=None, speed_kmh=None,
+                   wheel_radius: float = 0.42, rpm=None, orders_text=None, bore=None, band=None,
+                   criterion=None, nperseg=None, guided: bool = True, bearing=None, orders_left=None,
+                   orders_right=None, bearing_left=None, bearing_right=None, bore_left=None,
+                   bore_right=None, order_tracking: str = "auto"):
+    """Analyse both sides of ``rec``: ``(input info, PairResult)``.  The shaft speed comes from
+    the options, else from ``speed`` (its mean; the record order-tracked where
+    :func:`.speed.wants_tracking` says so), else from the file; each side's bearing as
+    :func:`side_bearings` says."""
     from axlebox.bearing.diagnostics.criterion import Criterion
     from axlebox.bearing.diagnostics.pair import analyse_pair
+
+    from . import speed as sp
     criterion = Criterion() if criterion is None else criterion
     if not (np.isfinite(scale) and scale > 0):
         raise ParameterError(f"--scale = {scale!r} is not allowed: expected a factor > 0")
-    rec = read(path, left, right, fs, column)
-    f_shaft = shaft_speed(rec, shaft, speed_kmh, wheel_radius, rpm)
+    given = [o for o, v in (("--shaft-hz", shaft), ("--rpm", rpm), ("--speed-kmh", speed_kmh)) if v is not None]
+    if given and speed is not None and rec.kind != "axlebox-result":
+        raise ParameterError(f"{given[0]} is not allowed with a speed over time (--speed-channel, "
+                             "--tacho or --speed-csv): expected one source of the speed")
+    tracked = sp.wants_tracking(order_tracking, speed, rec.fs) and not given
+    left, right, fs = rec.left, rec.right, rec.fs
+    stats = speed.stats(rec.fs) if speed is not None else None
+    if tracked:
+        left, right, fs, f_shaft = sp.track(left, right, fs, speed)
+    elif speed is not None and not given:
+        f_shaft = stats["mean_hz"]
+    else:
+        f_shaft = shaft_speed(rec, shaft, speed_kmh, wheel_radius, rpm)
     sides = side_bearings(rec, orders_text=orders_text, bore=bore, bearing=bearing,
                           orders_left=orders_left, orders_right=orders_right,
                           bearing_left=bearing_left, bearing_right=bearing_right,
                           bore_left=bore_left, bore_right=bore_right)
     (bl, src_l), (br, src_r) = sides["left"], sides["right"]
-    res = analyse_pair(rec.left * scale, rec.right * scale, rec.fs, f_shaft,
+    res = analyse_pair(left * scale, right * scale, fs, f_shaft,
                        (bl.orders, br.orders), (bl.bore, br.bore), criterion, band,
                        names=rec.names, nperseg=nperseg, guided=guided,
                        bearings=(bl.name, br.name), rotor=rotor_of(shaft, rpm))
-    info = {"file": str(path), "kind": rec.kind, "left": rec.names[0], "right": rec.names[1],
+    info = {"kind": rec.kind, "left": rec.names[0], "right": rec.names[1],
             "fs_hz": rec.fs, "n_samples": int(rec.left.size), "scale": scale,
             "shaft_hz": f_shaft, "rotor": res.rotor,
+            "speed": None if speed is None else {"from": speed.source, **stats, "order_tracked": tracked,
+                                                 **({"fs_angle_hz": fs} if tracked else {})},
             "bearings": {"left": {**bl.to_dict(), "from": src_l},
                          "right": {**br.to_dict(), "from": src_r}},
             "band": list(band) if band is not None else
             "spectral kurtosis" + (", guided on the side without the other's fault line" if guided else ""),
             "notes": rec.notes}
-    return rec, info, res
+    return info, res
+
+
+READ_OPTIONS = ("left", "right", "fs", "column", "speed_channel", "speed_unit", "tacho",
+                "tacho_threshold", "speed_csv", "wheel_radius")
+
+
+def analyse_file(path, **options):
+    """Read ``path`` (:func:`read_input`, the options of :data:`READ_OPTIONS`) and analyse both
+    sides (:func:`analyse_record`, the rest): ``(record, input info, PairResult)``."""
+    rec, speed = read_input(path, **{k: v for k, v in options.items() if k in READ_OPTIONS})
+    rest = {k: v for k, v in options.items() if k not in READ_OPTIONS or k == "wheel_radius"}
+    info, res = analyse_record(rec, speed, **rest)
+    return rec, {"file": str(path), **info}, res
 
 
 def run(path, *, json_out=None, figures=None, log=print, **options):

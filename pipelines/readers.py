@@ -52,6 +52,7 @@ class Record:
     orders: FaultOrders | None = None
     bearing: object = None        # the file's bearing (catalogue.Bearing), where its config has one
     notes: list[str] = field(default_factory=list)
+    angle: np.ndarray | None = None   # the shaft's angle (turns) at each sample, where the file has it
 
 
 def file_kind(path) -> str:
@@ -129,8 +130,9 @@ def _read_result(path, left, right, fs, column: int) -> Record:
             chans.append(_channel(ds[:, column], n, side))
         fs_file = f[f"signals/{names[0]}/acceleration"].attrs.get("fs_hz")
         cfg = _file_config(f, path)
+        angle = _stored_angle(f, cfg, names, chans[0].size)
     rec = Record(chans[0], chans[1], _need_fs(fs if fs is not None else fs_file, "this result file"),
-                 tuple(names), "axlebox-result")
+                 tuple(names), "axlebox-result", angle=angle)
     vehicle = isinstance(cfg, CarConfig)
     if cfg is not None:                       # the run's own speed, wheel and bearing
         rec.shaft_hz = shaft_hz(*((cfg.run.speed_kmh, cfg.wheelset.r0) if vehicle
@@ -141,8 +143,22 @@ def _read_result(path, left, right, fs, column: int) -> Record:
         n0 = int(round(TRACK_FADE_IN_S * rec.fs))
         if rec.left.size > 2 * n0:
             rec.left, rec.right = rec.left[n0:], rec.right[n0:]
+            rec.angle = rec.angle[n0:] if rec.angle is not None else None
             rec.notes.append(f"first {TRACK_FADE_IN_S:g} s (track fade-in) left out")
     return rec
+
+
+def _stored_angle(f: h5py.File, cfg, names, n: int) -> np.ndarray | None:
+    """The shaft angle (turns) of the sensors' wheelset (``ws<k>`` of ``ws<k>_L``) a car run along
+    a speed profile stores, one a sample; None for a constant-speed run (read at its config's
+    speed, as it ran) or where the file has none."""
+    if not isinstance(cfg, CarConfig) or not cfg.speed_profile().accelerates:
+        return None
+    ws = names[0].split("_")[0]
+    ds = f.get(f"shafts/{ws}/angle")
+    if ds is None or ds.shape[0] != n:
+        return None
+    return np.asarray(ds[()], float) / (2 * np.pi)
 
 
 def _file_config(f: h5py.File, path):

@@ -45,7 +45,10 @@ def envelope(x: np.ndarray, fs: float, band: tuple[float, float] | None = None) 
         if not 0 < lo < hi < fs / 2:
             raise ParameterError(f"band = {tuple(band)!r} Hz is not allowed: expected 0 < low < high "
                                  f"< fs/2 = {fs / 2:g} Hz")
-        x = sosfiltfilt(butter(4, [lo, hi], btype="band", fs=fs, output="sos"), x)
+        if lo < 1e-9 * fs:          # a band from 0 Hz (up to rounding): a low-pass, which is stable
+            x = sosfiltfilt(butter(4, hi, btype="low", fs=fs, output="sos"), x)
+        else:
+            x = sosfiltfilt(butter(4, [lo, hi], btype="band", fs=fs, output="sos"), x)
     return np.abs(hilbert(x))
 
 

@@ -22,7 +22,9 @@ record everywhere no filter is needed and none is applied: a constant-speed reco
 its own rate is itself.
 
 The record at its mean speed (:func:`equivalent`): resampled to ``per_rev`` samples a turn, with
-``per_rev`` the record's rate over its mean shaft speed (rounded), and labelled at the mean speed,
+``per_rev`` the record's rate over its lowest shaft speed (rounded up, so the angle domain samples
+at least as fast as the record everywhere: no filter, nothing above a cut-off lost, where a
+pseudo-fault's copied impulses ring the structure's resonances), and labelled at the mean speed,
 ``fs' = per_rev f_mean``, it is the record the shaft would have given turning at its mean speed
 throughout: every line at an order of the shaft lies at that order times ``f_mean``, so the
 whole constant-speed analysis reads it unchanged (a source and its copy swept from 20 to 80 km/h:
@@ -153,7 +155,10 @@ def equivalent(x, fs: float, angle) -> tuple[np.ndarray, float, float]:
     fs = check_fs(fs)
     a = np.asarray(angle, float)
     f_mean = (a[-1] - a[0]) * fs / max(a.size - 1, 1)
-    per_rev = max(8, int(round(fs / f_mean))) if f_mean > 0 else 8
+    f_min = float(np.min(np.diff(a))) * fs if a.size > 1 else 0.0
+    # samples a turn enough at the lowest speed: nothing of the record is filtered away (its
+    # resonances, where a copy's impulses ring, lie up to its Nyquist frequency)
+    per_rev = max(8, int(np.ceil(fs / f_min * (1.0 - 1e-9)))) if f_min > 0 else 8
     rec = to_angle(x, fs, a, per_rev)
     return rec.x, per_rev * f_mean, f_mean
 

@@ -1,0 +1,164 @@
+"""The shaft's speed for ``axlebox diagnose``: where it comes from and when the record is read in
+shaft turns (order tracking, :mod:`axlebox.bearing.diagnostics.ordertrack`).
+
+Sources, one at a time:
+
+* a result file of a car run along a speed profile: the wheelset's stored shaft angle
+  (``shafts/ws<k>/angle``, the sensors' wheelset);
+* ``--speed-channel NAME`` with ``--speed-unit`` (``km/h`` with ``--wheel-radius``, ``rpm``,
+  ``Hz``): a channel of the same file, sample for sample, integrated to the angle;
+* ``--tacho NAME``: a once-per-revolution pulse channel of the same file (pulses where it rises
+  through ``--tacho-threshold``, default midway between its 1st and 99th percentiles; the angle
+  the monotone cubic through them);
+* ``--speed-csv FILE``: a speed profile, two columns (time s from the record's first sample,
+  speed in ``--speed-unit``), read at each sample by linear interpolation; it must cover the
+  record.
+
+With ``--order-tracking auto`` (the default) a record is order-tracked when its speed's range
+exceeds :data:`TRACK_SPREAD` of its mean: the fault-line search takes a drift of speed that small
+(its harmonic windows, :mod:`axlebox.bearing.diagnostics.faultlines`), beyond it the lines smear
+out of their windows.  Then both channels are resampled to equal angle steps and labelled at
+the mean speed (:func:`~axlebox.bearing.diagnostics.ordertrack.equivalent`): the envelope spectra
+are in orders, the lines found at their orders, the lag and the copy-or-source coherence taken on
+the angle's samples.  Below it the record is read as it came, at the mean speed (a result file
+of a constant-speed run at its config's speed, as before).
+"""
+from __future__ import annotations
+
+import csv
+from dataclasses import dataclass
+
+import numpy as np
+
+from axlebox._params import ParameterError
+from axlebox.bearing.diagnostics import ordertrack
+
+#: the speed's range over its mean above which a record is order-tracked (module docstring)
+TRACK_SPREAD = 0.005
+UNITS = ("km/h", "rpm", "Hz")
+MODES = ("auto", "on", "off")
+
+
+@dataclass
+class Speed:
+    """The shaft's angle (turns) at each sample of a record, and where it came from."""
+
+    angle: np.ndarray
+    source: str
+
+    @property
+    def hz(self) -> np.ndarray:
+        """Speed at each sample (Hz), the angle's central differences (times the rate: see
+        :meth:`stats`)."""
+        return np.gradient(self.angle)
+
+    def stats(self, fs: float) -> dict:
+        """Mean, lowest and highest shaft speed (Hz) and the range over the mean."""
+        f = self.hz * fs
+        mean = (self.angle[-1] - self.angle[0]) * fs / max(self.angle.size - 1, 1)
+        return {"mean_hz": float(mean), "min_hz": float(f.min()), "max_hz": float(f.max()),
+                "spread": float((f.max() - f.min()) / mean) if mean > 0 else float("inf")}
+
+
+def to_hz(values, unit: str, wheel_radius: float, where: str) -> np.ndarray:
+    """Shaft speed (Hz) of speeds in ``unit`` (km/h of a wheel of ``wheel_radius`` m, rev/min or
+    Hz)."""
+    if unit not in UNITS:
+        raise ParameterError(f"--speed-unit {unit!r} is not allowed: expected one of {', '.join(UNITS)}")
+    v = np.asarray(values, float)
+    if unit == "km/h":
+        if not (np.isfinite(wheel_radius) and wheel_radius > 0):
+            raise ParameterError(f"--wheel-radius = {wheel_radius!r} is not allowed: expected a radius > 0 m")
+        return v / 3.6 / (2 * np.pi * wheel_radius)
+    return v / 60.0 if unit == "rpm" else v
+
+
+def _checked_angle(f_hz, fs: float, where: str) -> np.ndarray:
+    """The angle of a speed record at ``fs``; a gap (NaN) or a speed <= 0 named by its sample."""
+    bad = np.flatnonzero(~np.isfinite(f_hz))
+    if bad.size:
+        raise ParameterError(f"{where} has a gap at sample {bad[0]} ({bad.size} samples NaN/inf): "
+                             "expected a speed at every sample")
+    bad = np.flatnonzero(f_hz <= 0)
+    if bad.size:
+        raise ParameterError(f"{where} sample {bad[0]} = {f_hz[bad[0]]:.6g} Hz is not allowed: expected "
+                             f"a shaft speed > 0 ({bad.size} samples are not; a record of one "
+                             "direction of travel)")
+    t = np.arange(f_hz.size) / fs
+    return ordertrack.angle_from_speed(t, f_hz)
+
+
+def from_channel(x, fs: float, unit: str, wheel_radius: float, name: str) -> Speed:
+    where = f"--speed-channel {name!r}"
+    return Speed(_checked_angle(to_hz(x, unit, wheel_radius, where), fs, where),
+                 f"speed channel {name} ({unit})")
+
+
+def from_tacho(x, fs: float, threshold: float | None, name: str) -> Speed:
+    """The angle from a once-per-revolution tacho; the record must lie between its first and
+    last pulses (the part outside is cut by the caller, :func:`cut`)."""
+    try:
+        pulses = ordertrack.tacho_times(x, fs, threshold)
+        t = np.arange(np.asarray(x).size) / fs
+        inside = (t >= pulses[0]) & (t <= pulses[-1])
+        angle = np.full(t.size, np.nan)
+        angle[inside] = ordertrack.angle_from_tacho(pulses, t[inside])
+    except ParameterError as err:
+        raise ParameterError(f"--tacho {name!r}: {err}") from None
+    return Speed(angle, f"tacho {name} ({pulses.size} pulses)")
+
+
+def from_csv(path, n: int, fs: float, unit: str, wheel_radius: float) -> Speed:
+    """A speed profile from a CSV of (time s, speed), a header line allowed, read at each of the
+    ``n`` samples."""
+    where = f"--speed-csv {str(path)!r}"
+    rows = []
+    try:
+        with open(path, newline="") as fh:
+            for i, row in enumerate(csv.reader(fh)):
+                if not row or not "".join(row).strip():
+                    continue
+                try:
+                    rows.append((float(row[0]), float(row[1])))
+                except (ValueError, IndexError):
+                    if rows or i > 0:
+                        raise ParameterError(f"{where} line {i + 1} {','.join(row)!r} is not allowed: "
+                                             "expected two numbers, time s and speed") from None
+    except OSError as err:
+        raise ParameterError(f"{where} is not readable: {err.strerror}") from None
+    if len(rows) < 2:
+        raise ParameterError(f"{where} has {len(rows)} rows: expected at least 2 (time s, speed)")
+    tp, vp = np.array(rows).T
+    if np.any(np.diff(tp) <= 0):
+        k = int(np.flatnonzero(np.diff(tp) <= 0)[0]) + 1
+        raise ParameterError(f"{where} time {tp[k]:g} s (row {k + 1}) is not allowed: expected times "
+                             "increasing")
+    t = np.arange(n) / fs
+    if tp[0] > t[0] + 1e-9 or tp[-1] < t[-1] - 1e-9:
+        raise ParameterError(f"{where} covers {tp[0]:g} to {tp[-1]:g} s, not allowed: the record runs "
+                             f"0 to {t[-1]:.6g} s; expected a profile over all of it")
+    f_hz = np.interp(t, tp, to_hz(vp, unit, wheel_radius, where))
+    return Speed(_checked_angle(f_hz, fs, where), f"speed profile {path} ({unit})")
+
+
+def track(left, right, fs: float, speed: Speed):
+    """Both channels resampled to equal angle steps and labelled at the mean speed:
+    ``(left', right', fs', f_mean)`` (module docstring)."""
+    a = speed.angle
+    xl, fs2, f_mean = ordertrack.equivalent(left, fs, a)
+    xr, _, _ = ordertrack.equivalent(right, fs, a)
+    n = min(xl.size, xr.size)
+    return xl[:n], xr[:n], fs2, f_mean
+
+
+def wants_tracking(mode: str, speed: Speed | None, fs: float) -> bool:
+    """Whether ``mode`` (auto, on, off) order-tracks a record of ``speed``."""
+    if mode not in MODES:
+        raise ParameterError(f"--order-tracking {mode!r} is not allowed: expected one of {', '.join(MODES)}")
+    if speed is None:
+        if mode == "on":
+            raise ParameterError("--order-tracking on needs the shaft's speed over the record: give "
+                                 "--speed-channel, --tacho or --speed-csv (or a result file of a run "
+                                 "along a speed profile)")
+        return False
+    return mode == "on" or (mode == "auto" and speed.stats(fs)["spread"] > TRACK_SPREAD)
