@@ -20,7 +20,6 @@ from collections import Counter
 import numpy as np
 
 from axlebox.bearing import models
-from axlebox.bearing.diagnostics import ordertrack as ot
 from axlebox.bearing.diagnostics.criterion import Criterion
 from axlebox.bearing.diagnostics.pair import analyse_pair
 from axlebox.bearing.diagnostics.synthetic import swept_coaxial_pair
@@ -41,8 +40,8 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--seeds", type=int, default=100)
     ap.add_argument("--duration", type=float, default=20.0)
-    ap.add_argument("--tracked", action="store_true", help="read with the speed: each record "
-                    "order-tracked to its mean speed (ordertrack.equivalent)")
+    ap.add_argument("--tracked", action="store_true", help="read with the speed: the envelopes on "
+                    "the shaft's clock (bearing/diagnostics/clock.py)")
     ap.add_argument("--kmh", type=float, nargs=2, default=(20.0, 80.0), metavar=("FROM", "TO"),
                     help="the sweep's speeds (equal: a constant-speed control)")
     a = ap.parse_args()
@@ -52,10 +51,8 @@ def main():
     t0 = time.perf_counter()
     for seed in range(a.seeds):
         right, left, angle = swept_pair(a.duration, seed, *a.kmh)
-        fs, f_mean = FS, angle[-1] / a.duration          # the mean speed, turns/s
-        if a.tracked:
-            (left, fs, f_mean), (right, _, _) = (ot.equivalent(x, FS, angle) for x in (left, right))
-        p = analyse_pair(left, right, fs, f_mean, o, 0.13, crit)
+        f_mean = (angle[-1] - angle[0]) * FS / (angle.size - 1)      # the mean speed, turns/s
+        p = analyse_pair(left, right, FS, f_mean, o, 0.13, crit, angle=angle if a.tracked else None)
         tally["defect"][p.verdict.words["right"]] += 1
         tally["healthy"][p.verdict.words["left"]] += 1
     wall = time.perf_counter() - t0

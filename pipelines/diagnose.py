@@ -175,7 +175,7 @@ def read_input(path, *, left=None, right=None, fs=None, column: int = 2, speed_c
         keep = np.flatnonzero(np.isfinite(speed.angle))
         sl = slice(keep[0], keep[-1] + 1)
         rec.left, rec.right = rec.left[sl], rec.right[sl]
-        speed = sp.Speed(speed.angle[sl], speed.source)
+        speed = sp.Speed(speed.angle[sl], speed.source, speed.rotor)
         rec.notes.append(f"cut to the tacho's pulses: samples {keep[0]} to {keep[-1]}")
     return rec, speed
 
@@ -204,7 +204,7 @@ def analyse_record(rec: Record, speed, *, scale: float = 1.0, shaft=None, speed_
     left, right, fs = rec.left, rec.right, rec.fs
     stats = speed.stats(rec.fs) if speed is not None else None
     if tracked:
-        left, right, fs, f_shaft = sp.track(left, right, fs, speed)
+        f_shaft = stats["mean_hz"]
     elif speed is not None and not given:
         f_shaft = stats["mean_hz"]
     else:
@@ -217,12 +217,13 @@ def analyse_record(rec: Record, speed, *, scale: float = 1.0, shaft=None, speed_
     res = analyse_pair(left * scale, right * scale, fs, f_shaft,
                        (bl.orders, br.orders), (bl.bore, br.bore), criterion, band,
                        names=rec.names, nperseg=nperseg, guided=guided,
-                       bearings=(bl.name, br.name), rotor=rotor_of(shaft, rpm))
+                       bearings=(bl.name, br.name),
+                       rotor=speed.rotor if speed is not None and not given else rotor_of(shaft, rpm),
+                       angle=speed.angle if tracked else None)
     info = {"kind": rec.kind, "left": rec.names[0], "right": rec.names[1],
             "fs_hz": rec.fs, "n_samples": int(rec.left.size), "scale": scale,
             "shaft_hz": f_shaft, "rotor": res.rotor,
-            "speed": None if speed is None else {"from": speed.source, **stats, "order_tracked": tracked,
-                                                 **({"fs_angle_hz": fs} if tracked else {})},
+            "speed": None if speed is None else {"from": speed.source, **stats, "order_tracked": tracked},
             "bearings": {"left": {**bl.to_dict(), "from": src_l},
                          "right": {**br.to_dict(), "from": src_r}},
             "band": list(band) if band is not None else

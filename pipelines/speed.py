@@ -45,6 +45,8 @@ class Speed:
 
     angle: np.ndarray
     source: str
+    rotor: str = "wheel"          # what turns: "wheel" (km/h, a car's result) or "shaft" (rpm, Hz, tacho)
+    f_hz: float | None = None     # the speed where every sample gave the same (read as given)
 
     @property
     def hz(self) -> np.ndarray:
@@ -55,7 +57,8 @@ class Speed:
     def stats(self, fs: float) -> dict:
         """Mean, lowest and highest shaft speed (Hz) and the range over the mean."""
         f = self.hz * fs
-        mean = (self.angle[-1] - self.angle[0]) * fs / max(self.angle.size - 1, 1)
+        mean = (self.f_hz if self.f_hz is not None
+                else (self.angle[-1] - self.angle[0]) * fs / max(self.angle.size - 1, 1))
         return {"mean_hz": float(mean), "min_hz": float(f.min()), "max_hz": float(f.max()),
                 "spread": float((f.max() - f.min()) / mean) if mean > 0 else float("inf")}
 
@@ -88,10 +91,14 @@ def _checked_angle(f_hz, fs: float, where: str) -> np.ndarray:
     return ordertrack.angle_from_speed(t, f_hz)
 
 
+def _made(f_hz, fs, where, source, unit) -> Speed:
+    same = float(f_hz[0]) if f_hz.size and np.all(f_hz == f_hz[0]) else None
+    return Speed(_checked_angle(f_hz, fs, where), source, "wheel" if unit == "km/h" else "shaft", same)
+
+
 def from_channel(x, fs: float, unit: str, wheel_radius: float, name: str) -> Speed:
     where = f"--speed-channel {name!r}"
-    return Speed(_checked_angle(to_hz(x, unit, wheel_radius, where), fs, where),
-                 f"speed channel {name} ({unit})")
+    return _made(to_hz(x, unit, wheel_radius, where), fs, where, f"speed channel {name} ({unit})", unit)
 
 
 def from_tacho(x, fs: float, threshold: float | None, name: str) -> Speed:
@@ -105,7 +112,7 @@ def from_tacho(x, fs: float, threshold: float | None, name: str) -> Speed:
         angle[inside] = ordertrack.angle_from_tacho(pulses, t[inside])
     except ParameterError as err:
         raise ParameterError(f"--tacho {name!r}: {err}") from None
-    return Speed(angle, f"tacho {name} ({pulses.size} pulses)")
+    return Speed(angle, f"tacho {name} ({pulses.size} pulses)", "shaft")
 
 
 def from_csv(path, n: int, fs: float, unit: str, wheel_radius: float) -> Speed:
@@ -138,7 +145,7 @@ def from_csv(path, n: int, fs: float, unit: str, wheel_radius: float) -> Speed:
         raise ParameterError(f"{where} covers {tp[0]:g} to {tp[-1]:g} s, not allowed: the record runs "
                              f"0 to {t[-1]:.6g} s; expected a profile over all of it")
     f_hz = np.interp(t, tp, to_hz(vp, unit, wheel_radius, where))
-    return Speed(_checked_angle(f_hz, fs, where), f"speed profile {path} ({unit})")
+    return _made(f_hz, fs, where, f"speed profile {path} ({unit})", unit)
 
 
 def track(left, right, fs: float, speed: Speed):

@@ -100,7 +100,7 @@ def analyse_windows(path, turns: float, overlap: float = 0.5, **options) -> Wind
     for k, (i0, i1) in enumerate(bounds(angle, turns, overlap)):
         row = {"window": k, "t0_s": i0 / rec.fs, "t1_s": i1 / rec.fs,
                "turns": float(angle[i1 - 1] - angle[i0])}
-        sub = Speed(angle[i0:i1], speed.source) if speed is not None else None
+        sub = Speed(angle[i0:i1], speed.source, speed.rotor, speed.f_hz) if speed is not None else None
         if sub is not None:
             st = sub.stats(rec.fs)
             row["speed_hz"] = [st["min_hz"], st["max_hz"]]

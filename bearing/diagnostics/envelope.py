@@ -15,6 +15,8 @@ from scipy.signal import butter, hilbert, sosfiltfilt, stft, welch
 
 from axlebox._params import ParameterError
 
+from .clock import on_clock
+
 
 def _signal(x, name: str = "x") -> np.ndarray:
     x = np.asarray(x, float)
@@ -49,7 +51,7 @@ def envelope(x: np.ndarray, fs: float, band: tuple[float, float] | None = None) 
             x = sosfiltfilt(butter(4, hi, btype="low", fs=fs, output="sos"), x)
         else:
             x = sosfiltfilt(butter(4, [lo, hi], btype="band", fs=fs, output="sos"), x)
-    return np.abs(hilbert(x))
+    return on_clock(np.abs(hilbert(x)))       # on the shaft's clock where one is active (clock.py)
 
 
 def envelope_spectrum(x: np.ndarray, fs: float, band: tuple[float, float] | None = None,

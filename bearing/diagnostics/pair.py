@@ -19,6 +19,7 @@ from .coherence import line_timing
 from .gate import wheel_gate
 from .guided import band_scan
 from .criterion import ANALYSIS, PAPER, Criterion, decide, vf_difference
+from .clock import angle_clock
 from .envelope import _signal, check_fs
 from .lag import LagResult, impulse_lag, time_lag
 from .spectral import fc_vf
@@ -193,7 +194,7 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
                  criterion: Criterion = PAPER, band=None, *, names=("left", "right"),
                  max_lag_s: float | None = None, guided: bool = True,
                  bearings: tuple[str, str] = ("", ""), gate: bool = True, rotor: str = "wheel",
-                 _wheel: dict | None = None, **channel_kw) -> PairResult:
+                 _wheel: dict | None = None, angle=None, **channel_kw) -> PairResult:
     """Analyse both channels (same rate ``fs``; ``shaft_hz`` as in :func:`.channel.analyse`;
     fault ``orders`` and bore ``D`` in m, one for both sides or a (left, right) pair: each side
     has its own bearing, whose lines it owns, and the other side's distinct lines are searched
@@ -215,8 +216,16 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
     from the record as it came (``PairResult.gate`` holds the windows); lines at whole orders of
     the shaft are named at the criterion's ``shaft_p_fa``.  ``rotor``: what turns the shaft,
     ``"wheel"`` (a vehicle's wheelset, the default) or ``"shaft"`` (a machine's rotor): the
-    words the verdict names those lines with."""
+    words the verdict names those lines with.  ``angle``: the shaft's angle (turns) at each
+    sample of a record whose speed changes: every envelope is read on the shaft's clock
+    (:mod:`.clock`: bands, indicators and impulse onsets in time, the envelopes' lines at their
+    orders times ``shaft_hz``, which is then the mean speed)."""
     fs = check_fs(fs)
+    if angle is not None:
+        with angle_clock(angle, fs):
+            return analyse_pair(x_left, x_right, fs, shaft_hz, orders, D, criterion, band, names=names,
+                                max_lag_s=max_lag_s, guided=guided, bearings=bearings, gate=gate,
+                                rotor=rotor, _wheel=_wheel, **channel_kw)
     if rotor not in ROTORS:
         raise ParameterError(f"rotor = {rotor!r} is not allowed: expected one of " + ", ".join(ROTORS))
     xs = []
