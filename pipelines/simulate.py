@@ -379,4 +379,7 @@ def run(config_path, out, duration: float | None = None, log=print,
         f"simulated s per wall s)")
     for rc in ride:
         log("ride comfort, " + rc.summary())
+    if cfg.has_bearings:
+        from .cageslip import cage_slip, table
+        log(table(cage_slip(out)))
     return res

@@ -22,6 +22,14 @@ the mean speed (:func:`~axlebox.bearing.diagnostics.ordertrack.equivalent`): the
 are in orders, the lines found at their orders, the lag and the copy-or-source coherence taken on
 the angle's samples.  Below it the record is read as it came, at the mean speed (a result file
 of a constant-speed run at its config's speed, as before).
+
+A second look (:func:`axlebox.pipelines.diagnose.analyse_record`): an order-tracked reading that
+calls both sides faulty (each side's own line, by the copy-or-source test) stands only where the
+record read in time says so too; else the reading in time is the verdict.  Under traction the
+accelerating car's healthy side carries its copy with a coherence that drops at the 5th BPFO
+harmonic in its narrow bands (0.10 in 781-1094 Hz against 0.59 at the least at a constant 26
+km/h), which the test reads as a second train; a healthy side called faulty is the worst error
+the product can make (benchmarks/README.md, issue 51).
 """
 from __future__ import annotations
 

@@ -113,7 +113,9 @@ def analyse_windows(path, turns: float, overlap: float = 0.5, **options) -> Wind
             row["not_read"] = str(err)
         else:
             v = res.verdict
-            row.update(order_tracked=bool(info["speed"] and info["speed"]["order_tracked"]),
+            sp = info["speed"] or {}
+            row.update(order_tracked=bool(sp.get("order_tracked")),
+                       **({"second_look": sp["second_look"]} if "second_look" in sp else {}),
                        shaft_hz=info["shaft_hz"], words=dict(v.words), **v.row())
         finally:
             rec.left, rec.right = left, right
