@@ -7,7 +7,10 @@ outer-ring hits at the DTRB's BPFO order ringing a 2.5 kHz mode, in noise.  Time
 band-passed Hilbert envelope, its resampling to 256 samples a turn (anti-alias filter, spline)
 and its Welch spectrum in orders (64-turn segments); beside it the envelope spectrum in time of
 the same channels (64 mean turns a segment).  Peak memory: tracemalloc of one tracked run.
-Run: ``python benchmarks/ordertrack.py``.
+With ``--pair``: the whole two-channel diagnosis (:func:`~axlebox.bearing.diagnostics.pair.analyse_pair`,
+the relative criterion) of the same minute on the shaft's clock (``angle=``, every envelope
+resampled to the angle: bearing/diagnostics/clock.py) against the same read at the mean speed.
+Run: ``python benchmarks/ordertrack.py [--pair]``.
 """
 from __future__ import annotations
 
@@ -65,8 +68,12 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--minutes", type=float, default=1.0)
     ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--pair", action="store_true", help="time the whole pair diagnosis, on the "
+                    "shaft's clock and at the mean speed")
     a = ap.parse_args()
     args = record(60.0 * a.minutes, 1)
+    if a.pair:
+        return pair(args, a)
     w_t, w_p = best(tracked, args, a.repeat), best(plain, args, a.repeat)
     tracemalloc.start()
     tracked(*args)
@@ -80,6 +87,26 @@ def main():
     print(f"| envelope spectrum in time | {w_p:.3f} | {w_p / a.minutes:.3f} |")
     print(f"tracking costs {w_t / w_p:.2f}x the plain envelope spectrum; peak memory (tracemalloc) "
           f"{peak:.0f} MB")
+
+
+def pair(args, a):
+    from axlebox.bearing.diagnostics.criterion import Criterion
+    from axlebox.bearing.diagnostics.pair import analyse_pair
+    t, f, (xl, xr) = args
+    angle = ot.angle_from_speed(t, f)
+    f_mean = angle[-1] / t[-1]
+    o, crit = models.orders(BearingParams()), Criterion(mode="relative")
+
+    def run(clock):
+        return analyse_pair(xl, xr, FS, f_mean, o, 0.13, crit, angle=angle if clock else None)
+    w_c, w_m = best(run, (True,), a.repeat), best(run, (False,), a.repeat)
+    print(f"{platform.processor() or platform.machine()}, numpy {np.__version__}; {a.minutes:g} min "
+          f"of two channels at {FS:g} Hz, 20-80 km/h, analyse_pair")
+    print("| reading | wall s (best of {}) | s per minute of two channels |".format(a.repeat))
+    print("| --- | --- | --- |")
+    print(f"| on the shaft's clock | {w_c:.2f} | {w_c / a.minutes:.2f} |")
+    print(f"| at the mean speed | {w_m:.2f} | {w_m / a.minutes:.2f} |")
+    print(f"the clock costs {w_c / w_m:.2f}x the reading at the mean speed")
 
 
 if __name__ == "__main__":

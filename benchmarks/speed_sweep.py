@@ -56,7 +56,7 @@ def main():
         tally["defect"][p.verdict.words["right"]] += 1
         tally["healthy"][p.verdict.words["left"]] += 1
     wall = time.perf_counter() - t0
-    how = "order-tracked to the mean speed" if a.tracked else "read at the mean speed"
+    how = "on the shaft's clock (order-tracked envelopes)" if a.tracked else "read at the mean speed"
     print(f"{a.seeds} seeds, {a.duration:g} s at {FS:g} Hz, {a.kmh[0]:g}-{a.kmh[1]:g} km/h, {how} "
           f"({wall:.1f} s wall, {wall / a.seeds:.2f} s a record)")
     print("| side | " + " | ".join(VERDICTS) + " |")

@@ -7,6 +7,8 @@
 * ``validation_48kmh``: the paper's validation case, eight DTRBs, a 50.4 x 2 x 2 mm defect
 * ``field_64kmh``: the same case at 64.5 km/h, the paper's other field record (its Fig. 1b)
 * ``inner_48kmh``: the same case with the defect on the inner ring (beyond the paper)
+* ``accelerating_20_60kmh``: the same case accelerating from 20 to 60 km/h at 1 m/s^2, driven by
+  traction torques at its wheelsets (beyond the paper)
 * ``study``: the paper's study matrix (speeds x defect widths) of the car, for ``axlebox sweep``
 * ``study_rig``: the same matrix on the standalone bearing rig
 * ``study_fast``: the same matrix on the quasi-dynamic bearing (bearing/quasidynamic.py), for

@@ -31,9 +31,10 @@ profile's acceleration times the car's mass, a quarter a wheelset, plus a gain o
 wheelset's speed against the profile's, :data:`DRIVE_HZ`).  The gain is on the wheelset's own
 speed, where the torque acts through the stiff creep: on the carbody's, across the suspension,
 it excites the car's longitudinal modes; and none on position, which would tie the car to a
-point along the track and spoil its statics (the car is neutral along the track).  Prescribing the carbody's motion instead would
-pull the car through its suspension and leave the wheels braking it, the reverse of a motor
-car.  The ballasted track's bodies under the wheels follow the profile by forces of their own.
+point along the track and spoil its statics (the car is neutral along the track).  Prescribing
+the carbody's motion instead would pull the car through its suspension and leave the wheels
+braking it, the reverse of a motor car.  The ballasted track's bodies under the wheels follow
+the profile by forces of their own.
 """
 from __future__ import annotations
 

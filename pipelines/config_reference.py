@@ -165,7 +165,8 @@ def _dataclass_rows(cls, choices: dict | None = None, skip=(), constraints: dict
         elif "text" in md:
             allowed = "any string"
         elif "rows" in md:
-            allowed = "rows of " + ", ".join(f"{n} in {_range(lo, hi)} {u}".rstrip() for n, lo, hi, u in md["rows"])
+            allowed = "rows of " + ", ".join(f"{n} in {_range(lo, hi)} {u}".rstrip()
+                                             for n, lo, hi, u in md["rows"])
         elif "members" in md:
             allowed = (f"distinct, at least {md['at_least']}, of " if md["at_least"] else "distinct, of ") \
                 + _choices(md["members"])

@@ -198,7 +198,8 @@ def analyse_record(rec: Record, speed, *, scale: float = 1.0, shaft=None, speed_
     criterion = Criterion() if criterion is None else criterion
     if not (np.isfinite(scale) and scale > 0):
         raise ParameterError(f"--scale = {scale!r} is not allowed: expected a factor > 0")
-    given = [o for o, v in (("--shaft-hz", shaft), ("--rpm", rpm), ("--speed-kmh", speed_kmh)) if v is not None]
+    given = [o for o, v in (("--shaft-hz", shaft), ("--rpm", rpm), ("--speed-kmh", speed_kmh))
+             if v is not None]
     if given and speed is not None and rec.kind != "axlebox-result":
         raise ParameterError(f"{given[0]} is not allowed with a speed over time (--speed-channel, "
                              "--tacho or --speed-csv): expected one source of the speed")

@@ -28,7 +28,7 @@ if os.environ.get("PYTEST_XDIST_WORKER"):
 LONG_FIRST = ("test_install.py", "test_both_sides_car.py", "test_validation.py", "test_mbs_core.py",
               "test_coupled.py", "test_vehicle.py", "test_wheelset.py", "test_inner_ring_car.py",
               "test_checkpoint.py", "test_dcrb.py", "test_families.py", "test_sweep_survives.py",
-              "test_docs.py", "test_stream_kill.py")
+              "test_docs.py", "test_stream_kill.py", "test_accelerating_car.py")
 
 
 def pytest_collection_modifyitems(config, items):

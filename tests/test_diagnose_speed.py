@@ -63,7 +63,8 @@ def test_a_swept_source_and_copy_read_with_the_speed(swept, how):
         how = ["--speed-csv", *how]
     words, info = _words(path, how, d)
     assert info["speed"]["order_tracked"]
-    assert info["speed"]["min_hz"] == pytest.approx(shaft_hz(20.0, R), rel=0.1)   # a tacho: from its 1st pulse
+    # (a tacho: from its first pulse)
+    assert info["speed"]["min_hz"] == pytest.approx(shaft_hz(20.0, R), rel=0.1)
     assert info["speed"]["max_hz"] == pytest.approx(shaft_hz(80.0, R), rel=0.03)
     assert words == {"left": "pseudo-fault", "right": "real fault"}
 
