@@ -206,7 +206,7 @@ def _cmd_diagnose(a) -> None:
         run(a.file, json_out=a.json, figures=a.figures, **options)
         return
     from .windows import run_windows
-    run_windows(a.file, a.window_turns, a.window_overlap, out=a.windows_out, **options)
+    run_windows(a.file, a.window_turns, a.window_overlap, out=a.windows_out, figures=a.figures, **options)
 
 
 def _cmd_report(a) -> None:

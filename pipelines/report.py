@@ -110,6 +110,38 @@ def diagnosed_case(path, speed_kmh: float, width_mm: float, side: str | None, lo
     return Case(Path(path), speed_kmh, width_mm, pair, side, ride)
 
 
+#: windows of a run along a speed profile in the report: 5.5 shaft turns (two cage turns, the
+#: shortest record the cage's line is resolved in, and a margin), three quarters overlapping
+REPORT_TURNS, REPORT_OVERLAP = 5.5, 0.75
+
+
+def _windows_figures(path, out: Path, log, **options) -> list[tuple[str, Path]]:
+    """For a car run along a speed profile: its windows (:mod:`.windows`) as JSON Lines and the
+    figure of the verdicts and the speed over time; nothing for other results."""
+    import matplotlib.pyplot as plt
+
+    from axlebox.mbs.config import CarConfig
+
+    from .readers import result_config
+    from .windows import analyse_windows
+    cfg = result_config(path)
+    if not isinstance(cfg, CarConfig) or not cfg.speed_profile().accelerates:
+        return []
+    try:
+        w = analyse_windows(path, REPORT_TURNS, REPORT_OVERLAP, **options)
+    except ParameterError as err:
+        log(f"report: {Path(path).name}: not read in windows ({err})")
+        return []
+    w.write(out / f"windows_{Path(path).stem}.jsonl")
+    png = out / f"fig_windows_{Path(path).stem}.png"
+    plt.close(w.plot(png))
+    s = w.summary
+    agree = (f", left {s['words']['left']}, right {s['words']['right']} in {s['share']:.0%}"
+             if s["words"] else "")
+    log(f"report: {Path(path).name}: {s['read']} windows of {REPORT_TURNS:g} turns read{agree}")
+    return [(f"Verdicts and speed over time, {Path(path).name}", png)]
+
+
 def case_parameters(path) -> tuple[float, float, str | None]:
     """``(speed_kmh, width_mm, defect_side)`` from the config stored in an axlebox-result file;
     the side is that ("left"/"right", from ``defects[].side`` L/R) of the widest defect when it
@@ -314,6 +346,8 @@ def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
                         figs.comfort_spectra(all_cases, out / "fig_comfort_spectra.png")))
         figures.append(("Ride comfort - W_z, W_y and N_MV against speed",
                         figs.comfort_indices(all_cases, out / "fig_comfort_speed.png")))
+    for path in files:                  # runs along a speed profile: read window by window too
+        figures += _windows_figures(path, out, log, left=left, right=right, **diagnose_kw)
     figures.sort(key=lambda t: t[1].name)
     pictures = mode_pictures(source, modes_dir)
     if pictures:

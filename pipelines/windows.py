@@ -31,6 +31,7 @@ class Windowed:
     turns: float
     overlap: float
     info: dict = field(default_factory=dict)
+    speed: tuple = ()          # (t s, shaft Hz) over the record, for the figure
 
     @property
     def read(self) -> list[dict]:
@@ -55,6 +56,36 @@ class Windowed:
         """One JSON object a window, then the summary (``{"summary": ...}``), a line each."""
         lines = [json.dumps(jsonable(r), allow_nan=False) for r in self.rows]
         return "\n".join(lines + [json.dumps(jsonable({"summary": self.summary}), allow_nan=False)]) + "\n"
+
+    def plot(self, path):
+        """The figure of the speed and the verdicts over time: the shaft speed (each window's
+        span drawn at its speeds), then each window's words for the two sides at its centre;
+        written to ``path`` (PNG), the figure returned."""
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        words = ("healthy", "pseudo-fault", "undecided", "real fault", "faults on both sides", "not read")
+        fig, (a0, a1) = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True, height_ratios=(1, 1.2))
+        if len(self.speed):
+            a0.plot(self.speed[0], self.speed[1], color="0.3", lw=1.0, label="shaft speed")
+        for r in self.rows:
+            a0.plot([r["t0_s"], r["t1_s"]], r["speed_hz"], color="C0", alpha=0.5, lw=3)
+        a0.set_ylabel("shaft speed, Hz")
+        a0.set_title(f"{Path(self.info.get('file', '')).name}: windows of {self.turns:g} turns "
+                     f"({self.overlap:g} overlap)")
+        for side, mk, dx in (("left", "o", -0.01), ("right", "s", 0.01)):
+            xs = [0.5 * (r["t0_s"] + r["t1_s"]) for r in self.rows]
+            ys = [words.index(r["words"][side]) if "words" in r else len(words) - 1 for r in self.rows]
+            a1.plot(xs, np.array(ys) + dx * 10, mk, ms=8, fillstyle="none" if side == "left" else "full",
+                    label=f"{side} ({self.info.get(side, side)})")
+        a1.set_yticks(range(len(words)), words)
+        a1.set_ylim(-0.5, len(words) - 0.5)
+        a1.set_xlabel("time from the record's first sample read, s")
+        a1.legend(loc="upper right", fontsize=8)
+        a1.grid(axis="y", color="0.9")
+        fig.tight_layout()
+        fig.savefig(path, dpi=110)
+        return fig
 
     def write(self, path) -> Path:
         path = Path(path)
@@ -120,14 +151,18 @@ def analyse_windows(path, turns: float, overlap: float = 0.5, **options) -> Wind
         finally:
             rec.left, rec.right = left, right
         rows.append(row)
+    step = max(1, angle.size // 2000)
     return Windowed(rows, float(turns), float(overlap),
                     {"file": str(path), "kind": rec.kind, "left": rec.names[0], "right": rec.names[1],
                      "fs_hz": rec.fs, "speed": None if speed is None else speed.source,
-                     "notes": rec.notes})
+                     "notes": rec.notes},
+                    (np.arange(angle.size)[::step] / rec.fs, (np.gradient(angle) * rec.fs)[::step]))
 
 
-def run_windows(path, turns: float, overlap: float = 0.5, *, out=None, log=print, **options) -> Windowed:
-    """The command: :func:`analyse_windows`, a line a window, the summary and the JSON Lines."""
+def run_windows(path, turns: float, overlap: float = 0.5, *, out=None, figures=None, log=print,
+                **options) -> Windowed:
+    """The command: :func:`analyse_windows`, a line a window, the summary, the JSON Lines and
+    (``figures``, a folder) the figure of the speed and the verdicts over time."""
     if out is not None and not Path(out).parent.is_dir():
         raise FileNotFoundError(f"--windows-out: folder {str(Path(out).parent)!r} does not exist")
     w = analyse_windows(path, turns, overlap, **options)
@@ -139,7 +174,10 @@ def run_windows(path, turns: float, overlap: float = 0.5, *, out=None, log=print
         if "not_read" in r:
             log(f"{head}: not read: {r['not_read']}")
         else:
-            log(f"{head}{' (order-tracked)' if r['order_tracked'] else ''}: left {r['words']['left']}, "
+            how = " (order-tracked)" if r["order_tracked"] else ""
+            if r.get("second_look"):
+                how = " (order-tracked; both sides faulty there, read in time as here)"
+            log(f"{head}{how}: left {r['words']['left']}, "
                 f"right {r['words']['right']} ({r['rule']}); lines: {r['lines'] or 'none'}")
     s = w.summary
     if s["words"] is None:
@@ -149,4 +187,10 @@ def run_windows(path, turns: float, overlap: float = 0.5, *, out=None, log=print
             f"{s['read']} windows read ({s['not_read']} not read)")
     if out is not None:
         log(f"wrote {w.write(out)}")
+    if figures is not None:
+        Path(figures).mkdir(parents=True, exist_ok=True)
+        png = Path(figures) / f"{Path(path).stem}_windows.png"
+        import matplotlib.pyplot as plt
+        plt.close(w.plot(png))
+        log(f"wrote {png}")
     return w

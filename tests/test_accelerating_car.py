@@ -64,3 +64,13 @@ def test_the_car_is_read_from_its_file_alone_window_by_window(accel):
     assert not any(r["words"]["left"] in ("real fault", "faults on both sides") for r in read)
     starts = [r["speed_hz"][0] for r in read]
     assert starts == sorted(starts) and read[0]["speed_hz"][1] > 1.05 * read[0]["speed_hz"][0]
+
+
+def test_the_report_shows_its_verdicts_and_speed_over_time(accel, tmp_path):
+    """`axlebox report` of the run: the windows as JSON Lines and their figure."""
+    from axlebox.pipelines.report import report
+    out, _, _ = accel
+    report(out, tmp_path / "rep", log=lambda *_: None)
+    rows = (tmp_path / "rep" / f"windows_{out.stem}.jsonl").read_text().splitlines()
+    assert len(rows) >= 2 and '"summary"' in rows[-1]
+    assert (tmp_path / "rep" / f"fig_windows_{out.stem}.png").stat().st_size > 10_000

@@ -81,7 +81,8 @@ def test_windows_of_shaft_turns_as_json_lines(swept, capsys):
     path, _, d = swept
     out = d / "w.jsonl"
     assert main(["diagnose", str(path), *BASE, "--speed-channel", "speed", "--window-turns", "20",
-                 "--windows-out", str(out)]) == 0
+                 "--windows-out", str(out), "--figures", str(d / "figs")]) == 0
+    assert (d / "figs" / "swept_windows.png").stat().st_size > 10_000
     rows = [json.loads(line) for line in out.read_text().splitlines()]
     summary = rows.pop()["summary"]
     assert len(rows) == summary["windows"] >= 5
