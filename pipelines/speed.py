@@ -17,11 +17,13 @@ Sources, one at a time:
 With ``--order-tracking auto`` (the default) a record is order-tracked when its speed's range
 exceeds :data:`TRACK_SPREAD` of its mean: the fault-line search takes a drift of speed that small
 (its harmonic windows, :mod:`axlebox.bearing.diagnostics.faultlines`), beyond it the lines smear
-out of their windows.  Then both channels are resampled to equal angle steps and labelled at
-the mean speed (:func:`~axlebox.bearing.diagnostics.ordertrack.equivalent`): the envelope spectra
-are in orders, the lines found at their orders, the lag and the copy-or-source coherence taken on
-the angle's samples.  Below it the record is read as it came, at the mean speed (a result file
-of a constant-speed run at its config's speed, as before).
+out of their windows.  Then the envelopes are read on the shaft's clock
+(:mod:`axlebox.bearing.diagnostics.clock`): resampled to equal angle steps and labelled at the
+mean speed, so the envelope spectra are in orders, the lines found at their orders and the
+copy-or-source coherence taken on them; the bands, RMS, SPM and the impulses' lag stay in time,
+where the structure's resonances and the path's delay are fixed.  Below it the record is read as
+it came, at the mean speed (a result file of a constant-speed run at its config's speed, as
+before).
 
 A second look (:func:`axlebox.pipelines.diagnose.analyse_record`): an order-tracked reading that
 calls both sides faulty (each side's own line, by the copy-or-source test) stands only where the
@@ -154,16 +156,6 @@ def from_csv(path, n: int, fs: float, unit: str, wheel_radius: float) -> Speed:
                              f"0 to {t[-1]:.6g} s; expected a profile over all of it")
     f_hz = np.interp(t, tp, to_hz(vp, unit, wheel_radius, where))
     return _made(f_hz, fs, where, f"speed profile {path} ({unit})", unit)
-
-
-def track(left, right, fs: float, speed: Speed):
-    """Both channels resampled to equal angle steps and labelled at the mean speed:
-    ``(left', right', fs', f_mean)`` (module docstring)."""
-    a = speed.angle
-    xl, fs2, f_mean = ordertrack.equivalent(left, fs, a)
-    xr, _, _ = ordertrack.equivalent(right, fs, a)
-    n = min(xl.size, xr.size)
-    return xl[:n], xr[:n], fs2, f_mean
 
 
 def wants_tracking(mode: str, speed: Speed | None, fs: float) -> bool:

@@ -21,15 +21,8 @@ then read at the instants the angle passes each ``1 / per_rev`` of a turn by a c
 record everywhere no filter is needed and none is applied: a constant-speed record resampled at
 its own rate is itself.
 
-The record at its mean speed (:func:`equivalent`): resampled to ``per_rev`` samples a turn, with
-``per_rev`` the record's rate over its lowest shaft speed (rounded up, so the angle domain samples
-at least as fast as the record everywhere: no filter, nothing above a cut-off lost, where a
-pseudo-fault's copied impulses ring the structure's resonances), and labelled at the mean speed,
-``fs' = per_rev f_mean``, it is the record the shaft would have given turning at its mean speed
-throughout: every line at an order of the shaft lies at that order times ``f_mean``, so the
-whole constant-speed analysis reads it unchanged (a source and its copy swept from 20 to 80 km/h:
-benchmarks/speed_sweep.py).  The structure's resonances, fixed in Hz, move in it by the speed's
-ratio to the mean; time spans (the lag) are at the mean speed.
+A whole diagnosis while the speed changes reads the envelopes on the shaft's clock instead
+(:mod:`.clock`): the record stays in time, only its envelopes are resampled.
 
 The envelope in orders (:func:`envelope_orders`): a fault's impulses ring the structure's
 resonances, fixed in Hz whatever the speed, so the band-pass and the Hilbert envelope are taken
@@ -47,6 +40,7 @@ from scipy.signal import butter, sosfiltfilt, welch
 
 from axlebox._params import ParameterError
 
+from .clock import invert
 from .envelope import _signal, check_fs, envelope
 
 #: the anti-alias filter's cut-off over the angle domain's Nyquist frequency at the lowest speed
@@ -145,32 +139,8 @@ def to_angle(x, fs: float, angle, per_rev: int) -> AngleRecord:
     k = np.arange(np.ceil(a[0] * per_rev), np.floor(a[-1] * per_rev) + 1)
     t_k = np.interp(k / per_rev, a, t)                  # a is increasing: its inverse, piecewise
     # the instants refined on the angle's own spline, then the record read there
-    t_k = _invert(CubicSpline(t, a), k / per_rev, t_k, t)
+    t_k = invert(CubicSpline(t, a), k / per_rev, t_k, t)
     return AngleRecord(CubicSpline(t, x)(t_k), int(per_rev), float(k[0] / per_rev), t_k)
-
-
-def equivalent(x, fs: float, angle) -> tuple[np.ndarray, float, float]:
-    """``(x', fs', f_mean)``: ``x`` (at ``fs``, its shaft at ``angle`` revolutions at each sample)
-    as the record at its mean shaft speed ``f_mean`` (module docstring), sampled at ``fs'``."""
-    fs = check_fs(fs)
-    a = np.asarray(angle, float)
-    f_mean = (a[-1] - a[0]) * fs / max(a.size - 1, 1)
-    f_min = float(np.min(np.diff(a))) * fs if a.size > 1 else 0.0
-    # samples a turn enough at the lowest speed: nothing of the record is filtered away (its
-    # resonances, where a copy's impulses ring, lie up to its Nyquist frequency)
-    per_rev = max(8, int(np.ceil(fs / f_min * (1.0 - 1e-9)))) if f_min > 0 else 8
-    rec = to_angle(x, fs, a, per_rev)
-    return rec.x, per_rev * f_mean, f_mean
-
-
-def _invert(spline, target, t0, t, iters: int = 3) -> np.ndarray:
-    """Newton on ``spline(t) = target`` from ``t0`` (the piecewise-linear inverse), kept inside
-    the record."""
-    d = spline.derivative()
-    tk = t0
-    for _ in range(iters):
-        tk = np.clip(tk - (spline(tk) - target) / d(tk), t[0], t[-1])
-    return tk
 
 
 def envelope_orders(x, fs: float, angle, band: tuple[float, float] | None = None,
