@@ -204,11 +204,8 @@ def analyse_record(rec: Record, speed, *, scale: float = 1.0, shaft=None, speed_
         raise ParameterError(f"{given[0]} is not allowed with a speed over time (--speed-channel, "
                              "--tacho or --speed-csv): expected one source of the speed")
     tracked = sp.wants_tracking(order_tracking, speed, rec.fs) and not given
-    left, right, fs = rec.left, rec.right, rec.fs
     stats = speed.stats(rec.fs) if speed is not None else None
-    if tracked:
-        f_shaft = stats["mean_hz"]
-    elif speed is not None and not given:
+    if speed is not None and not given:
         f_shaft = stats["mean_hz"]
     else:
         f_shaft = shaft_speed(rec, shaft, speed_kmh, wheel_radius, rpm)
@@ -217,8 +214,9 @@ def analyse_record(rec: Record, speed, *, scale: float = 1.0, shaft=None, speed_
                           bearing_left=bearing_left, bearing_right=bearing_right,
                           bore_left=bore_left, bore_right=bore_right)
     (bl, src_l), (br, src_r) = sides["left"], sides["right"]
+
     def pair(angle):
-        return analyse_pair(left * scale, right * scale, fs, f_shaft,
+        return analyse_pair(rec.left * scale, rec.right * scale, rec.fs, f_shaft,
                             (bl.orders, br.orders), (bl.bore, br.bore), criterion, band,
                             names=rec.names, nperseg=nperseg, guided=guided,
                             bearings=(bl.name, br.name),
