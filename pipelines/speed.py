@@ -58,15 +58,13 @@ class Speed:
     rotor: str = "wheel"          # what turns: "wheel" (km/h, a car's result) or "shaft" (rpm, Hz, tacho)
     f_hz: float | None = None     # the speed where every sample gave the same (read as given)
 
-    @property
-    def hz(self) -> np.ndarray:
-        """Speed at each sample (Hz), the angle's central differences (times the rate: see
-        :meth:`stats`)."""
-        return np.gradient(self.angle)
+    def hz(self, fs: float) -> np.ndarray:
+        """Speed at each sample (Hz) of a record at ``fs``: the angle's central differences."""
+        return np.gradient(self.angle) * fs
 
     def stats(self, fs: float) -> dict:
         """Mean, lowest and highest shaft speed (Hz) and the range over the mean."""
-        f = self.hz * fs
+        f = self.hz(fs)
         mean = (self.f_hz if self.f_hz is not None
                 else (self.angle[-1] - self.angle[0]) * fs / max(self.angle.size - 1, 1))
         return {"mean_hz": float(mean), "min_hz": float(f.min()), "max_hz": float(f.max()),

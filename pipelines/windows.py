@@ -156,7 +156,7 @@ def analyse_windows(path, turns: float, overlap: float = 0.5, **options) -> Wind
                     {"file": str(path), "kind": rec.kind, "left": rec.names[0], "right": rec.names[1],
                      "fs_hz": rec.fs, "speed": None if speed is None else speed.source,
                      "notes": rec.notes},
-                    (np.arange(angle.size)[::step] / rec.fs, (np.gradient(angle) * rec.fs)[::step]))
+                    (np.arange(angle.size)[::step] / rec.fs, Speed(angle, "").hz(rec.fs)[::step]))
 
 
 def run_windows(path, turns: float, overlap: float = 0.5, *, out=None, figures=None, log=print,
