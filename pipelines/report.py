@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import h5py
+import numpy as np
 
 from axlebox._files import replaced, write_text
 from axlebox._params import ParameterError
@@ -50,11 +51,14 @@ class Case:
     pair: PairResult | None             # None: the axle-box signals could not be diagnosed
     defect_side: str | None = None      # "left"/"right": the defective bearing's channel
     ride: list[RideComfort] = field(default_factory=list)   # carbody floor sensors (vehicle runs)
+    speed_range: tuple | None = None    # (lowest, highest) km/h read, a run along a speed profile
 
     @property
     def label(self) -> str:
         w = "no defect" if self.width_mm == 0 else f"{self.width_mm:g} mm"
-        return f"{self.speed_kmh:g} km/h, {w}"
+        v = (f"{self.speed_range[0]:.0f}-{self.speed_range[1]:.0f} km/h" if self.speed_range
+             else f"{self.speed_kmh:g} km/h")
+        return f"{v}, {w}"
 
     def row(self) -> dict:
         """The summary table's row: case, both sides' indicators, lag, VF difference, verdicts,
@@ -140,6 +144,19 @@ def _windows_figures(path, out: Path, log, **options) -> list[tuple[str, Path]]:
              if s["words"] else "")
     log(f"report: {Path(path).name}: {s['read']} windows of {REPORT_TURNS:g} turns read{agree}")
     return [(f"Verdicts and speed over time, {Path(path).name}", png)]
+
+
+def _speed_range(path) -> tuple[float, float] | None:
+    """The lowest and highest speed (km/h) over the part read (from the track's fade-in) of a
+    car run along a speed profile; None for a constant speed."""
+    from axlebox.mbs.config import CarConfig
+
+    from .readers import result_config
+    cfg = result_config(path)
+    if not isinstance(cfg, CarConfig) or not cfg.speed_profile().accelerates:
+        return None
+    v = cfg.speed_profile().speed(np.linspace(TRACK_FADE_IN_S, cfg.run.duration, 200)) * 3.6
+    return float(v.min()), float(v.max())
 
 
 def case_parameters(path) -> tuple[float, float, str | None]:
@@ -320,6 +337,7 @@ def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
             side = None                     # other channels than the default ws2_L / ws2_R
         cases.append(diagnosed_case(path, speed, width, side, lambda m: log(f"report: {m}"),
                                     left=left, right=right, **diagnose_kw))
+        cases[-1].speed_range = _speed_range(path)
         pair = cases[-1].pair
         if pair is not None:
             log(f"report: {path.name}: {cases[-1].label}: left {pair.verdict.words['left']}, "

@@ -67,10 +67,12 @@ def test_the_car_is_read_from_its_file_alone_window_by_window(accel):
 
 
 def test_the_report_shows_its_verdicts_and_speed_over_time(accel, tmp_path):
-    """`axlebox report` of the run: the windows as JSON Lines and their figure."""
+    """`axlebox report` of the run: the windows as JSON Lines and their figure, the case labelled
+    by the speeds read (20 km/h up)."""
     from axlebox.pipelines.report import report
     out, _, _ = accel
     report(out, tmp_path / "rep", log=lambda *_: None)
     rows = (tmp_path / "rep" / f"windows_{out.stem}.jsonl").read_text().splitlines()
     assert len(rows) >= 2 and '"summary"' in rows[-1]
     assert (tmp_path / "rep" / f"fig_windows_{out.stem}.png").stat().st_size > 10_000
+    assert "20-" in (tmp_path / "rep" / "index.html").read_text()   # its speeds read, not one
