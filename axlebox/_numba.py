@@ -1,16 +1,23 @@
 """numba's process-wide settings, made before any kernel compiles or loads (``axlebox.bearing``
-and ``axlebox.mbs`` import this first).
+and ``axlebox.mbs`` import this first).  Each is made through numba's public interface, its
+environment variables, which numba re-reads at every compile (a ``NUMBA_*`` variable changed after
+import resets every setting to the environment's), and also assigned to ``numba.config`` where
+numba was imported before axlebox.
 
-* The cache of compiled kernels goes in a folder named by a hash of every kernel source of
-  ``bearing`` and ``mbs`` together.  Numba's own cache checks only the source file of the
-  function it loads; a kernel that calls into another file keeps the callee it was compiled with.
-  After an edit (or a ``git pull``, or an upgrade) that touches only the callee, the stale machine
-  code runs, and can crash the interpreter.  ``NUMBA_CACHE_DIR``, when set, is left alone.
+* The cache of compiled kernels goes in a folder named by a hash of every source numba compiles
+  or reads a constant from (:func:`kernel_hash`): every ``*.py`` of ``bearing`` and ``mbs`` and
+  every axlebox module they import.  Numba's own cache checks only the source file of the
+  function it loads; a kernel keeps the callees and the module constants (slot numbers above
+  all) it was compiled with.  After an edit, a ``git pull`` or an upgrade that touches only such
+  a file, the stale machine code would run, and can crash the interpreter.  A
+  ``NUMBA_CACHE_DIR`` the user set is left alone; the one an axlebox process set (marked in
+  ``AXLEBOX_NUMBA_CACHE_DIR``) is chosen again by its child processes, whose axlebox may differ.
 * Saves to the cache are serialised across processes (:func:`_serialise_cache_saves`): numba
   updates a function's index by load, modify, write, unlocked, so two processes compiling one
   function for two signatures at once (a sweep's workers, the suite's) can both name their
   machine code file 1, and a third process then runs one signature's code for the other's (a
-  segmentation fault).
+  segmentation fault).  This is the one use of numba's private API: nothing public hooks the
+  save; tests/test_jitcache.py fails where numba has moved what it patches.
 * The threading layer: OpenMP first.  Its idle threads spin a while before they sleep, so the
   bearings' parallel region, entered every right-hand side (~100 us apart), finds them awake
   (TBB's sleep: 132 against 115 us a call on 2 cores, benchmarks/README.md).  The user's own
@@ -18,34 +25,38 @@ and ``axlebox.mbs`` import this first).
 """
 from __future__ import annotations
 
-import hashlib
 import os
 from pathlib import Path
 
 from numba import config
 
-from ._cache import cache_dir, package_dir, source_hash
+from ._cache import cache_dir, module_sources, modules_hash
 
 KERNEL_PACKAGES = ("bearing", "mbs")
-# what marks a file whose code numba compiles: its own decorator, the kernels' (:func:`kernel`),
-# and an overload (bearing/models.py's dispatch)
-KERNEL_MARKS = (b"@njit", b"@kernel", b"@overload")
+OURS = "AXLEBOX_NUMBA_CACHE_DIR"            # the NUMBA_CACHE_DIR an axlebox process chose
+THREADING = ("omp", "tbb", "workqueue")
+
+
+def kernel_sources(top: Path | None = None) -> dict[str, Path]:
+    """Module name -> file of every source the kernels' machine code depends on: every ``*.py``
+    of ``bearing`` and ``mbs`` and every axlebox module they import (this one among them: the
+    options of :func:`kernel` are every kernel's); of this installation, or of the copy ``top``
+    in the installed layout (``top/_numba.py``, ``top/bearing/...``)."""
+    return module_sources(KERNEL_PACKAGES, top)
 
 
 def kernel_hash(top: Path | None = None) -> str:
-    """Hash of the kernel sources (the files marked by :data:`KERNEL_MARKS`) of ``bearing`` and
-    ``mbs``: those of this installation, or the folders of those names under ``top``."""
-    folders = [package_dir(p) if top is None else Path(top) / p for p in KERNEL_PACKAGES]
-    # and this file: :func:`kernel`'s options are every kernel's
-    own = hashlib.sha1(Path(__file__).read_bytes()).hexdigest()
-    return hashlib.sha1((source_hash(folders, only_with=KERNEL_MARKS) + own).encode()).hexdigest()[:12]
+    """Hash of :func:`kernel_sources`, each file named by its module: a checkout and an installed
+    package of the same sources agree."""
+    return modules_hash(kernel_sources(top))
 
 
 def _serialise_cache_saves() -> None:
     """Each save of a compiled function to numba's cache holds an exclusive lock on a file beside
     the function's index (POSIX ``flock``), so that the index's load-modify-write is whole; loads
     need none (numba writes each file under a temporary name and renames it).  Where numba has
-    moved its cache class, or there is no ``fcntl``, numba's own save stands."""
+    moved its cache class, or there is no ``fcntl``, numba's own save stands (and
+    tests/test_jitcache.py fails)."""
     try:
         import fcntl
 
@@ -68,17 +79,29 @@ def _serialise_cache_saves() -> None:
     IndexDataCacheFile.save = locked_save
 
 
+def user_cache_dir() -> str | None:
+    """The ``NUMBA_CACHE_DIR`` the user set (None where unset, or set by an axlebox process)."""
+    chosen = os.environ.get("NUMBA_CACHE_DIR")
+    return chosen if chosen and chosen != os.environ.get(OURS) else None
+
+
 def configure() -> None:
     _serialise_cache_saves()
-    if not (os.environ.get("NUMBA_THREADING_LAYER") or os.environ.get("NUMBA_THREADING_LAYER_PRIORITY")):
-        config.THREADING_LAYER_PRIORITY = ["omp", "tbb", "workqueue"]
-    if os.environ.get("NUMBA_CACHE_DIR"):
+    env = os.environ
+    if not (env.get("NUMBA_THREADING_LAYER") or env.get("NUMBA_THREADING_LAYER_PRIORITY")):
+        env["NUMBA_THREADING_LAYER_PRIORITY"] = " ".join(THREADING)
+        config.THREADING_LAYER_PRIORITY = list(THREADING)
+    if user_cache_dir():
         return
     where = cache_dir("numba", kernel_hash())
     try:
         where.mkdir(parents=True, exist_ok=True)
     except OSError:         # read-only home: numba's own __pycache__ places stay in use
+        for var in ("NUMBA_CACHE_DIR", OURS):
+            env.pop(var, None)
+        config.CACHE_DIR = ""
         return
+    env["NUMBA_CACHE_DIR"] = env[OURS] = str(where)
     config.CACHE_DIR = str(where)
 
 

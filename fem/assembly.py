@@ -12,8 +12,10 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.spatial import cKDTree
 
-from axlebox._params import check_ranges, param, require
+from axlebox._params import ParameterError, check_ranges, param, require
 from axlebox.geometry.mesh import MeshData
+
+from .parts import orphans
 
 
 @dataclass(frozen=True)
@@ -89,6 +91,12 @@ def assemble(mesh: MeshData, material: Material = STEEL) -> FEModel:
 
     quadratic = mesh.cells.shape[1] == 10
     require(quadratic or mesh.cells.shape[1] == 4, mesh, "cells", "expected tet4 or tet10 cells")
+    loose = orphans(mesh)
+    if len(loose):
+        raise ParameterError(f"mesh.points: {len(loose)} of the {len(mesh.points)} points belong to no "
+                             f"element (the first at {np.round(mesh.points[loose[0]], 6).tolist()} m), "
+                             "where they would carry no stiffness and no mass; expected every point "
+                             "in an element")
     if quadratic:
         m = MeshTet2(mesh.points.T.copy(), mesh.cells.T.copy())
         elem = ElementVector(ElementTetP2())

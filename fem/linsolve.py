@@ -58,3 +58,38 @@ class Factor:
     def free(self) -> None:
         if self.backend == "pardiso":
             self._s.free_memory(everything=True)
+
+
+def negative_eigenvalues(A: sp.spmatrix, *, backend: str | None = None) -> int:
+    """How many eigenvalues of the symmetric ``A`` are negative: the negative pivots of its
+    ``L D L^T`` (Sylvester's law of inertia).  With ``A = K - mu M`` it counts the eigenvalues of
+    ``(K, M)`` below ``mu``: the Sturm sequence check of FE eigensolvers (Bathe, *Finite Element
+    Procedures*, 2nd ed., section 11.4.3), which no Lanczos solve can fool.
+
+    PARDISO's symmetric indefinite factor (mtype -2) reports the inertia; it is taken only where
+    no pivot was perturbed (a perturbed tiny pivot may have the wrong sign).  Else SuperLU with
+    diagonal pivots and one symmetric ordering, where ``U = D L^T``; refused where it had to pivot
+    off the diagonal."""
+    n = A.shape[0]
+    backend = backend or ("pardiso" if pypardiso is not None else "superlu")
+    if backend == "pardiso":
+        s = pypardiso.PyPardisoSolver(mtype=-2)
+        upper = sp.triu(A, format="csr").astype(np.float64)
+        upper.sort_indices()
+        s.set_phase(12)
+        try:
+            s._call_pardiso(upper, np.zeros(n))
+            positive, negative, perturbed = int(s.iparm[21]), int(s.iparm[22]), int(s.iparm[13])
+        finally:
+            s.free_memory(everything=True)
+        if perturbed == 0 and positive + negative == n:
+            return negative
+        backend = "superlu"
+    if backend != "superlu":
+        raise ValueError(f"backend = {backend!r} is not allowed: expected 'pardiso' or 'superlu'")
+    lu = splu(sp.csc_matrix(A), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+              options={"SymmetricMode": True})
+    if not np.array_equal(lu.perm_r, lu.perm_c):
+        raise RuntimeError("inertia: SuperLU pivoted off the diagonal; the signs of U's diagonal "
+                           "do not give the inertia of this matrix")
+    return int(np.count_nonzero(lu.U.diagonal() < 0.0))

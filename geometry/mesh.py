@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import Callable
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from axlebox._cache import cache_dir, package_dir, source_hash
 from axlebox._params import ParameterError, digest
@@ -57,33 +58,38 @@ def mesh_model(name: str, build: Callable, params, mesh_size: float, *,
     key = digest(name, params, float(mesh_size), order, geometry_hash(), gmsh.__version__)
     path = cache_dir("meshes") / f"{name}-{key}.msh"
 
-    initialised = gmsh.isInitialized()
-    if not initialised:
-        gmsh.initialize(interruptible=False)
-    try:
-        gmsh.option.setNumber("General.Terminal", 1 if verbose else 0)
-        gmsh.clear()
-        if cache and path.exists():
-            gmsh.open(str(path))
-        else:
-            gmsh.model.add(name)
-            surfaces = build(params)
-            gmsh.model.occ.synchronize()
-            _physical_groups(surfaces)
-            _mesh(mesh_size, order)
-            if cache:
-                path.parent.mkdir(parents=True, exist_ok=True)
-                fd, tmp = tempfile.mkstemp(suffix=".msh", dir=path.parent)
-                os.close(fd)
-                gmsh.write(tmp)
-                os.replace(tmp, path)    # complete files only
-        data = _extract()
-        data.path = path if cache else None
-        return data
-    finally:
-        gmsh.clear()
+    # gmsh sets the OpenMP threads to its own count (General.NumThreads, below) in whichever
+    # OpenMP runtime is loaded: MKL's, when a body was solved before, which then ran PARDISO on
+    # one thread for the rest of the process, and a body built after a fresh mesh differed in
+    # the last bits from one built from the cached mesh; the counts are put back after
+    with threadpool_limits(limits=None):
+        initialised = gmsh.isInitialized()
         if not initialised:
-            gmsh.finalize()
+            gmsh.initialize(interruptible=False)
+        try:
+            gmsh.option.setNumber("General.Terminal", 1 if verbose else 0)
+            gmsh.clear()
+            if cache and path.exists():
+                gmsh.open(str(path))
+            else:
+                gmsh.model.add(name)
+                surfaces = build(params)
+                gmsh.model.occ.synchronize()
+                _physical_groups(surfaces)
+                _mesh(mesh_size, order)
+                if cache:
+                    path.parent.mkdir(parents=True, exist_ok=True)
+                    fd, tmp = tempfile.mkstemp(suffix=".msh", dir=path.parent)
+                    os.close(fd)
+                    gmsh.write(tmp)
+                    os.replace(tmp, path)    # complete files only
+            data = _extract()
+            data.path = path if cache else None
+            return data
+        finally:
+            gmsh.clear()
+            if not initialised:
+                gmsh.finalize()
 
 
 def _physical_groups(surfaces: dict[str, list[int]]) -> None:

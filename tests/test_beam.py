@@ -1,8 +1,11 @@
 """Free-free beam and simple-body mass properties against closed forms."""
+import dataclasses
+
 import numpy as np
 import pytest
 
-from axlebox.fem import assembly, eigen, interfaces, massprops
+from axlebox import ParameterError
+from axlebox.fem import assembly, eigen, interfaces, massprops, parts
 from axlebox.fem.body import make_body
 from axlebox.geometry import beam, mesh
 
@@ -39,23 +42,84 @@ def test_free_free_bending_matches_euler_bernoulli(slender):
 
 
 def test_six_rigid_modes_identified(slender):
-    _, _, modes = slender
+    _, fe, modes = slender
     assert len(modes.rigid_frequencies_hz) == 6
     assert modes.rigid_frequencies_hz.max() < 1e-3 * modes.frequencies_hz[0]
-    assert modes.rigid_residual < 1e-6
+    assert modes.rigid_residual == pytest.approx(modes.rigid_frequencies_hz.max() / modes.frequencies_hz[0])
+    # the six shapes: M-orthonormal, spanning the analytic rigid motions, M-orthogonal to the elastic
+    Phi_r = modes.rigid_shapes
+    np.testing.assert_allclose(Phi_r.T @ (fe.M @ Phi_r), np.eye(6), atol=1e-10)
+    R = fe.rigid_modes(fe.points.mean(axis=0))
+    E = R - Phi_r @ (Phi_r.T @ (fe.M @ R))
+    outside = np.einsum("ij,ij->j", E, fe.M @ E) / np.einsum("ij,ij->j", R, fe.M @ R)
+    assert np.sqrt(outside.max()) < 1e-10
+    assert np.abs(Phi_r.T @ (fe.M @ modes.shapes)).max() < 1e-8
     assert modes.residual < 1e-4          # ||K phi - w^2 M phi|| / ||K phi|| of the elastic modes
 
 
-def test_disconnected_body_is_refused():
-    """Two separate bars have twelve zero modes: the check must fail, not assume six."""
-    def two_bars(p):
-        import gmsh
-        gmsh.model.occ.addBox(0, 0, 0, 0.5, 0.05, 0.05)
-        gmsh.model.occ.addBox(0, 0.2, 0, 0.5, 0.05, 0.05)
-        gmsh.model.occ.synchronize()
-        return {}
+def test_a_grounded_body_is_refused(slender):
+    """Springs from one end face to the ground (a body constrained, not free): its rigid motions
+    carry energy, and the solve says so rather than returning elastic modes of a fixed body."""
+    import scipy.sparse as sp
+    _, fe, _ = slender
+    end = np.flatnonzero(np.isclose(fe.points[:, 0], fe.points[:, 0].min()))
+    k = np.zeros(fe.ndof)
+    k[fe.dofs[end].ravel()] = 1e9                       # N/m per DOF, 3 x 15 nodes or so
+    grounded = dataclasses.replace(fe, K=(fe.K + sp.diags(k)).tocsr())
+    with pytest.raises(eigen.RigidModeError, match="the rigid motions are not free"):
+        eigen.free_free_modes(grounded, 4)
+
+
+def two_bars(p):
+    """Two 0.5 m steel bars 0.15 m apart, in one gmsh model: two parts."""
+    import gmsh
+    gmsh.model.occ.addBox(0, 0, 0, 0.5, 0.05, 0.05)
+    gmsh.model.occ.addBox(0, 0.2, 0, 0.5, 0.05, 0.05)
+    gmsh.model.occ.synchronize()
+    return {}
+
+
+def test_disconnected_body_is_refused_naming_its_parts():
+    """Two separate bars have twelve zero modes: found from the mesh (not counted in a spectrum,
+    where a Lanczos solve can miss members of the cluster), and each part named."""
     fe = assembly.assemble(mesh.mesh_model("two_bars", two_bars, beam.BeamParams(), 0.05, cache=False))
-    with pytest.raises(eigen.RigidModeError, match="shows 12 rigid modes, expected 6"):
+    pieces = parts.parts(fe.mesh)
+    assert len(pieces) == 2
+    assert sorted(np.concatenate([q.cells for q in pieces]).tolist()) == list(range(len(fe.mesh.cells)))
+    assert not set(pieces[0].nodes) & set(pieces[1].nodes)
+    lows = sorted(q.lower[1] for q in pieces)
+    np.testing.assert_allclose(lows, [0.0, 0.2], atol=1e-12)
+    mass = RHO * 0.5 * 0.05 * 0.05                                   # 9.8125 kg each
+    with pytest.raises(eigen.DisconnectedBodyError,
+                       match=r"2 separate parts \(12 rigid modes, expected 6\)") as e:
+        eigen.free_free_modes(fe, 4)
+    assert str(e.value).count(f"{mass:.4g} kg") == 2 and "y 0.2..0.25" in str(e.value)
+
+
+def test_points_of_no_element_are_refused():
+    m = mesh.mesh_model("beam", beam.build, beam.BeamParams(length=0.5, width=0.05, height=0.05), 0.05)
+    m = dataclasses.replace(m, points=np.vstack([m.points, [[3.0, 0.0, 0.0]]]))
+    assert parts.orphans(m).tolist() == [len(m.points) - 1]
+    with pytest.raises(ParameterError, match=r"mesh.points: 1 of the \d+ points belong to no element "
+                                             r"\(the first at \[3.0, 0.0, 0.0\] m\)"):
+        assembly.assemble(m)
+
+
+def hinged_boxes(p):
+    """Two cubes sharing one edge and nothing else: one part by its nodes, a hinge by its
+    mechanics (a seventh zero mode, turning about the edge)."""
+    import gmsh
+    a = gmsh.model.occ.addBox(0, 0, 0, 0.1, 0.1, 0.1)
+    b = gmsh.model.occ.addBox(0.1, 0.1, 0, 0.1, 0.1, 0.1)
+    gmsh.model.occ.fragment([(3, a)], [(3, b)])
+    gmsh.model.occ.synchronize()
+    return {}
+
+
+def test_a_hinge_is_refused_by_the_spectrums_gap():
+    fe = assembly.assemble(mesh.mesh_model("hinged", hinged_boxes, beam.BeamParams(), 0.04, cache=False))
+    assert len(parts.parts(fe.mesh)) == 1
+    with pytest.raises(eigen.RigidModeError, match="more than 6 rigid modes"):
         eigen.free_free_modes(fe, 4)
 
 
