@@ -22,6 +22,12 @@ from axlebox.bearing.integrate import CAGE_OUT, RIG, RIG_U
 
 REFERENCE = Path(__file__).parent / "data" / "kernel_reference.npz"
 RTOL = 1e-9
+# The car's model arrays (mbs/system.py ``Model.S``: the wheel-rail tables, the track, the
+# bodies) with which this checkout meets the reference, and what made them: numpy's vectorised
+# transcendental functions give other last bits on other SIMD targets (measured: with numpy's
+# AVX-512 paths off the tables differ, and 0.01 s of chaos takes the states 5e-6 apart).
+CAR_INPUTS = {"sha256": "5e9b9a4c15a53641", "numpy": "2.4.6", "scipy": "1.17.1",
+              "simd": ["AVX512_ICL", "X86_V3", "X86_V4"]}
 
 
 @pytest.fixture(scope="module")
@@ -74,6 +80,26 @@ def test_the_rig_gives_the_old_kernels_states(ref, case):
     _assert_slots(Y[nb:].reshape(2, 3).T, ref[f"{case}/end/ring"].reshape(2, 3).T, "outer ring")
 
 
+def _same_inputs_or_skip(model) -> None:
+    """Skip where the car's model arrays differ from the reference's because numpy or scipy, or
+    the SIMD targets numpy runs, differ from those that made them (a bit comparison after 0.01 s
+    of chaos needs the same inputs to the bit; the rig cases, whose inputs are stored, still
+    run).  Where they are the same, the arrays must be too: the comparison runs, and a change
+    of the model fails it."""
+    import hashlib
+
+    import scipy
+    h = hashlib.sha256()
+    for name, v in zip(model.S._fields, model.S):
+        h.update(name.encode() + b"\0" + np.ascontiguousarray(v).tobytes())
+    here = {"numpy": np.__version__, "scipy": scipy.__version__,
+            "simd": sorted(np.show_config(mode="dicts")["SIMD Extensions"]["found"])}
+    there = {k: CAR_INPUTS[k] for k in here}
+    if h.hexdigest()[:16] != CAR_INPUTS["sha256"] and here != there:
+        pytest.skip(f"the car's model arrays differ in their last bits from those the reference was "
+                    f"run with: made here with {here}, there with {there}")
+
+
 def test_the_car_gives_the_old_kernels_states(ref):
     """The validation case with rigid bodies (eight DTRBs, "imex" at 5e-6 s with the bodies'
     exchange at 1e-5 s; the flexible bodies' last bits follow the FE solver's threads): 0.01 s
@@ -87,6 +113,7 @@ def test_the_car_gives_the_old_kernels_states(ref):
     cfg = psim.load_config(configs.path("validation_48kmh"), duration=T,
                               overrides={"bodies": {"flexible": []}})
     model, y0 = psim.build_model(cfg, log=lambda *_: None)
+    _same_inputs_or_skip(model)
     nb = model.n_body_states
     Z = ref["car/start/rollers"].shape[2]
     y = np.concatenate([ref["car/start/bodies"]]
