@@ -45,7 +45,7 @@ from axlebox.fem import assembly, eigen, linsolve
 from axlebox.geometry import mesh, wheelset
 from axlebox.pipelines.bodies import BODIES
 spec = importlib.util.spec_from_file_location("axlebox.fem._eigen_before", sys.argv[1])
-before = importlib.util.module_from_spec(spec)
+before = sys.modules[spec.name] = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(before)
 fe = assembly.assemble(mesh.mesh_model("wheelset", wheelset.build, wheelset.WheelsetParams(),
                                        BODIES["wheelset"].mesh_size))
@@ -54,7 +54,7 @@ for _ in range(int(sys.argv[2])):
         t = time.perf_counter()
         m = mod.free_free_modes(fe, 30)
         print(name, time.perf_counter() - t, m.frequencies_hz[0], m.frequencies_hz[-1], flush=True)
-j, mu = eigen.sturm_cut(m.frequencies_hz, 29)
+j, mu = eigen.sturm_cut(m.frequencies_hz, 27)     # (the solve cuts past its 30)
 t = time.perf_counter()
 n = linsolve.negative_eigenvalues((fe.K - (2 * np.pi * mu) ** 2 * fe.M).tocsr())
 print("sturm", time.perf_counter() - t, n, fe.ndof)
