@@ -28,19 +28,16 @@ def package_dir(sub: str) -> Path:
     return Path(next(iter(spec.submodule_search_locations))).resolve()
 
 
-def source_hash(folders: Iterable[Path], *, only_with: bytes | tuple[bytes, ...] | None = None) -> str:
-    """SHA-1 (12 hex digits) of the ``*.py`` files under ``folders`` (those containing
-    ``only_with``, or one of them, when given), each named by its folder's name and its path
-    inside it, so the same sources hash alike in a checkout and in an installed package."""
-    marks = (only_with,) if isinstance(only_with, bytes) else only_with
+def source_hash(folders: Iterable[Path]) -> str:
+    """SHA-1 (12 hex digits) of the ``*.py`` files under ``folders``, each named by its folder's
+    name and its path inside it, so the same sources hash alike in a checkout and in an
+    installed package."""
     h = hashlib.sha1()
     for folder in folders:
         folder = Path(folder)
         for p in sorted(folder.rglob("*.py")):
-            text = p.read_bytes()
-            if marks is None or any(m in text for m in marks):
-                name = (Path(folder.name) / p.relative_to(folder)).as_posix()
-                h.update(name.encode() + b"\0" + text)
+            name = (Path(folder.name) / p.relative_to(folder)).as_posix()
+            h.update(name.encode() + b"\0" + p.read_bytes())
     return h.hexdigest()[:12]
 
 
