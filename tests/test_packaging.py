@@ -43,3 +43,35 @@ def test_each_shipped_config_is_summed_up_in_a_whole_sentence():
         assert s.endswith(".") and s.count("(") == s.count(")"), (name, s)
     assert "Fig. 1b" in configs.summary("field_64kmh")
     assert configs.summary("field_64kmh").endswith("64.5 km/h.")
+
+
+def _sibling_imports(package) -> dict[str, set[str]]:
+    """Each module of ``package`` -> the sibling modules it imports, at any depth of its code
+    (lazy imports inside functions and ``if TYPE_CHECKING:`` blocks count: both tie the files)."""
+    import ast
+    import pathlib
+    graph = {}
+    for path in pathlib.Path(package.__path__[0]).glob("*.py"):
+        deps = set()
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.level == 1:
+                deps |= {node.module.split(".")[0]} if node.module else {a.name for a in node.names}
+        graph[path.stem] = deps - {path.stem}
+    return graph
+
+
+def test_the_diagnostics_import_one_way():
+    """Issue 57: the thresholds import nothing of the diagnosis, and the modules import in one
+    direction, thresholds -> indicators -> verdict -> criterion -> pair (before, criterion,
+    verdict, channel, coherence, gate, own and wheel imported each other in a circle)."""
+    import graphlib
+
+    import axlebox.bearing.diagnostics as diagnostics
+    graph = _sibling_imports(diagnostics)
+    order = list(graphlib.TopologicalSorter(graph).static_order())    # CycleError on a circle
+    assert graph["thresholds"] == set()
+    for indicator in ("channel", "coherence", "gate", "own", "wheel"):
+        assert "thresholds" in graph[indicator] or indicator == "own", indicator
+        assert order.index(indicator) < order.index("verdict"), indicator
+    assert order.index("thresholds") < order.index("verdict") < order.index("criterion") \
+        < order.index("pair")

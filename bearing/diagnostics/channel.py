@@ -34,7 +34,7 @@ from . import faultlines, spm
 from .envelope import _signal, check_fs, envelope_spectrum, select_band
 from .guided import guided_band
 from .indicators import time_indicators
-from .criterion import Criterion
+from .thresholds import Criterion
 from .spectral import check_band, fc_vf
 from .wheel import spectrum_orders, wheel_orders
 

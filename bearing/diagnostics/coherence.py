@@ -82,7 +82,7 @@ from scipy.signal import get_window
 from axlebox._params import ParameterError
 
 from . import faultlines
-from .criterion import Criterion
+from .thresholds import Criterion
 from .envelope import _signal, check_fs, envelope
 
 # the thresholds that decide (rho_min_db, z_min, c_independent) are Criterion's fields

@@ -28,7 +28,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from .criterion import Criterion
+from .thresholds import Criterion
 from .envelope import envelope
 
 MIN_TURNS = 5           # turns the fold must average: fewer leave non-locked impulses standing

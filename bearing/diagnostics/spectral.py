@@ -24,6 +24,7 @@ from scipy.signal import welch
 from axlebox._params import ParameterError
 
 from .envelope import _signal, check_fs
+from .thresholds import check_band  # noqa: F401  (the band check lives with the thresholds)
 
 
 def default_nperseg(fs: float, n: int) -> int:
@@ -46,22 +47,6 @@ def psd(x, fs: float, nperseg: int | None = None):
                              "resolution)")
     return welch(x, fs, window="hann", nperseg=int(n), noverlap=int(n) // 2, detrend="constant",
                  scaling="density")
-
-
-def check_band(band, fs: float, name: str = "vf_band (--vf-band)") -> tuple[float, float] | None:
-    """``band`` as ``(lo, hi)`` Hz with ``0 <= lo < hi <= fs / 2``, or None (the full band)."""
-    if band is None:
-        return None
-    ok = isinstance(band, (tuple, list)) and len(band) == 2 and all(
-        isinstance(v, (int, float, np.floating, np.integer)) and not isinstance(v, bool)
-        and math.isfinite(v) for v in band) and 0 <= band[0] < band[1]
-    if not ok:
-        raise ParameterError(f"{name} = {band!r} is not allowed: expected (lo, hi) in Hz with "
-                             "0 <= lo < hi")
-    if band[1] > 0.5 * fs * (1 + 1e-12):
-        raise ParameterError(f"{name} = {tuple(band)!r} is not allowed: its upper edge is above the "
-                             f"record's Nyquist frequency, {0.5 * fs:g} Hz")
-    return float(band[0]), float(band[1])
 
 
 def fc_vf(x, fs: float, nperseg: int | None = None,

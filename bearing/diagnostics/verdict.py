@@ -19,11 +19,13 @@ import math
 from dataclasses import asdict, dataclass, field
 from typing import TYPE_CHECKING
 
-if TYPE_CHECKING:       # annotations only: these import this module (through criterion)
+from .wheel import text as wheel_text
+
+if TYPE_CHECKING:       # annotations only: the indicators below need nothing of this module
     from .coherence import Timing
-    from .criterion import Criterion
     from .gate import Gate
     from .own import LineShare
+    from .thresholds import Criterion
 
 SIDES = ("left", "right")
 VERDICTS = ("real fault", "pseudo-fault", "healthy", "faults on both sides", "undecided")
@@ -192,8 +194,7 @@ class ShaftOrders:
     def text(self) -> str:
         """``"1x, 2x, 3x in the envelope; 20x in the spectrum"``, empty where there are none
         (:func:`.wheel.text`)."""
-        from .wheel import text     # here: wheel imports criterion, which imports this module
-        return text(self.envelope, self.spectrum)
+        return wheel_text(self.envelope, self.spectrum)
 
     def to_dict(self) -> dict:
         return {"envelope": [int(k) for k in self.envelope], "spectrum": [int(k) for k in self.spectrum]}

@@ -32,7 +32,7 @@ import math
 import numpy as np
 from scipy.signal import welch
 
-from .criterion import Criterion
+from .thresholds import Criterion
 from .faultlines import _window, is_peak, welch_averages
 
 MAX_ORDER = 40          # a polygon's orders reach 30 (module docstring); a flat's comb, its first 40
