@@ -190,7 +190,8 @@ def _analysis_options(a) -> dict:
 
 
 def _speed_options(a) -> dict:
-    """``diagnose``'s speed over time (:mod:`axlebox.pipelines.speed`)."""
+    """The speed over time ``diagnose``, ``report`` and ``dataset`` take
+    (:mod:`axlebox.pipelines.speed`)."""
     return dict(speed_channel=a.speed_channel, speed_unit=a.speed_unit, tacho=a.tacho,
                 tacho_threshold=a.tacho_threshold, speed_csv=a.speed_csv,
                 order_tracking=a.order_tracking)
@@ -211,7 +212,7 @@ def _cmd_diagnose(a) -> None:
 
 def _cmd_report(a) -> None:
     from .report import report
-    report(a.source, a.out, modes_dir=a.modes, **_analysis_options(a))
+    report(a.source, a.out, modes_dir=a.modes, **_analysis_options(a), **_speed_options(a))
 
 
 def _cmd_sweep(a) -> None:
@@ -229,7 +230,27 @@ def _cmd_dataset(a) -> None:
 
     from .dataset import write
     write(a.sweep_dir, a.out, window_s=a.window, hop_s=a.hop,
-          criterion=Criterion(mode=a.criterion, **_thresholds(a)))
+          criterion=Criterion(mode=a.criterion, **_thresholds(a)), **_speed_options(a))
+
+
+def _add_speed_options(p):
+    """The speed sources and order tracking ``diagnose``, ``report`` and ``dataset`` share
+    (:mod:`axlebox.pipelines.speed`); returns their group."""
+    sp = p.add_argument_group("speed over the record (a result file of a run along a speed profile "
+                               "gives its own: the stored shaft angle)")
+    sp.add_argument("--speed-channel", metavar="NAME", help="a channel of the same file holding the "
+                    "speed, one sample a sample, in --speed-unit")
+    sp.add_argument("--speed-unit", default="km/h", metavar="UNIT",
+                    help="km/h (with --wheel-radius), rpm or Hz (default: km/h)")
+    sp.add_argument("--tacho", metavar="NAME", help="a once-per-revolution pulse channel of the same "
+                    "file (the record is cut to its pulses' span)")
+    sp.add_argument("--tacho-threshold", type=float, metavar="LEVEL", help="the level a pulse rises "
+                    "through (default: midway between the channel's 1st and 99th percentiles)")
+    sp.add_argument("--speed-csv", metavar="FILE", help="a speed profile: CSV of time s (from the "
+                    "record's first sample) and speed in --speed-unit, covering the record")
+    sp.add_argument("--order-tracking", default="auto", metavar="MODE", help="auto (order-track where "
+                    "the speed's range exceeds 0.5 %% of its mean), on or off (default: auto)")
+    return sp
 
 
 def _add_dataset(sub) -> None:
@@ -249,6 +270,7 @@ def _add_dataset(sub) -> None:
                     help="the criterion's VF mode for the verdict labels (default relative, as the "
                          "demo)")
     _add_threshold_options(ds)
+    _add_speed_options(ds)
     ds.set_defaults(func=_cmd_dataset)
 
 
@@ -497,20 +519,7 @@ def parser() -> argparse.ArgumentParser:
     _add_analysis_options(dg)
     dg.add_argument("--json", metavar="OUT", help="write the indicators and verdicts as JSON")
     dg.add_argument("--figures", metavar="DIR", help="write <file>_diagnose.png into DIR")
-    sp = dg.add_argument_group("speed over the record (a result file of a run along a speed profile "
-                               "gives its own: the stored shaft angle)")
-    sp.add_argument("--speed-channel", metavar="NAME", help="a channel of the same file holding the "
-                    "speed, one sample a sample, in --speed-unit")
-    sp.add_argument("--speed-unit", default="km/h", metavar="UNIT",
-                    help="km/h (with --wheel-radius), rpm or Hz (default: km/h)")
-    sp.add_argument("--tacho", metavar="NAME", help="a once-per-revolution pulse channel of the same "
-                    "file (the record is cut to its pulses' span)")
-    sp.add_argument("--tacho-threshold", type=float, metavar="LEVEL", help="the level a pulse rises "
-                    "through (default: midway between the channel's 1st and 99th percentiles)")
-    sp.add_argument("--speed-csv", metavar="FILE", help="a speed profile: CSV of time s (from the "
-                    "record's first sample) and speed in --speed-unit, covering the record")
-    sp.add_argument("--order-tracking", default="auto", metavar="MODE", help="auto (order-track where "
-                    "the speed's range exceeds 0.5 %% of its mean), on or off (default: auto)")
+    sp = _add_speed_options(dg)
     sp.add_argument("--window-turns", type=float, metavar="N", help="read the record in windows of N "
                     "shaft turns (at least about 5: two cage turns), one verdict a window")
     sp.add_argument("--window-overlap", type=float, default=0.5, metavar="SHARE",
@@ -529,6 +538,7 @@ def parser() -> argparse.ArgumentParser:
     rp.add_argument("--modes", metavar="DIR", help="mode-shape pictures (axlebox bodies report "
                                                    "output; default: looked for beside the input)")
     _add_analysis_options(rp)
+    _add_speed_options(rp)
     rp.set_defaults(func=_cmd_report)
 
     _add_sweep(sub)

@@ -122,8 +122,11 @@ def windows(path: Path, sensors: tuple[str, str], window_s: float, hop_s: float)
     return fs, starts, x[0][idx], x[1][idx]
 
 
-def build(sweep_dir, *, window_s: float = 0.5, hop_s: float = 0.25, criterion=None, log=print):
-    """The dataset as an ``xarray.Dataset`` (module docstring)."""
+def build(sweep_dir, *, window_s: float = 0.5, hop_s: float = 0.25, criterion=None, log=print,
+          **speed_kw):
+    """The dataset as an ``xarray.Dataset`` (module docstring); ``speed_kw``: the speed's source
+    and order tracking, as ``axlebox diagnose`` takes them (:func:`.diagnose.analyse_file`;
+    default: each result's stored shaft angle)."""
     import xarray as xr
 
     from axlebox.bearing.diagnostics.criterion import Criterion
@@ -138,11 +141,14 @@ def build(sweep_dir, *, window_s: float = 0.5, hop_s: float = 0.25, criterion=No
         sensors = (f"ws{lab['wheelset']}_L", f"ws{lab['wheelset']}_R")
         fs, starts, xl, xr_ = windows(path, sensors, window_s, hop_s)
         fs_all.add(fs)
-        _, _, pair = analyse_file(path, left=sensors[0], right=sensors[1], criterion=criterion)
+        _, info, pair = analyse_file(path, left=sensors[0], right=sensors[1], criterion=criterion,
+                                     **{k: v for k, v in speed_kw.items() if v is not None})
         v = pair.verdict
         lab = {**lab, "case": path.stem, "file": path.name,
                "left_verdict": v.words["left"], "right_verdict": v.words["right"],
                "left_reason": v.sentence("left"), "right_reason": v.sentence("right"),
+               "speed_from": (info["speed"] or {}).get("from", "config"),
+               "order_tracked": bool((info["speed"] or {}).get("order_tracked", False)),
                **v.row("verdict_")}
         for i in starts:
             rows.append({**lab, "start_index": int(i), "t_start": float(i / fs)})
@@ -212,8 +218,11 @@ labels = ds.drop_dims("sample").to_dataframe()
   each side's compared indicators, the lag (`verdict_lag_leading`, `verdict_lag_s`), each
   fault line seen and how its source was found (`verdict_lines`), the whole orders of the
   wheel's rate on each side (`verdict_orders_left`, `_right`), the blanking of a wheel flat's
-  strikes (`verdict_gate_*`, NaN without). The criterion with every threshold is the file's
-  `criterion` attribute (JSON).
+  strikes (`verdict_gate_*`, NaN without), the fault's kind named on each side called faulty
+  (`verdict_kind_left`, `_right`: outer ring, inner ring, roller, "kind undecided" or none;
+  `verdict_kinds_*` every kind that fits); where the speed came from (`speed_from`) and whether
+  the record was read on the shaft's clock (`order_tracked`). The criterion with every
+  threshold is the file's `criterion` attribute (JSON).
 
 ## Cases
 
@@ -232,15 +241,16 @@ attribute), with the seed of each run.
 
 
 def write(sweep_dir, out, *, window_s: float = 0.5, hop_s: float = 0.25, criterion=None,
-          log=print) -> Path:
+          log=print, **speed_kw) -> Path:
     """Build the dataset and write ``out/dataset.nc`` and ``out/README.md`` (temporary names,
-    renamed when complete).  Returns the path of the NetCDF file."""
+    renamed when complete; ``speed_kw`` as :func:`build` takes them).  Returns the path of the
+    NetCDF file."""
     from axlebox.bearing.diagnostics.criterion import Criterion
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise ParameterError(f"--out {str(out)!r} is a file: expected a folder for the dataset")
     criterion = Criterion(mode="relative") if criterion is None else criterion
-    ds = build(sweep_dir, window_s=window_s, hop_s=hop_s, criterion=criterion, log=log)
+    ds = build(sweep_dir, window_s=window_s, hop_s=hop_s, criterion=criterion, log=log, **speed_kw)
     out.mkdir(parents=True, exist_ok=True)
     path = out / "dataset.nc"
     with h5_reserved(path, h5_bound(v.values for v in ds.variables.values())) as fo:

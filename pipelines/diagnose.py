@@ -221,7 +221,8 @@ def analyse_record(rec: Record, speed, *, scale: float = 1.0, shaft=None, speed_
                             names=rec.names, nperseg=nperseg, guided=guided,
                             bearings=(bl.name, br.name),
                             rotor=speed.rotor if speed is not None and not given else rotor_of(shaft, rpm),
-                            angle=angle)
+                            angle=angle, spread=0.0 if angle is not None or stats is None
+                            else stats["spread"])
     res = pair(speed.angle if tracked else None)
     second = None
     if tracked and res.verdict.real is None and BOTH in res.verdict.words.values():

@@ -44,13 +44,14 @@ class Scored:
     real: str | None = None
     evidence: dict = field(default_factory=dict)
     sentences: dict = field(default_factory=dict)
+    kind: str = "not named"         # the faulty end's fault kind as named (or "kind undecided: ...")
 
     def to_dict(self) -> dict:
         """JSON-ready: the manifest row, the words, the rule, the real end, the evidence and the
         sentences."""
         return {"row": dict(self.row), "words": dict(self.words), "rule": self.rule,
                 "real": self.real, "evidence": dict(self.evidence),
-                "sentences": dict(self.sentences)}
+                "sentences": dict(self.sentences), "kind": self.kind}
 
     @property
     def faulty(self) -> str:
@@ -75,6 +76,14 @@ class Score:
                 out[role].setdefault(r.row["fault"], Counter())[word] += 1
         return out
 
+    @property
+    def kinds(self) -> dict:
+        """fault (the manifest's) -> Counter of the kind named at the faulty end."""
+        out = {}
+        for r in self.records:
+            out.setdefault(r.row["fault"], Counter())[r.kind] += 1
+        return out
+
     def count(self, role: str, words, fault: str | None = None) -> int:
         """How many ends of ``role`` (of ``fault``, default every kind) got one of ``words``."""
         words = (words,) if isinstance(words, str) else tuple(words)
@@ -90,11 +99,16 @@ class Score:
                 out.append(f"{fault} | " + " | ".join(str(c[w]) for w in WORDS)
                            + f" | {sum(c.values())}")
             out.append("")
-        out += ["| file | faulty end | fault | faulty end called | healthy end called | rule |",
-                "| --- | --- | --- | --- | --- | --- |"]
+        named = sorted({k for c in self.kinds.values() for k in c})
+        out += ["fault | " + " | ".join(f"named {k}" for k in named) + " | records",
+                "--- | " + " | ".join("---" for _ in named) + " | ---"]
+        for fault, c in sorted(self.kinds.items()):
+            out.append(f"{fault} | " + " | ".join(str(c[k]) for k in named) + f" | {sum(c.values())}")
+        out += ["", "| file | faulty end | fault | faulty end called | its kind | healthy end called "
+                "| rule |", "| --- | --- | --- | --- | --- | --- | --- |"]
         for r in self.records:
             out.append(f"| {r.row['file']} | {r.row['faulty_end']} | {r.row['fault']} | {r.faulty} "
-                       f"| {r.healthy} | {r.rule} |")
+                       f"| {r.kind} | {r.healthy} | {r.rule} |")
         return "\n".join(out)
 
 
@@ -141,8 +155,12 @@ def score(manifest, bearings: dict, *, scale: float = 1.0, criterion=None,
         end = {"left": ends[0], "right": ends[1]}
         words = {end[s]: v.words[s] for s in end}
         assert all(w in VERDICTS for w in words.values())
+        side = {e: s for s, e in end.items()}[row["faulty_end"]]
+        fk = v.kinds[side]
         out.append(Scored(row, words, v.rule, end.get(v.real), v.row(),
-                          {end[s]: v.sentence(s) for s in end}))
+                          {end[s]: v.sentence(s) for s in end},
+                          "not named" if fk is None else fk.kind if fk.decided else
+                          "kind undecided: " + " or ".join(fk.named)))
         log(f"{row['file']}: {row['fault']} at {row['faulty_end']}: {ends[0]} {words[ends[0]]}, "
             f"{ends[1]} {words[ends[1]]} ({v.rule})")
     return Score(out)

@@ -194,6 +194,22 @@ def shafts(run: integrate.Run, model, block: int = 4096) -> dict:
     return out
 
 
+def drives(run: integrate.Run, model) -> dict:
+    """``<drive>/torque`` (N m, about the axle, on the wheelset; its reaction on the gearbox or
+    the bogie frame) and ``<drive>/force`` (N, the tractive force the profile asks of the
+    wheelset's share of the car) of each wheelset's drive at the output instants, a run along a
+    speed profile's (:class:`axlebox.mbs.elements.Drive`; none at a constant speed)."""
+    from axlebox.mbs.elements import Drive
+    out = {}
+    for i, e in enumerate(model.system.elements):
+        if isinstance(e, Drive) and e.radius > 0 and run.elements is not None:
+            on = model.bodies[model.system.markers[e.m1][0]].name
+            out[f"{e.name}/torque"] = (run.elements[:, i, 0], {"unit": "N m", "on": on,
+                                                               "about": "the axle"})
+            out[f"{e.name}/force"] = (run.elements[:, i, 1], {"unit": "N"})
+    return out
+
+
 def write(path, run: integrate.Run, model, cfg: vconfig.CarConfig,
           ride: list[comfort.RideComfort] = ()) -> Path:
     """The result file, its config stored whole (every default filled in); ``ride``: the
@@ -218,6 +234,7 @@ def write(path, run: integrate.Run, model, cfg: vconfig.CarConfig,
         br[f"{name}/roller1_cup_force"] = (o[:, 2, :2], {"unit": "N", "columns": "row 1, row 2"})
         br[f"{name}/cage"] = (o[:, 2, 2:6], {"unit": "rad, rad, rad/s, rad/s",
                                             "columns": "angle row 1, row 2; rate row 1, row 2"})
+    dr = drives(run, model)
     ride_attrs = {"columns": ", ".join(comfort.RideComfort.COLUMNS), "unit": "1, 1, 1, m/s^2, m/s^2, "
                   "m/s^2", "standards": "Sperling (W_z, W_y); EN 12299:2009 6.7.2 (N_MV: W_d on x, y, "
                   "W_b on z; 95th percentile of 5 s r.m.s.)"}
@@ -227,6 +244,7 @@ def write(path, run: integrate.Run, model, cfg: vconfig.CarConfig,
               **({"bearings": br} if br else {}),
               **({"comfort": cm} if cm else {}),
               **({"shafts": sh} if (sh := shafts(run, model)) else {}),
+              **({"drives": dr} if dr else {}),
               "states": {"time": run.state_time, "y": run.states,
                          "y_end": (run.y_end, {"t": float(run.time[-1]) if run.time.size else 0.0})}}
     return resultfile.write(path, config_toml=cfg.to_toml(), seed=cfg.run.seed, time=run.time, fs_hz=fs,

@@ -107,6 +107,13 @@ def test_verdict_labels_are_what_diagnose_says(dataset, sweep_dir):
         assert r.verdict_vf_m == pytest.approx(v.evidence.vf.m, rel=1e-12)
         assert r.verdict_lag_leading == (v.evidence.lag.leading or "none")
         assert r.left_reason == v.sentence("left")
+        # issue 57: the fault's kind on each side called faulty (these hit at BPFO: the outer
+        # ring), where the speed came from and whether the record was order-tracked
+        for side in ("left", "right"):
+            kind = r[f"verdict_kind_{side}"]
+            faulty = r[f"{side}_verdict"] in ("real fault", "faults on both sides")
+            assert kind == ("outer ring" if faulty else "none"), (name, side, kind)
+        assert (r.speed_from, bool(r.order_tracked)) == ("config", False)
 
 
 def test_card_states_how_it_was_made(dataset):
@@ -149,3 +156,21 @@ def test_bad_input_exits_2_with_one_line(tmp_path, sweep_dir, capsys, setup, arg
     assert rc == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and words in err and "Traceback" not in err, err
+
+
+def test_the_speed_options_reach_the_labels(sweep_dir, tmp_path, capsys):
+    """Issue 57 item 6: ``dataset`` takes ``--order-tracking`` and the speed sources as
+    ``diagnose`` does: "on" without a speed over time (these constant-speed results store none)
+    is one line naming what to give, exit 2; "off" labels every window not order-tracked."""
+    assert cli.main(["dataset", str(sweep_dir), "--out", str(tmp_path / "on"),
+                     "--order-tracking", "on"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "--order-tracking on needs the shaft's speed" in err and len(err.splitlines()) == 1
+    assert cli.main(["dataset", str(sweep_dir), "--out", str(tmp_path / "csv"),
+                     "--speed-csv", str(tmp_path / "v.csv")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "--speed-csv" in err and len(err.splitlines()) == 1
+    assert cli.main(["dataset", str(sweep_dir), "--out", str(tmp_path / "off"), "--window", "1",
+                     "--hop", "1", "--order-tracking", "off"]) == 0
+    labels = xr.open_dataset(tmp_path / "off" / "dataset.nc").drop_dims("sample").to_dataframe()
+    assert not labels.order_tracked.any() and set(labels.speed_from) == {"config"}

@@ -2,6 +2,7 @@
 closed forms, the car's distance and its wheelsets' spin against them at a constant acceleration,
 a profile that never changes speed as the constant-speed run, bit for bit, and bad profiles."""
 
+import h5py
 import numpy as np
 import pytest
 from scipy.integrate import quad
@@ -51,7 +52,7 @@ def _run(cfg):
     return model, integrate.simulate(model, cfg.run.duration, cfg.settings(), y0=y0)
 
 
-def test_at_a_constant_acceleration_the_car_runs_the_closed_form(rigid_car):
+def test_at_a_constant_acceleration_the_car_runs_the_closed_form(rigid_car, tmp_path):
     """The rigid car at 20 km/h, then 1 m/s^2 for 2.5 s: the carbody's distance within 0.5 % of
     ``v0 t + a (t - 0.5)^2 / 2`` and each wheelset's spin angle within 0.5 % of that distance
     over the rolling radius (``V(0) / omega(0)``, the free rolling at the start), its spin rate
@@ -74,6 +75,20 @@ def test_at_a_constant_acceleration_the_car_runs_the_closed_form(rigid_car):
         assert beta[-1] - beta[0] == pytest.approx(dist / r_roll, rel=0.005)
         assert w[-1] == pytest.approx(prof.speed(T) / r_roll, rel=0.005)
     assert dist > 1.15 * prof.speed(0.0) * T         # it did accelerate (by 2.5 x 2.5 / 2 m)
+    # issue 57: the drives' torques in the result file, each wheelset's share of the car's
+    # inertia and its own spin inertia over the steady acceleration (1.5-3 s: a = 1 m/s^2),
+    # T = (M / 4) a r + J a / r (mbs/vehicle.py: the profile's feed-forward; its speed gain
+    # adds the creep's share, ~1e-3 of the speed)
+    path = psim.write(tmp_path / "profile.h5", run, model, cfg)
+    steady = (run.time >= 1.5) & (run.time <= 3.0)
+    with h5py.File(path, "r") as f:
+        for k in range(1, 5):
+            e = sysm.elements[[x.name for x in sysm.elements].index(f"drive{k}")]
+            torque = f[f"drives/drive{k}/torque"][()]
+            assert f[f"drives/drive{k}/torque"].attrs["on"] == f"ws{k}"
+            assert torque.shape == run.time.shape
+            expect = e.mass * 1.0 * e.radius + e.inertia * 1.0 / e.radius     # e.mass: M / 4
+            assert np.mean(torque[steady]) == pytest.approx(expect, rel=0.02)
 
 
 def test_a_profile_that_never_changes_speed_is_the_constant_speed_run(rigid_car):

@@ -129,6 +129,7 @@ from axlebox._params import ParameterError
 from .thresholds import (ANALYSIS, COMPARABLE, FAULT_LINES, LAG_POLICIES, MODES,  # noqa: F401
                          OPTIONS, PAPER, PAPER_ALONE, PAPER_RK4_STEP, REL_RANGE_DEFAULT, SOURCE_RULES,
                          VF_BAND_PAPER, VF_METRO, VF_RANGE_PAPER, Criterion)
+from .kind import kinds
 from .verdict import (LINES_ONLY, ROTORS, SIDES, Evidence, LagReading, LineEvidence, LineReading,
                       ShaftOrders, Verdict, VFReading)
 
@@ -183,14 +184,18 @@ def _snr(found: dict, key: str) -> float:
 
 
 def decide(left, right, lag=None, criterion: Criterion = PAPER,
-           lines: list[LineEvidence] | None = None, gate=None, rotor: str = "wheel") -> Verdict:
+           lines: list[LineEvidence] | None = None, gate=None, rotor: str = "wheel",
+           orders=None, spread: float = 0.0) -> Verdict:
     """The :class:`.verdict.Verdict` on two :class:`.channel.ChannelResult` (``FC``/``VF``,
     ``rms``, ``spm_db``, ``lines``), an optional :class:`.lag.LagResult` whose channel ``a`` is
     ``left``, and the lines' evidence (default :func:`evidence_from_channels`: no timing, so a
     line seen on both sides is a copy); ``gate``: the wheel's strikes blanked before (the
     :class:`.gate.Gate`), quoted in the evidence; ``rotor``: what turns the shaft, ``"wheel"``
     (a vehicle) or ``"shaft"`` (a machine's rotor), the words of the whole orders' lines.  The
-    :class:`.verdict.Evidence` is read once, here; the rule follows from it alone."""
+    :class:`.verdict.Evidence` is read once, here; the rule follows from it alone.  Each side
+    called faulty gets its fault's kind (:mod:`.kind`), from ``orders`` (side -> its bearing's
+    FaultOrders; None: the lines alone) and ``spread``, the shaft speed's range over its mean as
+    the record was read (0 on the shaft's clock or at a constant speed)."""
     if rotor not in ROTORS:
         raise ParameterError(f"rotor = {rotor!r} is not allowed: expected one of " + ", ".join(ROTORS))
     ch = {"left": left, "right": right}
@@ -216,7 +221,8 @@ def decide(left, right, lag=None, criterion: Criterion = PAPER,
         rotor=rotor, criterion=criterion, gate=gate, strength_db=strength,
         ringing=_ringing(copies, criterion) if criterion.source == "ringing" else None)
     words, rule, real = _rule(ev)
-    return Verdict(dict(zip(SIDES, words)), rule, real, ev)
+    words = dict(zip(SIDES, words))
+    return Verdict(words, rule, real, ev, kinds(ev, words, real, orders, spread))
 
 
 def _named(real: str, other: str) -> tuple[str, str]:

@@ -108,3 +108,40 @@ def two_source_case(seed: int, T: float = 10.0, fs: float = 10000.0) -> Case:
     rms = {s: src[s].std() * 10 ** (-p[f"snr_db_{s}"] / 20) for s in "ab"}
     return Case(src["a"] + copy["b"] + _noise(n, fs, rng, rms["a"]),
                 src["b"] + copy["a"] + _noise(n, fs, rng, rms["b"]), fs, p, ("a", "b"))
+
+
+#: what carries each kind's impacts in and out of the load zone (Randall and Antoni, MSSP 25
+#: (2011) 485-520, sec. 2.2): the outer ring stands still (no modulation), the inner ring turns
+#: with the shaft, a roller goes round with the cage; and the line each kind strikes at
+KIND_LINES = {"outer": "BPFO", "inner": "BPFI", "roller": "2BSF"}
+KIND_RANGES = {**COPY_RANGES, "depth": (0.3, 1.0)}
+
+
+def kind_case(seed: int, kind: str, orders, T: float = 10.0, fs: float = 10000.0) -> Case:
+    """One fault of ``kind`` (``"outer"``, ``"inner"``, ``"roller"``) on side a and its copy on
+    side b, as :func:`copy_case`, at the kind's order of ``orders``
+    (:class:`...frequencies.FaultOrders`): the shaft turns at ``f_fault / BPFO`` (``f_fault``
+    drawn from ``COPY_RANGES``), the hits come at the kind's line and are scaled by the load zone
+    ``1 + depth cos(2 pi f_mod t + phase)``, ``f_mod`` the shaft's rate (inner ring) or the
+    cage's (roller), none for the outer ring.  The answer: a's fault of ``kind``."""
+    if kind not in KIND_LINES:
+        raise ValueError(f"kind = {kind!r}: expected one of {', '.join(KIND_LINES)}")
+    rng = np.random.default_rng(seed)
+    p = {k: _draw(rng, *r) for k, r in KIND_RANGES.items()}
+    n = int(round(T * fs))
+    f_shaft = p["f_fault"] / orders.BPFO
+    lines = orders.at(f_shaft)
+    f_hit = lines[KIND_LINES[kind]]
+    hits = impulse_train(n, fs, f_hit, rng, jitter=p["jitter"], slip=p["slip"],
+                         start_s=rng.uniform(0.0, 1.0 / f_hit))
+    hits[hits > 0] *= 1.0 + 0.1 * rng.standard_normal(np.count_nonzero(hits))
+    f_mod = {"outer": 0.0, "inner": f_shaft, "roller": lines["FTF"]}[kind]
+    if f_mod:
+        t = np.arange(n) / fs
+        hits *= 1.0 + p["depth"] * np.cos(2 * math.pi * f_mod * t + rng.uniform(0, 2 * math.pi))
+    a = resonance(hits, fs, p["f_ring"], p["zeta"])
+    a /= max(a.std(), 1e-300)
+    b = _path(a, fs, p["delay_s"], p["f_path"], p["zeta_path"], p["transmission"])
+    s = 10 ** (-p["snr_db"] / 20)
+    p.update(kind=kind, f_shaft=f_shaft)
+    return Case(a + _noise(n, fs, rng, s), b + _noise(n, fs, rng, s), fs, p, ("a",))

@@ -34,7 +34,13 @@ class PairResult:
     ``verdict``: the :class:`.verdict.Verdict`; ``evidence``: the lines'
     :class:`.verdict.LineEvidence` it read; ``names``: the channels' names in the source;
     ``bearings``: each side's bearing name; ``rotor``: what turns the shaft, ``"wheel"`` (a
-    vehicle) or ``"shaft"`` (a machine; :data:`.verdict.ROTORS`)."""
+    vehicle) or ``"shaft"`` (a machine; :data:`.verdict.ROTORS`); ``orders``: each side's
+    FaultOrders; ``spread``: the shaft speed's range over its mean as the record was read."""
+
+    def _kinds_kw(self) -> dict:
+        """What :func:`.criterion.decide` names the faults' kinds from."""
+        return {"orders": dict(zip(SIDES, self.orders)) if self.orders else None,
+                "spread": self.spread}
 
     left: ChannelResult
     right: ChannelResult
@@ -50,6 +56,8 @@ class PairResult:
     x_right: np.ndarray = field(default=None, repr=False, compare=False)
     gate: object | None = None
     rotor: str = "wheel"
+    orders: tuple = ()
+    spread: float = 0.0
 
     @property
     def shares(self) -> dict:
@@ -68,7 +76,7 @@ class PairResult:
                                      "by the analysis, not by the verdict; analyse the pair again")
         p = self if criterion.vf_band == self.criterion.vf_band else self.in_vf_band(criterion.vf_band)
         return decide(p.left, p.right, p.lag, criterion, list(p.evidence), gate=p.gate,
-                      rotor=p.rotor)
+                      rotor=p.rotor, **p._kinds_kw())
 
     def in_vf_band(self, band) -> "PairResult":
         """This pair with both sides' FC, VF and MSF over ``band`` (Hz, None: the whole), from
@@ -81,7 +89,7 @@ class PairResult:
         return replace(self, left=left, right=right, criterion=crit,
                        vf_diff=abs(left.VF - right.VF), m=vf_difference(left.VF, right.VF, crit),
                        verdict=decide(left, right, self.lag, crit, list(self.evidence),
-                                      gate=self.gate, rotor=self.rotor))
+                                      gate=self.gate, rotor=self.rotor, **self._kinds_kw()))
 
     def to_dict(self) -> dict:
         return {"names": {"left": self.names[0], "right": self.names[1]}, "gate": _gd(self.gate),
@@ -119,6 +127,9 @@ class PairResult:
                        f"; shares (this side's line over the other's, in the other's band) left "
                        f"{sh.share['left']:.3g}, right {sh.share['right']:.3g}"))
         out.append(f"rule: {self.verdict.rule}")
+        for s, k in self.verdict.kinds.items():
+            if k is not None:
+                out.append(f"{s} fault: {k.text()}")
         return "\n".join(out)
 
     def plot(self, path=None):
@@ -194,7 +205,8 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
                  criterion: Criterion = PAPER, band=None, *, names=("left", "right"),
                  max_lag_s: float | None = None, guided: bool = True,
                  bearings: tuple[str, str] = ("", ""), gate: bool = True, rotor: str = "wheel",
-                 _wheel: dict | None = None, angle=None, **channel_kw) -> PairResult:
+                 _wheel: dict | None = None, angle=None, spread: float = 0.0,
+                 **channel_kw) -> PairResult:
     """Analyse both channels (same rate ``fs``; ``shaft_hz`` as in :func:`.channel.analyse`;
     fault ``orders`` and bore ``D`` in m, one for both sides or a (left, right) pair: each side
     has its own bearing, whose lines it owns, and the other side's distinct lines are searched
@@ -219,13 +231,18 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
     words the verdict names those lines with.  ``angle``: the shaft's angle (turns) at each
     sample of a record whose speed changes: every envelope is read on the shaft's clock
     (:mod:`.clock`: bands, indicators and impulse onsets in time, the envelopes' lines at their
-    orders times ``shaft_hz``, which is then the mean speed)."""
+    orders times ``shaft_hz``, which is then the mean speed).  ``spread``: the shaft speed's
+    range over its mean where the record is read at one speed although it changed (0: constant,
+    or read on the shaft's clock): the faults' kinds are named knowing it (:mod:`.kind`)."""
     fs = check_fs(fs)
+    if not (isinstance(spread, (int, float, np.floating)) and math.isfinite(spread) and spread >= 0):
+        raise ParameterError(f"spread = {spread!r} is not allowed: expected the speed's range over "
+                             "its mean, a number >= 0")
     if angle is not None:
         with angle_clock(angle, fs):
             return analyse_pair(x_left, x_right, fs, shaft_hz, orders, D, criterion, band, names=names,
                                 max_lag_s=max_lag_s, guided=guided, bearings=bearings, gate=gate,
-                                rotor=rotor, _wheel=_wheel, **channel_kw)
+                                rotor=rotor, _wheel=_wheel, spread=spread, **channel_kw)
     if rotor not in ROTORS:
         raise ParameterError(f"rotor = {rotor!r} is not allowed: expected one of " + ", ".join(ROTORS))
     xs = []
@@ -263,11 +280,12 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
         keep = g.mask(xs[0].size, fs)
         p = analyse_pair(xs[0] * keep, xs[1] * keep, fs, shaft_hz, orders, D, criterion, band,
                          names=names, max_lag_s=max_lag_s, guided=guided, bearings=bearings,
-                         gate=False, rotor=rotor, lines=lines, keep=keep,
+                         gate=False, rotor=rotor, lines=lines, keep=keep, spread=spread,
                          _wheel={s: (r.wheel_env, r.wheel_spec) for s, r in res.items()},
                          **channel_kw)
         return replace(p, gate=g, verdict=decide(p.left, p.right, p.lag, criterion,
-                                                 list(p.evidence), gate=g, rotor=rotor))
+                                                 list(p.evidence), gate=g, rotor=rotor,
+                                                 **p._kinds_kw()))
     if _wheel is not None:          # the wheel's lines as the record came, before the blanking
         res = {s: replace(r, wheel_env=_wheel[s][0], wheel_spec=_wheel[s][1]) for s, r in res.items()}
     line_kw = {k: v for k, v in channel_kw.items() if k in LINE_OPTIONS}
@@ -282,11 +300,13 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
     lag = _lag(xs, fs, res, fo, shaft_hz, max_lag_s)
     evidence = _evidence(xs, res, criterion, line_kw)
     m = vf_difference(res["left"].VF, res["right"].VF, criterion)
-    v = decide(res["left"], res["right"], lag, criterion, evidence, rotor=rotor)
+    v = decide(res["left"], res["right"], lag, criterion, evidence, rotor=rotor,
+               orders=dict(zip(SIDES, fo)), spread=spread)
     return PairResult(left=res["left"], right=res["right"], lag=lag,
                       vf_diff=abs(res["left"].VF - res["right"].VF), m=m, criterion=criterion,
                       verdict=v, names=tuple(names), evidence=tuple(evidence),
-                      bearings=tuple(bearings), x_left=xs[0], x_right=xs[1], rotor=rotor)
+                      bearings=tuple(bearings), x_left=xs[0], x_right=xs[1], rotor=rotor,
+                      orders=tuple(fo), spread=float(spread))
 
 
 def _lag(xs, fs, res, fo, shaft_hz, max_lag_s) -> LagResult:

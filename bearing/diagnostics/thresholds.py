@@ -56,7 +56,9 @@ class Criterion:
     stand for faults on both sides (15 dB: the model's healthy bearings' own lines reach 13 dB,
     benchmarks/README.md "Copy or source"); ``clearer_db``: how far one side's own line must
     stand over the other's for the clearer one to be real (3 dB: twice the scatter of a line's
-    SNR read over a median floor of some 40 bins).
+    SNR read over a median floor of some 40 bins).  ``kind_db``: how far a faulty side's
+    strongest line must stand over a line of another kind for its kind to be named alone (3 dB,
+    the same scatter; :mod:`.kind`).
 
     The source of a copy (step 5): ``source``: ``"ringing"`` (the lag and the bands' votes, then
     the paper's criterion) or ``"paper"`` (the paper's criterion alone); ``source_ratio``: the
@@ -87,6 +89,7 @@ class Criterion:
     second_db: float = 15.0
     vf_band: tuple[float, float] | None = None
     clearer_db: float = 3.0
+    kind_db: float = 3.0
     c_independent: float = 0.2
     rho_min_db: float = 15.0
     z_min: float = 5.0
@@ -119,6 +122,7 @@ class Criterion:
                                  "expected a correlation in [0, 1]")
         _check(self, "second_db", lambda v: v >= 0, "a level >= 0 dB")
         _check(self, "clearer_db", lambda v: v >= 0, "a level >= 0 dB")
+        _check(self, "kind_db", lambda v: v >= 0, "a level >= 0 dB")
         _check(self, "c_independent", lambda v: 0 <= v < 1, "a coherent fraction in [0, 1)")
         _check(self, "rho_min_db", lambda v: v >= 0, "a level >= 0 dB")
         _check(self, "z_min", lambda v: v >= 0, "a number of standard deviations >= 0")

@@ -134,6 +134,41 @@ class LineReading:
 
 
 @dataclass(frozen=True)
+class FaultKind:
+    """What a faulty side's fault is (:mod:`.kind`): ``kind``, one of ``named`` or ``"kind
+    undecided"`` where ``named`` holds more than one; ``named``: the kinds the lines fit (outer
+    ring, inner ring, roller), the best first; ``lines``: each line the side's verdict read, with
+    its SNR there (dB), the strongest first; ``why``: what left the kind undecided (``"two lines
+    alike"``, ``"a speed that changed"``; empty where decided); ``spread``: the speed's range over
+    its mean as the record was read."""
+
+    kind: str
+    named: tuple[str, ...]
+    lines: tuple[tuple[str, float], ...]
+    why: str = ""
+    spread: float = 0.0
+
+    @property
+    def decided(self) -> bool:
+        return len(self.named) == 1
+
+    def text(self) -> str:
+        """``"outer ring (BPFO 36.5 dB)"`` or ``"kind undecided: outer ring or roller (a speed
+        that changed, 49 % of its mean; 2BSF 20.1 dB)"``."""
+        lines = ", ".join(f"{n} {db:.3g} dB" for n, db in self.lines)
+        if self.decided:
+            return f"{self.kind} ({lines})"
+        why = self.why + (f", {100 * self.spread:.0f} % of its mean" if self.why ==
+                          "a speed that changed" else "")
+        return f"kind undecided: {' or '.join(self.named)} ({why}; {lines})"
+
+    def to_dict(self) -> dict:
+        return {"kind": self.kind, "named": list(self.named),
+                "lines": [{"line": n, "snr_db": db} for n, db in self.lines], "why": self.why,
+                "spread": self.spread}
+
+
+@dataclass(frozen=True)
 class VFReading:
     """The VF difference as the criterion compared it: each side's VF (Hz^2, over the
     criterion's ``vf_band``), ``m`` the difference (Hz^2, or relative), the criterion's
@@ -283,12 +318,14 @@ class Evidence:
 class Verdict:
     """``words``: side -> verdict; ``rule``: the key of :data:`RULES` that decided; ``real``:
     the side named the source (None where none is); ``evidence``: the :class:`Evidence` the
-    rule read.  Each side's reason: :meth:`sentence`."""
+    rule read; ``kinds``: side -> the :class:`FaultKind` of a side called faulty, else None.
+    Each side's reason: :meth:`sentence`."""
 
     words: dict[str, str]
     rule: str
     real: str | None
     evidence: Evidence
+    kinds: dict = field(default_factory=lambda: dict.fromkeys(SIDES))
 
     def sentence(self, side: str) -> str:
         """``side``'s reason (:func:`sentence`)."""
@@ -297,12 +334,17 @@ class Verdict:
     def to_dict(self) -> dict:
         return {"words": dict(self.words), "rule": self.rule, "rule_text": RULES[self.rule],
                 "real": self.real, "evidence": self.evidence.to_dict(),
+                "kinds": {s: None if k is None else k.to_dict() for s, k in self.kinds.items()},
                 "sentences": {s: sentence(self, s) for s in SIDES}}
 
     def row(self, prefix: str = "") -> dict:
         """The rule, the real side and the evidence's fields (:meth:`Evidence.row`) as one row of
         scalars, each key after ``prefix``."""
         r = {"rule": self.rule, "real": self.real or "none", **self.evidence.row()}
+        for s in SIDES:
+            k = self.kinds.get(s)
+            r[f"kind_{s}"] = "none" if k is None else k.kind
+            r[f"kinds_{s}"] = "" if k is None else " or ".join(k.named)
         return {prefix + k: v for k, v in r.items()}
 
 
@@ -335,6 +377,9 @@ def sentence(v: Verdict, side: str) -> str:
     """One side's reason, rendered from the verdict's rule and evidence."""
     ev = v.evidence
     parts = [RULES[v.rule]]
+    k = v.kinds.get(side)
+    if k is not None:
+        parts.append(f"fault: {k.text()}")
     lines = _lines_text(v, side)
     parts.append(f"lines here: {lines}" if lines else "no fault line here")
     orders = ev.orders.get(side)
