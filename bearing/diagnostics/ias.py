@@ -1,0 +1,413 @@
+"""The shaft's speed over a record from the record itself: tacholess instantaneous angular speed
+(IAS) along the ridge of a family of lines locked to the shaft.
+
+Every line whose frequency is a fixed multiple of the shaft's rate (an order) follows the speed:
+a bearing fault's envelope family (BPFO, BPFI, 2BSF and their harmonics), a wheel's flat or
+out-of-roundness (whole orders of the shaft in the envelope).  Where the speed changes, such a
+family draws ridges across the time-frequency plane whose frequency over their order is the
+shaft's speed; followed from the user's nominal speed, they give the speed over the record
+without a tacho.  The method is the two-step one of Urbanek, Barszcz and Antoni, Mech. Syst.
+Signal Process. 38 (2013) 96-102 (a coarse ridge in the short-time Fourier transform, then a fine
+one in the angle domain, where the resampling on the coarse speed has straightened the lines),
+with the ridge of a whole family of orders at once (the multi-order approach of Leclère, André and
+Antoni, Mech. Syst. Signal Process. 81 (2016) 375-386: every harmonic votes for one speed) and
+the ridge followed by dynamic programming (Viterbi), as in the ridge extraction of Combet and
+Gelman, Mech. Syst. Signal Process. 21 (2007) 2590-2606 reviewed there:
+
+1. each channel's envelope (:func:`.envelope.envelope`: band of highest spectral kurtosis, wide
+   enough for the harmonics searched; the impulses ring fixed resonances, so the band is taken in
+   time);
+2. the envelopes resampled to the current estimate of the angle (:func:`.ordertrack.to_angle`;
+   at first the nominal speed's, a constant), an STFT over frames of ``L`` turns (Hann, 3/4
+   overlapping), each bin's power over the running median of its frame's spectrum (the floor):
+   ``W``, about 1/ln 2 on noise (an exponential power over its median), both sides averaged;
+3. for each family (order ``o``, harmonics ``m = 1..K``) the multi-order map
+   ``S(frame, c) = mean_m W(frame, m o c)`` over the speed's ratio ``c`` to the current estimate,
+   on a logarithmic grid;
+4. its ridge, the path of frames through the grid that maximises the summed map less
+   :data:`JUMP_COST` per unit of ``|d ln c|`` from one frame to the next (Viterbi); each frame's
+   ridge refined by a parabola through the map's three cells about it;
+5. the family: the strongest ridge (median of the map along it) among those whose time-mean of
+   ``c`` lies within :data:`NOMINAL_TOL` of 1: the user's nominal speed is the record's mean,
+   which tells a family from its aliases (the DTRB's 2BSF, 7.57 orders, reads a BPFO ridge,
+   8.72 orders, at 1.15 times the speed; BPFI at 0.77);
+6. the estimate times ``c`` (a least-squares cubic spline through the frames, knots every ``L``
+   turns), the angle its running integral (:func:`.ordertrack.angle_from_speed`); then again
+   with longer frames and a narrower grid (:data:`LADDER`): on the straightened lines a longer
+   frame resolves a finer speed.
+
+The estimate's mean is then set to the nominal speed (the user's speed, or the file's): a
+family's ridge reads the shaft's speed times its slip (a bearing's rollers slip by a few per
+cent), and a constant-speed record read at a constant speed is read as before to the bit.
+
+The estimate is trusted (``status == "changing"``) where the chosen family's ridge stands over
+the noise (the false-alarm threshold of a frame's highest cell, :func:`frame_threshold`) in at
+least :data:`HOLD` of the frames, never moves by more than :data:`JUMP` from one frame to the
+next, and every other family with a ridge agrees with it within :data:`AGREE`.  Where the ridge
+says the speed is constant within :data:`.speed.TRACK_SPREAD` (or within what the estimate can
+resolve, :data:`RESOLVE` times its scatter) the status is ``"constant"``; where no family stands,
+``"no ridge"``: nothing in the record tells the speed, and it is read at the given one; else
+``"untrusted"`` with the reason, which the diagnosis turns into "undecided".
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.interpolate import make_lsq_spline
+from scipy.signal import resample_poly, stft
+from scipy.stats import gamma
+
+from axlebox._params import ParameterError
+
+from ..frequencies import FaultOrders
+from . import ordertrack
+from .envelope import _signal, check_fs, envelope, select_band
+
+#: samples a turn of the angle-domain envelope
+PER_REV = 256
+#: the iterations: (frame in turns, lowest and highest ratio of the speed to the current estimate);
+#: the first searches a quarter to two and a half times the nominal speed (a record whose mean is
+#: the nominal: a ramp from rest reaches twice it), the next ones the coarse estimate's error
+LADDER = ((3.0, 0.25, 2.5), (8.0, 0.8, 1.25), (16.0, 0.92, 1.08))
+#: the shortest frame, in turns (a record of four of them at least)
+MIN_TURNS = 1.0
+#: cells of the ratio grid
+GRID = 400
+#: a bearing family's harmonics (the fault-line search's, :mod:`.faultlines`) and the wheel's orders
+BEARING_HARMONICS = 3
+WHEEL_ORDERS = 8
+#: the ridge's cost of changing: noise means (1/ln 2 of a whitened power) per unit of |d ln c|
+#: between frames: a ridge rising at 0.15 a frame (a train's most at 20 km/h, 3/4 turn apart)
+#: pays 3 noise means, less than a held ridge stands over noise (frame_threshold, 5-7)
+JUMP_COST = 20.0
+#: false-alarm probability of one frame's highest cell on noise
+P_FA = 1e-3
+#: share of frames where the ridge must stand
+HOLD = 0.6
+#: a frame-to-frame change of ln c beyond which the ridge jumped (a train at 20 km/h braking at
+#: 2.5 m/s^2 loses 22 % a turn; a frame hop of the first step is 3/4 turn)
+JUMP = 0.2
+#: the time-mean of a family's ridge over the nominal speed: within this, the family is locked to
+#: the shaft at the given speed (a bearing's slip, a worn wheel's radius)
+NOMINAL_TOL = 0.10
+#: two families' speeds (each over its mean) agree within this, frame by frame (median)
+AGREE = 0.03
+#: a change counts where it exceeds this many times the scatter of the ridge about its spline
+RESOLVE = 4.0
+
+
+@dataclass(frozen=True)
+class Family:
+    """Lines locked to the shaft: ``order`` (multiples of the shaft's rate) and its first
+    ``harmonics``."""
+
+    name: str
+    order: float
+    harmonics: int
+
+
+def families(orders, wheel: bool = True) -> tuple[Family, ...]:
+    """The families of one or two bearings' :class:`FaultOrders` (a pair: each side's, named by
+    side where they differ) and the wheel's whole orders."""
+    pair = tuple(orders) if isinstance(orders, (tuple, list)) else (orders, orders)
+    out = []
+    for side, o in zip(("left", "right"), pair):
+        if not isinstance(o, FaultOrders):
+            raise ParameterError(f"orders = {o!r} is not allowed: expected FaultOrders")
+        tag = "" if pair[0] == pair[1] else f" ({side} bearing)"
+        if tag == "" and side == "right":
+            continue
+        out += [Family(f"BPFO{tag}", o.BPFO, BEARING_HARMONICS),
+                Family(f"BPFI{tag}", o.BPFI, BEARING_HARMONICS),
+                Family(f"2BSF{tag}", 2.0 * o.BSF, BEARING_HARMONICS)]
+    if wheel:
+        out.append(Family("shaft orders", 1.0, WHEEL_ORDERS))
+    return tuple(out)
+
+
+def frame_threshold(harmonics: int, n_cells: float, p_fa: float = P_FA) -> float:
+    """The map's value (in whitened power) that the highest of ``n_cells`` independent noise
+    cells exceeds with probability ``p_fa``: a whitened power is exponential with mean
+    ``1 / ln 2`` (its median is 1), the mean of ``K`` of them Gamma(K) over K."""
+    q = (1.0 - p_fa) ** (1.0 / max(1.0, n_cells))
+    return float(gamma.ppf(q, harmonics) / harmonics / np.log(2.0))
+
+
+@dataclass(frozen=True)
+class Ridge:
+    """One family's ridge in one step: ``c`` at each frame (refined), the map there, how many
+    frames it stands in (over ``threshold``), the time-mean of ``c``."""
+
+    family: Family
+    c: np.ndarray
+    value: np.ndarray
+    threshold: float
+    mean_c: float
+
+    @property
+    def held(self) -> np.ndarray:
+        return self.value >= self.threshold
+
+    @property
+    def strength(self) -> float:
+        return float(np.median(self.value))
+
+
+@dataclass(frozen=True)
+class SpeedEstimate:
+    """The shaft's speed over a record from the record (module docstring).
+
+    ``status``: ``"changing"`` (trusted; read on its clock), ``"constant"`` (read at the given
+    speed as before), ``"no ridge"`` (nothing locked to the shaft stands: read at the given
+    speed) or ``"untrusted"`` (``reason`` says why; the verdict is undecided); ``family``: the
+    ridge's; ``t``/``f_hz``: the frames' instants (s) and the speed there (Hz, its mean the
+    nominal); ``angle``: the shaft's angle (turns) at each sample on that speed (None unless
+    ``"changing"``); ``held``: share of frames where the ridge stands; ``spread``: the speed's
+    range over its mean; ``scatter``: the ridge's relative scatter about its spline; ``ratio``:
+    the ridge's own mean over the nominal (its slip)."""
+
+    status: str
+    reason: str
+    nominal_hz: float
+    family: str | None = None
+    t: np.ndarray = field(default=None, repr=False)
+    f_hz: np.ndarray = field(default=None, repr=False)
+    angle: np.ndarray | None = field(default=None, repr=False)
+    held: float = 0.0
+    spread: float = 0.0
+    scatter: float = 0.0
+    ratio: float = 1.0
+
+    @property
+    def source(self) -> str:
+        """Where the speed came from, in words (the windows' JSON Lines)."""
+        return f"estimated from the record ({self.family} ridge)" if self.family else "given"
+
+    def to_dict(self) -> dict:
+        return {"status": self.status, "reason": self.reason, "family": self.family,
+                "nominal_hz": self.nominal_hz, "held": self.held, "spread": self.spread,
+                "scatter": self.scatter, "ratio": self.ratio,
+                "min_hz": None if self.f_hz is None else float(np.min(self.f_hz)),
+                "max_hz": None if self.f_hz is None else float(np.max(self.f_hz))}
+
+
+def _maps(envs, angle, fs, L, fams, grid):
+    """``(maps, frame centres in turns, n_cells)``: each family's multi-order map (frames x
+    grid) of the envelopes ``envs`` read on ``angle``, frames of ``L`` turns; the independent
+    cells of a frame's grid (bins the highest harmonic's span of the grid covers)."""
+    n = max(16, int(round(L * PER_REV)))
+    W = 0.0
+    for e in envs:
+        r = ordertrack.to_angle(e, fs, angle, PER_REV)
+        o, th, Z = stft(r.x, PER_REV, window="hann", nperseg=n, noverlap=3 * n // 4, nfft=4 * n,
+                        boundary=None, padded=False, detrend="constant")
+        P = np.abs(Z) ** 2
+        W = W + P / _floor(P, 8 * int(np.ceil(4 * L)))
+        th = th + r.angle0
+    W = W / len(envs)
+    out, cells = {}, {}
+    for fam in fams:
+        S = np.zeros((W.shape[1], grid.size))
+        for m in range(1, fam.harmonics + 1):
+            q = m * fam.order * grid
+            j = np.clip(np.searchsorted(o, q) - 1, 0, o.size - 2)
+            w = (q - o[j]) / (o[j + 1] - o[j])
+            S += W[j].T * (1 - w) + W[j + 1].T * w
+        out[fam] = S / fam.harmonics
+        cells[fam] = max(1.0, fam.harmonics * fam.order * (grid[-1] - grid[0]) * L)
+    return out, th, cells
+
+
+def _floor(P: np.ndarray, block: int) -> np.ndarray:
+    """Each frame's (column's) noise floor: the median of blocks of ``block`` bins, linear
+    between the blocks' centres (a family's lines, one every ``o`` orders, a minority in each)."""
+    nb = max(1, P.shape[0] // block)
+    med = np.median(P[:nb * block].reshape(nb, block, -1), axis=1)
+    centres = (np.arange(nb) + 0.5) * block
+    rows = np.arange(P.shape[0])
+    out = np.empty_like(P)
+    for j in range(P.shape[1]):
+        out[:, j] = np.interp(rows, centres, med[:, j])
+    return np.maximum(out, np.finfo(float).tiny)
+
+
+def _viterbi(S: np.ndarray, cost: float) -> np.ndarray:
+    """The path (a grid index a frame) maximising the summed ``S`` less ``cost`` per grid step
+    moved between frames."""
+    J, G = S.shape
+    idx = np.arange(G)
+    pen = cost * np.abs(idx[:, None] - idx[None, :])
+    D = S[0].copy()
+    back = np.zeros((J, G), dtype=np.int32)
+    for j in range(1, J):
+        M = D[None, :] - pen
+        back[j] = np.argmax(M, axis=1)
+        D = S[j] + M[idx, back[j]]
+    path = np.empty(J, dtype=np.int64)
+    path[-1] = int(np.argmax(D))
+    for j in range(J - 1, 0, -1):
+        path[j - 1] = back[j, path[j]]
+    return path
+
+
+def _ridge(S, grid, fam, t_frames, t, threshold) -> Ridge:
+    lg = np.log(grid)
+    step = lg[1] - lg[0]
+    p = _viterbi(S, JUMP_COST / np.log(2.0) * step)
+    rows = np.arange(S.shape[0])
+    val = S[rows, p]
+    # a parabola through the three cells about the path: the ridge between cells
+    lo, hi = np.clip(p - 1, 0, grid.size - 1), np.clip(p + 1, 0, grid.size - 1)
+    a, b, c = S[rows, lo], val, S[rows, hi]
+    den = a - 2 * b + c
+    off = np.where((den < 0) & (p > 0) & (p < grid.size - 1), 0.5 * (a - c) / np.where(den < 0, den, -1), 0.0)
+    cc = np.exp(lg[p] + np.clip(off, -0.5, 0.5) * step)
+    mean_c = float(np.mean(np.interp(t, t_frames, cc)))
+    return Ridge(fam, cc, val, threshold, mean_c)
+
+
+def _smooth(x_frames, y, weight, x_eval, L):
+    """A least-squares cubic spline through ``(x_frames, y)`` (weights ``weight``), knots every
+    ``L`` in ``x``, evaluated at ``x_eval``; beyond the end frames, the straight line of its
+    slope there (a constant acceleration)."""
+    x0, x1 = float(x_frames[0]), float(x_frames[-1])
+    n_in = int(np.floor((x1 - x0) / L))
+    inner = np.linspace(x0, x1, n_in + 2)[1:-1] if n_in >= 1 else np.array([])
+    k = 3 if x_frames.size >= inner.size + 4 + 2 else 1
+    knots = np.r_[[x0] * (k + 1), inner, [x1] * (k + 1)]
+    try:
+        spl = make_lsq_spline(x_frames, y, knots, k=k, w=weight)
+    except (ValueError, np.linalg.LinAlgError):
+        return np.interp(x_eval, x_frames, y)
+    d = spl.derivative()
+    xe = np.asarray(x_eval, float)
+    v = spl(np.clip(xe, x0, x1))
+    v = np.where(xe < x0, spl(x0) + d(x0) * (xe - x0), v)
+    return np.where(xe > x1, spl(x1) + d(x1) * (xe - x1), v)
+
+
+def estimate(x_left, x_right, fs: float, nominal_hz: float, orders, *, wheel: bool = True,
+             spread_limit: float = 0.005) -> SpeedEstimate:
+    """The shaft's speed over the record ``(x_left, x_right)`` at ``fs`` from the record itself,
+    starting at ``nominal_hz`` (the record's mean, as the user gave it), from the families of the
+    bearing ``orders`` (one :class:`FaultOrders` or a (left, right) pair) and, with ``wheel``, the
+    wheel's whole orders (module docstring).  ``spread_limit``: the speed's range over its mean
+    within which the record counts as at a constant speed (:data:`.speed.TRACK_SPREAD`)."""
+    fs = check_fs(fs)
+    if not (np.isfinite(nominal_hz) and nominal_hz > 0):
+        raise ParameterError(f"nominal_hz = {nominal_hz!r} is not allowed: expected a shaft speed > 0 Hz")
+    xs = [_signal(x_left, "left channel"), _signal(x_right, "right channel")]
+    fams = families(orders, wheel)
+    n = xs[0].size
+    t = np.arange(n) / fs
+    turns = nominal_hz * n / fs
+    top = max(f.order * f.harmonics for f in fams)
+    # the envelopes carry the families' harmonics up to ``top`` orders at the first step's
+    # highest speed: read at four samples a period of that (decimated behind scipy's
+    # anti-alias filter), the rest of the rate is only cost
+    q = max(1, int(fs / (4.0 * top * LADDER[0][2] * nominal_hz)))
+    envs = []
+    for x in xs:
+        width = min(2.0 * top * nominal_hz, 0.45 * fs)
+        try:
+            band = select_band(x, fs, min_width_hz=width)
+        except ParameterError:          # a record too short for a band that wide: all of it
+            band = None
+        e = envelope(x, fs, band)
+        envs.append(resample_poly(e - e.mean(), 1, q) if q > 1 else e - e.mean())
+    fs_e = fs / q
+    t_e = np.arange(envs[0].size) / fs_e
+    f_cur = np.full(t_e.size, float(nominal_hz))
+    angle = nominal_hz * t_e
+    first = last = None
+    for L, lo, hi in LADDER:
+        L = min(L, turns / 4.0)
+        if L < MIN_TURNS:
+            return SpeedEstimate("no ridge", f"the record holds {turns:.3g} shaft turns: too few to "
+                                 f"follow a line locked to the shaft ({4 * MIN_TURNS:g} at least)",
+                                 float(nominal_hz))
+        grid = np.exp(np.linspace(np.log(lo), np.log(hi), GRID))
+        maps, th, cells = _maps(envs, angle, fs_e, L, fams, grid)
+        t_frames = np.interp(th, angle, t_e)
+        ridges = [_ridge(S, grid, fam, t_frames, t_e, frame_threshold(fam.harmonics, cells[fam]))
+                  for fam, S in maps.items()]
+        near = [r for r in ridges if abs(r.mean_c - 1.0) <= NOMINAL_TOL and r.held.sum() >= 3]
+        if first is None:
+            first = (near, t_frames)
+        if not near:
+            return SpeedEstimate("no ridge", "no line locked to the shaft at the given speed stands "
+                                 "out of the record's noise", float(nominal_hz))
+        best = max(near, key=lambda r: r.strength)
+        corr = _smooth(th, best.c, np.where(best.held, 1.0, 1e-3), angle, L)
+        f_cur = f_cur * np.clip(corr, lo, hi)
+        angle = ordertrack.angle_from_speed(t_e, f_cur)
+        last = (best, t_frames, L)
+    return _decide(t, t_e, f_cur, angle, float(nominal_hz), first, last, spread_limit)
+
+
+def _decide(t, t_e, f_cur, angle, nominal_hz, first, last, spread_limit) -> SpeedEstimate:
+    """The estimate's final profile at the record's instants ``t`` (from ``f_cur`` at the
+    envelopes' ``t_e``) and whether it is trusted (module docstring)."""
+    best, t_frames, L = last
+    fam = best.family
+    # the final profile: the estimate smoothed at the last step's frame length (what the earlier,
+    # shorter frames left of their noise goes), its mean the nominal speed
+    dense = np.linspace(angle[0], angle[-1], max(64, int(8 * angle[-1] / L)))
+    a_t = np.interp(t, t_e, angle)
+    f_fin = _smooth(dense, np.interp(dense, angle, f_cur), np.ones_like(dense), a_t, L)
+    f_fin = np.maximum(f_fin, 1e-3 * nominal_hz)
+    angle = ordertrack.angle_from_speed(t, f_fin)
+    scale = nominal_hz * (t[-1] - t[0]) / (angle[-1] - angle[0])
+    f_fin, angle = f_fin * scale, angle * scale
+    held = best.held
+    f_frames = np.interp(t_frames, t, f_fin)
+    f_in = f_frames[held]
+    spread = float((f_in.max() - f_in.min()) / nominal_hz)
+    # the first step's ridge of the family, each frame about the final profile: the estimate's
+    # scatter frame by frame; the final profile averages LADDER's last frame over the first's
+    ones, t1 = first
+    one = next((r for r in ones if r.family == fam), max(ones, key=lambda r: r.strength))
+    h1 = one.held
+    res = np.log(nominal_hz * one.c[h1] / scale / np.interp(t1[h1], t, f_fin / scale))
+    scatter = float(np.std(res)) if h1.sum() > 2 else float("inf")
+    resolved = spread_limit + RESOLVE * scatter * np.sqrt(min(LADDER[0][0], L) / L)
+    common = dict(nominal_hz=nominal_hz, family=fam.name, t=t_frames, f_hz=f_frames,
+                  held=float(held.mean()), spread=spread, scatter=scatter, ratio=float(1.0 / scale))
+    if spread <= resolved:
+        return SpeedEstimate("constant", f"the speed read from the {fam.name} ridge is constant "
+                             f"within {max(spread, 1e-4):.2%} (resolved: {resolved:.2%})", **common)
+    whole = float((f_fin.max() - f_fin.min()) / nominal_hz)
+    changes = (f"the speed changes by {whole:.0%} of its mean over the record ({f_fin.min():.3g} to "
+               f"{f_fin.max():.3g} Hz read from the {fam.name} ridge)")
+    why = _distrust(best, one, ones, t1)
+    if why:
+        return SpeedEstimate("untrusted", f"{changes}, but {why}", **common)
+    return SpeedEstimate("changing", changes, angle=angle, **common)
+
+
+def _distrust(best: Ridge, one: Ridge, ones, t1) -> str:
+    """Why the ridge is not to be trusted, or ``""``: it stands in too few frames, it jumps, or
+    another family's ridge tells another speed (module docstring)."""
+    name = best.family.name
+    if best.held.mean() < HOLD:
+        return (f"the {name} ridge stands in only {best.held.mean():.0%} of the record "
+                f"({HOLD:.0%} needed)")
+    h = np.flatnonzero(one.held)
+    if h.size > 1:
+        rate = np.abs(np.diff(np.log(one.c[h]))) / np.diff(h)
+        k = int(np.argmax(rate))
+        if rate[k] > JUMP:
+            return (f"the {name} ridge jumps by {np.expm1(abs(np.log(one.c[h[k + 1]] / one.c[h[k]]))):.0%}"
+                    f" at {t1[h[k + 1]]:.3g} s")
+    for r in ones:
+        if r is one or r.held.mean() < HOLD:
+            continue
+        both = one.held & r.held
+        if both.sum() < 3:
+            continue
+        d = np.log(r.c[both] / r.mean_c) - np.log(one.c[both] / one.mean_c)
+        if np.median(np.abs(d - np.median(d))) > AGREE or np.abs(np.median(d)) > AGREE:
+            return (f"the {r.family.name} ridge tells another speed (by a median "
+                    f"{np.median(np.abs(d)):.1%} from the {name} ridge's)")
+    return ""
