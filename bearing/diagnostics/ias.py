@@ -69,7 +69,7 @@ PER_REV = 256
 #: the iterations: (frame in turns, lowest and highest ratio of the speed to the current estimate);
 #: the first searches a quarter to two and a half times the nominal speed (a record whose mean is
 #: the nominal: a ramp from rest reaches twice it), the next ones the coarse estimate's error
-LADDER = ((3.0, 0.25, 2.5), (8.0, 0.8, 1.25), (16.0, 0.92, 1.08))
+LADDER = ((3.0, 0.25, 2.5), (6.0, 0.8, 1.25), (6.0, 0.92, 1.08))
 #: the shortest frame, in turns (a record of four of them at least)
 MIN_TURNS = 1.0
 #: cells of the ratio grid
@@ -81,6 +81,9 @@ WHEEL_ORDERS = 8
 #: between frames: a ridge rising at 0.15 a frame (a train's most at 20 km/h, 3/4 turn apart)
 #: pays 3 noise means, less than a held ridge stands over noise (frame_threshold, 5-7)
 JUMP_COST = 20.0
+#: ridges taken out of a family's map, each another family's read off the nominal speed, before
+#: the family's own is given up
+PEEL = 3
 #: false-alarm probability of one frame's highest cell on noise
 P_FA = 1e-3
 #: share of frames where the ridge must stand
@@ -93,6 +96,8 @@ JUMP = 0.2
 NOMINAL_TOL = 0.10
 #: two families' speeds (each over its mean) agree within this, frame by frame (median)
 AGREE = 0.03
+#: the frames the speed's change is judged over
+SETTLE = 4
 #: a change counts where it exceeds this many times the scatter of the ridge about its spline
 RESOLVE = 4.0
 
@@ -136,22 +141,24 @@ def frame_threshold(harmonics: int, n_cells: float, p_fa: float = P_FA) -> float
 
 @dataclass(frozen=True)
 class Ridge:
-    """One family's ridge in one step: ``c`` at each frame (refined), the map there, how many
-    frames it stands in (over ``threshold``), the time-mean of ``c``."""
+    """One family's ridge in one step: ``c`` at each frame (refined), the capped map there (it
+    stands where that reaches ``threshold``), the time-mean of ``c``."""
 
     family: Family
     c: np.ndarray
     value: np.ndarray
     threshold: float
     mean_c: float
+    level: float = 0.0      # the full map's median along the ridge
 
     @property
     def held(self) -> np.ndarray:
         return self.value >= self.threshold
 
     @property
-    def strength(self) -> float:
-        return float(np.median(self.value))
+    def strength(self) -> tuple[float, float]:
+        """How clearly it stands: the share of frames it stands in, then its level."""
+        return float(np.mean(self.held)), self.level
 
 
 @dataclass(frozen=True)
@@ -193,9 +200,12 @@ class SpeedEstimate:
 
 
 def _maps(envs, angle, fs, L, fams, grid):
-    """``(maps, frame centres in turns, n_cells)``: each family's multi-order map (frames x
-    grid) of the envelopes ``envs`` read on ``angle``, frames of ``L`` turns; the independent
-    cells of a frame's grid (bins the highest harmonic's span of the grid covers)."""
+    """``(maps, frame centres in turns)``: each family's multi-order maps (frames x grid) of the
+    envelopes ``envs`` read on ``angle``, frames of ``L`` turns, and the frame threshold of its
+    highest cell (:func:`frame_threshold` over the cells the highest harmonic's span of the grid
+    covers): ``{family: (S, capped S, threshold)}``; in the capped map each harmonic counts up to
+    ``K threshold / 2`` at most, so that a ridge stands only where at least half the family's
+    harmonics do (one strong line of another family, met by one harmonic, does not)."""
     n = max(16, int(round(L * PER_REV)))
     W = 0.0
     for e in envs:
@@ -206,17 +216,22 @@ def _maps(envs, angle, fs, L, fams, grid):
         W = W + P / _floor(P, 8 * int(np.ceil(4 * L)))
         th = th + r.angle0
     W = W / len(envs)
-    out, cells = {}, {}
+    out = {}
     for fam in fams:
+        K = fam.harmonics
+        thr = frame_threshold(K, max(1.0, K * fam.order * (grid[-1] - grid[0]) * L))
+        cap = 0.5 * K * thr
         S = np.zeros((W.shape[1], grid.size))
-        for m in range(1, fam.harmonics + 1):
+        Sc = np.zeros_like(S)
+        for m in range(1, K + 1):
             q = m * fam.order * grid
             j = np.clip(np.searchsorted(o, q) - 1, 0, o.size - 2)
             w = (q - o[j]) / (o[j + 1] - o[j])
-            S += W[j].T * (1 - w) + W[j + 1].T * w
-        out[fam] = S / fam.harmonics
-        cells[fam] = max(1.0, fam.harmonics * fam.order * (grid[-1] - grid[0]) * L)
-    return out, th, cells
+            Wm = W[j].T * (1 - w) + W[j + 1].T * w
+            S += Wm
+            Sc += np.minimum(Wm, cap)
+        out[fam] = (S / K, Sc / K, thr)
+    return out, th
 
 
 def _floor(P: np.ndarray, block: int) -> np.ndarray:
@@ -251,20 +266,81 @@ def _viterbi(S: np.ndarray, cost: float) -> np.ndarray:
     return path
 
 
-def _ridge(S, grid, fam, t_frames, t, threshold) -> Ridge:
+def _ridge(S, Sc, grid, fam, t_frames, t, threshold, L) -> Ridge:
+    """The path of the capped map ``Sc`` (Viterbi), each frame refined on the full map ``S``:
+    its highest cell within a line's width of the path (the fundamental's bin, ``1 / L``
+    orders), then a parabola through that cell and its two neighbours."""
     lg = np.log(grid)
     step = lg[1] - lg[0]
-    p = _viterbi(S, JUMP_COST / np.log(2.0) * step)
+    p = _viterbi(Sc, JUMP_COST / np.log(2.0) * step)
     rows = np.arange(S.shape[0])
-    val = S[rows, p]
-    # a parabola through the three cells about the path: the ridge between cells
+    half = max(3, int(np.ceil(np.log1p(1.0 / (fam.order * L)) / step)))
+    span = np.clip(p[:, None] + np.arange(-half, half + 1)[None, :], 0, grid.size - 1)
+    p = span[rows, np.argmax(S[rows[:, None], span], axis=1)]
+    val = Sc[rows, p]
     lo, hi = np.clip(p - 1, 0, grid.size - 1), np.clip(p + 1, 0, grid.size - 1)
-    a, b, c = S[rows, lo], val, S[rows, hi]
+    a, b, c = S[rows, lo], S[rows, p], S[rows, hi]
     den = a - 2 * b + c
     off = np.where((den < 0) & (p > 0) & (p < grid.size - 1), 0.5 * (a - c) / np.where(den < 0, den, -1), 0.0)
     cc = np.exp(lg[p] + np.clip(off, -0.5, 0.5) * step)
     mean_c = float(np.mean(np.interp(t, t_frames, cc)))
-    return Ridge(fam, cc, val, threshold, mean_c)
+    return Ridge(fam, cc, val, threshold, mean_c, float(np.median(S[rows, p])))
+
+
+def _near_ridge(S, Sc, grid, fam, t_frames, t, threshold, L) -> Ridge:
+    """The family's ridge whose time-mean lies within :data:`NOMINAL_TOL` of the current speed:
+    the strongest path first; where that is another family's lines read at another speed (off
+    the nominal), its cells are taken out (a line's width either side) and the next strongest
+    path taken, :data:`PEEL` times at most."""
+    Sc = Sc.copy()
+    lg = np.log(grid)
+    half = max(3, int(np.ceil(np.log1p(1.0 / (fam.order * L)) / (lg[1] - lg[0]))))
+    floor = float(np.median(Sc))
+    rows = np.arange(S.shape[0])
+    for _ in range(PEEL):
+        r = _ridge(S, Sc, grid, fam, t_frames, t, threshold, L)
+        if abs(r.mean_c - 1.0) <= NOMINAL_TOL or not r.held.any():
+            return r
+        p = np.searchsorted(lg, np.log(r.c))
+        for k in range(-half, half + 1):
+            Sc[rows, np.clip(p + k, 0, grid.size - 1)] = floor
+    return r
+
+
+def _through(x_frames, y, held, x_eval, L):
+    """``y`` at the frames ``x_frames`` where the ridge is ``held`` (all where fewer than two),
+    linear between them (each frame is already its Hann window's average of the speed: no
+    overshoot at a step), and beyond the end frames the least-squares line through those within
+    ``L`` of the end (a constant acceleration)."""
+    k = held if held.sum() >= 2 else np.ones_like(held)
+    xk, yk = x_frames[k], y[k]
+    xe = np.asarray(x_eval, float)
+    v = np.interp(xe, xk, yk)
+    for end, side in ((xk[0], xe < xk[0]), (xk[-1], xe > xk[-1])):
+        if side.any():
+            near = np.abs(xk - end) <= L
+            if near.sum() >= 2:
+                a, b = np.polyfit(xk[near] - end, yk[near], 1)
+                v[side] = b + a * (xe[side] - end)
+    return v
+
+
+def _local_line(x, y, x_eval, width):
+    """``y(x)`` smoothed by a local straight line at each ``x_eval`` through the points within
+    ``width / 2``, Hann-weighted (a kernel that does not ring at a step, as a spline does, and
+    keeps a constant acceleration, also at the ends)."""
+    out = np.empty(len(x_eval))
+    for i, x0 in enumerate(x_eval):
+        u = (x - x0) / width
+        w = np.where(np.abs(u) < 0.5, np.cos(np.pi * u) ** 2, 0.0)
+        if np.count_nonzero(w) < 3:
+            out[i] = np.interp(x0, x, y)
+            continue
+        sw, swx, swy = w.sum(), (w * u).sum(), (w * y).sum()
+        swxx, swxy = (w * u * u).sum(), (w * u * y).sum()
+        det = sw * swxx - swx * swx
+        out[i] = swy / sw if det <= 1e-12 * sw * sw else (swxx * swy - swx * swxy) / det
+    return out
 
 
 def _smooth(x_frames, y, weight, x_eval, L):
@@ -328,10 +404,10 @@ def estimate(x_left, x_right, fs: float, nominal_hz: float, orders, *, wheel: bo
                                  f"follow a line locked to the shaft ({4 * MIN_TURNS:g} at least)",
                                  float(nominal_hz))
         grid = np.exp(np.linspace(np.log(lo), np.log(hi), GRID))
-        maps, th, cells = _maps(envs, angle, fs_e, L, fams, grid)
+        maps, th = _maps(envs, angle, fs_e, L, fams, grid)
         t_frames = np.interp(th, angle, t_e)
-        ridges = [_ridge(S, grid, fam, t_frames, t_e, frame_threshold(fam.harmonics, cells[fam]))
-                  for fam, S in maps.items()]
+        ridges = [_near_ridge(S, Sc, grid, fam, t_frames, t_e, thr, L)
+                  for fam, (S, Sc, thr) in maps.items()]
         near = [r for r in ridges if abs(r.mean_c - 1.0) <= NOMINAL_TOL and r.held.sum() >= 3]
         if first is None:
             first = (near, t_frames)
@@ -339,7 +415,7 @@ def estimate(x_left, x_right, fs: float, nominal_hz: float, orders, *, wheel: bo
             return SpeedEstimate("no ridge", "no line locked to the shaft at the given speed stands "
                                  "out of the record's noise", float(nominal_hz))
         best = max(near, key=lambda r: r.strength)
-        corr = _smooth(th, best.c, np.where(best.held, 1.0, 1e-3), angle, L)
+        corr = _through(th, best.c, best.held, angle, L)
         f_cur = f_cur * np.clip(corr, lo, hi)
         angle = ordertrack.angle_from_speed(t_e, f_cur)
         last = (best, t_frames, L)
@@ -353,16 +429,19 @@ def _decide(t, t_e, f_cur, angle, nominal_hz, first, last, spread_limit) -> Spee
     fam = best.family
     # the final profile: the estimate smoothed at the last step's frame length (what the earlier,
     # shorter frames left of their noise goes), its mean the nominal speed
-    dense = np.linspace(angle[0], angle[-1], max(64, int(8 * angle[-1] / L)))
+    dense = np.linspace(angle[0], angle[-1], max(64, int(8 * (angle[-1] - angle[0]) / L)))
     a_t = np.interp(t, t_e, angle)
-    f_fin = _smooth(dense, np.interp(dense, angle, f_cur), np.ones_like(dense), a_t, L)
+    f_fin = np.interp(a_t, dense, _local_line(angle, f_cur, dense, L))
     f_fin = np.maximum(f_fin, 1e-3 * nominal_hz)
     angle = ordertrack.angle_from_speed(t, f_fin)
     scale = nominal_hz * (t[-1] - t[0]) / (angle[-1] - angle[0])
     f_fin, angle = f_fin * scale, angle * scale
     held = best.held
     f_frames = np.interp(t_frames, t, f_fin)
-    f_in = f_frames[held]
+    # whether it changes: the profile over SETTLE final frames (a local line), where the frames'
+    # own wander (a slipping bearing's line, noise) has averaged out, over the frames it stands in
+    a_frames = np.interp(t_frames, t, angle)
+    f_in = _local_line(a_frames[held], f_frames[held], a_frames[held], SETTLE * L)
     spread = float((f_in.max() - f_in.min()) / nominal_hz)
     # the first step's ridge of the family, each frame about the final profile: the estimate's
     # scatter frame by frame; the final profile averages LADDER's last frame over the first's
@@ -371,24 +450,35 @@ def _decide(t, t_e, f_cur, angle, nominal_hz, first, last, spread_limit) -> Spee
     h1 = one.held
     res = np.log(nominal_hz * one.c[h1] / scale / np.interp(t1[h1], t, f_fin / scale))
     scatter = float(np.std(res)) if h1.sum() > 2 else float("inf")
-    resolved = spread_limit + RESOLVE * scatter * np.sqrt(min(LADDER[0][0], L) / L)
+    # what the estimate cannot tell from a constant speed: its noise (the first step's frames
+    # about the final profile, averaged over SETTLE frames of the last) or the line's own wander
+    # frame by frame about the settled profile (a slipping bearing's line is locked to the shaft
+    # only on average; robust: a step's frames aside)
+    r = f_frames[held] / f_in - 1.0
+    wander = 1.4826 * float(np.median(np.abs(r - np.median(r))))
+    resolved = spread_limit + RESOLVE * max(scatter * np.sqrt(min(LADDER[0][0], L) / (SETTLE * L)),
+                                            wander)
     common = dict(nominal_hz=nominal_hz, family=fam.name, t=t_frames, f_hz=f_frames,
                   held=float(held.mean()), spread=spread, scatter=scatter, ratio=float(1.0 / scale))
-    if spread <= resolved:
+    other = _disagree(one, ones)
+    if spread <= resolved and not other:
         return SpeedEstimate("constant", f"the speed read from the {fam.name} ridge is constant "
                              f"within {max(spread, 1e-4):.2%} (resolved: {resolved:.2%})", **common)
     whole = float((f_fin.max() - f_fin.min()) / nominal_hz)
+    if spread <= resolved:
+        return SpeedEstimate("untrusted", f"the {fam.name} ridge reads a constant speed, but {other}",
+                             **common)
     changes = (f"the speed changes by {whole:.0%} of its mean over the record ({f_fin.min():.3g} to "
                f"{f_fin.max():.3g} Hz read from the {fam.name} ridge)")
-    why = _distrust(best, one, ones, t1)
+    why = _distrust(best, one, t1) or other
     if why:
         return SpeedEstimate("untrusted", f"{changes}, but {why}", **common)
     return SpeedEstimate("changing", changes, angle=angle, **common)
 
 
-def _distrust(best: Ridge, one: Ridge, ones, t1) -> str:
-    """Why the ridge is not to be trusted, or ``""``: it stands in too few frames, it jumps, or
-    another family's ridge tells another speed (module docstring)."""
+def _distrust(best: Ridge, one: Ridge, t1) -> str:
+    """Why the ridge is not to be trusted, or ``""``: it stands in too few frames (``best``, the
+    last step's) or it jumps (``one``, the first step's, at frames ``t1`` s)."""
     name = best.family.name
     if best.held.mean() < HOLD:
         return (f"the {name} ridge stands in only {best.held.mean():.0%} of the record "
@@ -400,14 +490,22 @@ def _distrust(best: Ridge, one: Ridge, ones, t1) -> str:
         if rate[k] > JUMP:
             return (f"the {name} ridge jumps by {np.expm1(abs(np.log(one.c[h[k + 1]] / one.c[h[k]]))):.0%}"
                     f" at {t1[h[k + 1]]:.3g} s")
+    return ""
+
+
+def _disagree(one: Ridge, ones) -> str:
+    """``""``, or which family's ridge (of the first step's, ``ones``) tells another course of
+    the speed than ``one``'s: each over its own mean (a family's slip is its own), frame by frame
+    where both stand, by more than :data:`AGREE` (median), or a ridge that stands where the
+    other does not as often."""
     for r in ones:
-        if r is one or r.held.mean() < HOLD:
+        if r.family == one.family or r.held.mean() < HOLD:
             continue
         both = one.held & r.held
         if both.sum() < 3:
             continue
         d = np.log(r.c[both] / r.mean_c) - np.log(one.c[both] / one.mean_c)
         if np.median(np.abs(d - np.median(d))) > AGREE or np.abs(np.median(d)) > AGREE:
-            return (f"the {r.family.name} ridge tells another speed (by a median "
-                    f"{np.median(np.abs(d)):.1%} from the {name} ridge's)")
+            return (f"the {r.family.name} ridge tells another speed (a median "
+                    f"{np.median(np.abs(d)):.1%} from the {one.family.name} ridge's)")
     return ""
