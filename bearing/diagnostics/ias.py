@@ -88,9 +88,9 @@ PEEL = 3
 P_FA = 1e-3
 #: share of frames where the ridge must stand
 HOLD = 0.6
-#: a frame-to-frame change of ln c beyond which the ridge jumped (a train at 20 km/h braking at
-#: 2.5 m/s^2 loses 22 % a turn; a frame hop of the first step is 3/4 turn)
-JUMP = 0.2
+#: a change of ln c a shaft turn beyond which the ridge jumped (a train at 20 km/h braking at
+#: 2.5 m/s^2, an emergency brake, loses 22 % of its speed a turn: ln 1/0.78 = 0.25)
+JUMP = 0.25
 #: the time-mean of a family's ridge over the nominal speed: within this, the family is locked to
 #: the shaft at the given speed (a bearing's slip, a worn wheel's radius)
 NOMINAL_TOL = 0.10
@@ -150,15 +150,27 @@ class Ridge:
     threshold: float
     mean_c: float
     level: float = 0.0      # the full map's median along the ridge
+    hop: float = 1.0        # turns between frames
+
+    def jump(self) -> tuple[float, int]:
+        """The largest change of ``ln c`` a turn between frames where it stands, and the frame
+        after it (``(0, -1)`` where it stands in fewer than two)."""
+        h = np.flatnonzero(self.held)
+        if h.size < 2:
+            return 0.0, -1
+        rate = np.abs(np.diff(np.log(self.c[h]))) / (np.diff(h) * self.hop)
+        k = int(np.argmax(rate))
+        return float(rate[k]), int(h[k + 1])
+
+    @property
+    def coherent(self) -> bool:
+        """It stands in :data:`HOLD` of the frames and never jumps (:data:`JUMP`)."""
+        return bool(self.held.mean() >= HOLD and self.jump()[0] <= JUMP)
 
     @property
     def held(self) -> np.ndarray:
         return self.value >= self.threshold
 
-    @property
-    def strength(self) -> tuple[float, float]:
-        """How clearly it stands: the share of frames it stands in, then its level."""
-        return float(np.mean(self.held)), self.level
 
 
 @dataclass(frozen=True)
@@ -284,14 +296,15 @@ def _ridge(S, Sc, grid, fam, t_frames, t, threshold, L) -> Ridge:
     off = np.where((den < 0) & (p > 0) & (p < grid.size - 1), 0.5 * (a - c) / np.where(den < 0, den, -1), 0.0)
     cc = np.exp(lg[p] + np.clip(off, -0.5, 0.5) * step)
     mean_c = float(np.mean(np.interp(t, t_frames, cc)))
-    return Ridge(fam, cc, val, threshold, mean_c, float(np.median(S[rows, p])))
+    return Ridge(fam, cc, val, threshold, mean_c, float(np.median(S[rows, p])), L / 4.0)
 
 
-def _near_ridge(S, Sc, grid, fam, t_frames, t, threshold, L) -> Ridge:
+def _near_ridge(S, Sc, grid, fam, t_frames, t, threshold, L, cur) -> Ridge:
     """The family's ridge whose time-mean lies within :data:`NOMINAL_TOL` of the current speed:
     the strongest path first; where that is another family's lines read at another speed (off
     the nominal), its cells are taken out (a line's width either side) and the next strongest
-    path taken, :data:`PEEL` times at most."""
+    path taken, :data:`PEEL` times at most.  ``cur``: the current estimate's mean over the
+    nominal speed."""
     Sc = Sc.copy()
     lg = np.log(grid)
     half = max(3, int(np.ceil(np.log1p(1.0 / (fam.order * L)) / (lg[1] - lg[0]))))
@@ -299,7 +312,7 @@ def _near_ridge(S, Sc, grid, fam, t_frames, t, threshold, L) -> Ridge:
     rows = np.arange(S.shape[0])
     for _ in range(PEEL):
         r = _ridge(S, Sc, grid, fam, t_frames, t, threshold, L)
-        if abs(r.mean_c - 1.0) <= NOMINAL_TOL or not r.held.any():
+        if _near(r, cur) or not r.held.any():
             return r
         p = np.searchsorted(lg, np.log(r.c))
         for k in range(-half, half + 1):
@@ -341,6 +354,19 @@ def _local_line(x, y, x_eval, width):
         det = sw * swxx - swx * swx
         out[i] = swy / sw if det <= 1e-12 * sw * sw else (swxx * swy - swx * swxy) / det
     return out
+
+
+def _near(r: Ridge, cur: float) -> bool:
+    """Whether ridge ``r`` (over an estimate whose mean is ``cur`` times the nominal speed) has
+    its time-mean within :data:`NOMINAL_TOL` of the nominal speed."""
+    return abs(np.log(r.mean_c * cur)) <= np.log1p(NOMINAL_TOL)
+
+
+def _rank(r: Ridge, cur: float):
+    """The order families are chosen in: a coherent ridge first, then the one nearest the
+    nominal speed (a family and its aliases read the same lines at speeds in the ratio of their
+    orders: the nominal tells them apart; to 1 %, a bearing's slip), then the strongest."""
+    return r.coherent, -round(abs(float(np.log(r.mean_c * cur))), 2), r.level
 
 
 def _smooth(x_frames, y, weight, x_eval, L):
@@ -406,15 +432,16 @@ def estimate(x_left, x_right, fs: float, nominal_hz: float, orders, *, wheel: bo
         grid = np.exp(np.linspace(np.log(lo), np.log(hi), GRID))
         maps, th = _maps(envs, angle, fs_e, L, fams, grid)
         t_frames = np.interp(th, angle, t_e)
-        ridges = [_near_ridge(S, Sc, grid, fam, t_frames, t_e, thr, L)
+        cur = float(np.mean(f_cur)) / nominal_hz
+        ridges = [_near_ridge(S, Sc, grid, fam, t_frames, t_e, thr, L, cur)
                   for fam, (S, Sc, thr) in maps.items()]
-        near = [r for r in ridges if abs(r.mean_c - 1.0) <= NOMINAL_TOL and r.held.sum() >= 3]
+        near = [r for r in ridges if _near(r, cur) and r.held.sum() >= 3]
         if first is None:
             first = (near, t_frames)
         if not near:
             return SpeedEstimate("no ridge", "no line locked to the shaft at the given speed stands "
                                  "out of the record's noise", float(nominal_hz))
-        best = max(near, key=lambda r: r.strength)
+        best = max(near, key=lambda r: _rank(r, cur))
         corr = _through(th, best.c, best.held, angle, L)
         f_cur = f_cur * np.clip(corr, lo, hi)
         angle = ordertrack.angle_from_speed(t_e, f_cur)
@@ -446,7 +473,7 @@ def _decide(t, t_e, f_cur, angle, nominal_hz, first, last, spread_limit) -> Spee
     # the first step's ridge of the family, each frame about the final profile: the estimate's
     # scatter frame by frame; the final profile averages LADDER's last frame over the first's
     ones, t1 = first
-    one = next((r for r in ones if r.family == fam), max(ones, key=lambda r: r.strength))
+    one = next((r for r in ones if r.family == fam), max(ones, key=lambda r: _rank(r, 1.0)))
     h1 = one.held
     res = np.log(nominal_hz * one.c[h1] / scale / np.interp(t1[h1], t, f_fin / scale))
     scatter = float(np.std(res)) if h1.sum() > 2 else float("inf")
@@ -483,23 +510,22 @@ def _distrust(best: Ridge, one: Ridge, t1) -> str:
     if best.held.mean() < HOLD:
         return (f"the {name} ridge stands in only {best.held.mean():.0%} of the record "
                 f"({HOLD:.0%} needed)")
-    h = np.flatnonzero(one.held)
-    if h.size > 1:
-        rate = np.abs(np.diff(np.log(one.c[h]))) / np.diff(h)
-        k = int(np.argmax(rate))
-        if rate[k] > JUMP:
-            return (f"the {name} ridge jumps by {np.expm1(abs(np.log(one.c[h[k + 1]] / one.c[h[k]]))):.0%}"
-                    f" at {t1[h[k + 1]]:.3g} s")
+    rate, k = one.jump()
+    if rate > JUMP:
+        h = np.flatnonzero(one.held)
+        j = h[np.searchsorted(h, k) - 1]
+        return (f"the {name} ridge jumps by {np.expm1(abs(np.log(one.c[k] / one.c[j]))):.0%} "
+                f"at {t1[k]:.3g} s")
     return ""
 
 
 def _disagree(one: Ridge, ones) -> str:
-    """``""``, or which family's ridge (of the first step's, ``ones``) tells another course of
-    the speed than ``one``'s: each over its own mean (a family's slip is its own), frame by frame
-    where both stand, by more than :data:`AGREE` (median), or a ridge that stands where the
-    other does not as often."""
+    """``""``, or which other coherent family's ridge (of the first step's, ``ones``) tells
+    another course of the speed than ``one``'s: each over its own mean (a family's slip is its
+    own), frame by frame where both stand, by more than :data:`AGREE` (median).  A ridge that
+    hops between the lines of other families is no family's and is not heard."""
     for r in ones:
-        if r.family == one.family or r.held.mean() < HOLD:
+        if r.family == one.family or not r.coherent:
             continue
         both = one.held & r.held
         if both.sum() < 3:
