@@ -7,54 +7,68 @@ out-of-roundness (whole orders of the shaft in the envelope).  Where the speed c
 family draws ridges across the time-frequency plane whose frequency over their order is the
 shaft's speed; followed from the user's nominal speed, they give the speed over the record
 without a tacho.  The method is the two-step one of Urbanek, Barszcz and Antoni, Mech. Syst.
-Signal Process. 38 (2013) 96-102 (a coarse ridge in the short-time Fourier transform, then a fine
-one in the angle domain, where the resampling on the coarse speed has straightened the lines),
-with the ridge of a whole family of orders at once (the multi-order approach of Leclère, André and
-Antoni, Mech. Syst. Signal Process. 81 (2016) 375-386: every harmonic votes for one speed) and
-the ridge followed by dynamic programming (Viterbi), as in the ridge extraction of Combet and
-Gelman, Mech. Syst. Signal Process. 21 (2007) 2590-2606 reviewed there:
+Signal Process. 38 (2013) 96-102: a coarse ridge in the short-time Fourier transform, then a fine
+reading on the record demodulated by the coarse speed; here the fine reading is the same ridge
+again in the angle domain (the record resampled on the coarse speed, where its lines stand
+straight and longer frames resolve them), not the phase of one harmonic (their second step, and
+Combet and Gelman, Mech. Syst. Signal Process. 21 (2007) 2590-2606), which needs one line
+standing alone over the noise at every instant: a bearing's envelope lines, each hit a little off
+its place, do not.  Every harmonic of a family votes for one speed (the multi-order approach of
+Leclère, André and Antoni, Mech. Syst. Signal Process. 81 (2016) 375-386), and the ridge is the
+path of dynamic programming through the map (Iatsenko, McClintock and Stefanovska, Signal
+Process. 125 (2016) 290-303):
 
 1. each channel's envelope (:func:`.envelope.envelope`: band of highest spectral kurtosis, wide
    enough for the harmonics searched; the impulses ring fixed resonances, so the band is taken in
-   time);
+   time), decimated to four samples a period of the highest harmonic searched;
 2. the envelopes resampled to the current estimate of the angle (:func:`.ordertrack.to_angle`;
    at first the nominal speed's, a constant), an STFT over frames of ``L`` turns (Hann, 3/4
-   overlapping), each bin's power over the running median of its frame's spectrum (the floor):
-   ``W``, about 1/ln 2 on noise (an exponential power over its median), both sides averaged;
+   overlapping), each bin's power over its frame's median in blocks of bins (the floor): ``W``,
+   1/ln 2 on average on noise (an exponential power over its median), both sides averaged;
 3. for each family (order ``o``, harmonics ``m = 1..K``) the multi-order map
    ``S(frame, c) = mean_m W(frame, m o c)`` over the speed's ratio ``c`` to the current estimate,
-   on a logarithmic grid;
-4. its ridge, the path of frames through the grid that maximises the summed map less
-   :data:`JUMP_COST` per unit of ``|d ln c|`` from one frame to the next (Viterbi); each frame's
-   ridge refined by a parabola through the map's three cells about it;
-5. the family: the strongest ridge (median of the map along it) among those whose time-mean of
-   ``c`` lies within :data:`NOMINAL_TOL` of 1: the user's nominal speed is the record's mean,
-   which tells a family from its aliases (the DTRB's 2BSF, 7.57 orders, reads a BPFO ridge,
-   8.72 orders, at 1.15 times the speed; BPFI at 0.77);
-6. the estimate times ``c`` (a least-squares cubic spline through the frames, knots every ``L``
-   turns), the angle its running integral (:func:`.ordertrack.angle_from_speed`); then again
-   with longer frames and a narrower grid (:data:`LADDER`): on the straightened lines a longer
-   frame resolves a finer speed.
+   on a logarithmic grid, and the same map with each harmonic's ``W`` capped at ``K thr / 2``
+   (``thr``: :func:`frame_threshold`), so that a family stands only where half its harmonics do
+   and one strong line of another family, met by one harmonic, does not carry it;
+4. its ridge: the path through the capped map that maximises its sum less :data:`JUMP_COST`
+   noise means per unit of ``|d ln c|`` from frame to frame (Viterbi); each frame's point the
+   full map's highest cell within a line's width of the path, refined by a parabola; a path whose
+   time-mean is off the nominal (another family's lines, read at another speed) is taken out of
+   the map and the next one followed, :data:`PEEL` times at most;
+5. the family: a *coherent* ridge first (standing over ``thr`` in :data:`HOLD` of the frames,
+   never changing by more than :data:`JUMP` a turn), then the one nearest the nominal speed,
+   among those whose time-mean lies within :data:`NOMINAL_TOL` of it: the user's speed is the
+   record's mean, which tells a family from its aliases (the DTRB's 2BSF, 7.57 orders, reads a
+   BPFO ridge, 8.72 orders, at 1.15 times the speed; BPFI at 0.77; the other side's bearing's
+   lines likewise), then the strongest;
+6. the estimate times ``c`` (linear between the frames where the ridge stands, each already its
+   window's average of the speed; beyond the end frames the line through those within a frame),
+   the angle its running integral (:func:`.ordertrack.angle_from_speed`); then again on that
+   clock with longer frames and a narrower grid (:data:`LADDER`).
 
-The estimate's mean is then set to the nominal speed (the user's speed, or the file's): a
-family's ridge reads the shaft's speed times its slip (a bearing's rollers slip by a few per
-cent), and a constant-speed record read at a constant speed is read as before to the bit.
+The final speed is the estimate smoothed by a local straight line over one last frame (Hann
+weights: it neither rings at a step, as a spline does, nor bends a constant acceleration), its
+mean set to the nominal speed (the user's speed, or the file's): a family's ridge reads the
+shaft's speed times its slip (a bearing's rollers slip by a few per cent), and the lines then lie
+where a reading at the given speed puts them.
 
-The estimate is trusted (``status == "changing"``) where the chosen family's ridge stands over
-the noise (the false-alarm threshold of a frame's highest cell, :func:`frame_threshold`) in at
-least :data:`HOLD` of the frames, never moves by more than :data:`JUMP` from one frame to the
-next, and every other family with a ridge agrees with it within :data:`AGREE`.  Where the ridge
-says the speed is constant within :data:`.speed.TRACK_SPREAD` (or within what the estimate can
-resolve, :data:`RESOLVE` times its scatter) the status is ``"constant"``; where no family stands,
-``"no ridge"``: nothing in the record tells the speed, and it is read at the given one; else
-``"untrusted"`` with the reason, which the diagnosis turns into "undecided".
+Whether it changes is judged on the speed smoothed over :data:`SETTLE` final frames: it is
+``"constant"`` within :data:`.speed.TRACK_SPREAD` plus :data:`RESOLVE` times what the estimate
+cannot tell from a constant speed (its own scatter, the first step's frames about the final
+speed, averaged over those frames; or the line's own wander frame by frame, a slipping bearing's
+line being locked to the shaft on average only), and then read at the given speed as before.
+Where no family stands at the given speed, ``"no ridge"``: nothing in the record tells the speed,
+and it is read at the given one.  A change is trusted (``"changing"``, read on its clock) where
+the ridge stands in :data:`HOLD` of the last step's frames, never jumps (the first step's, by
+more than :data:`JUMP` a turn) and no other coherent family's ridge tells another course of the
+speed (frame by frame, each over its mean, by more than :data:`AGREE`); else ``"untrusted"`` with
+the reason, which the diagnosis turns into "undecided".
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.interpolate import make_lsq_spline
 from scipy.signal import resample_poly, stft
 from scipy.stats import gamma
 
@@ -98,7 +112,8 @@ NOMINAL_TOL = 0.10
 AGREE = 0.03
 #: the frames the speed's change is judged over
 SETTLE = 4
-#: a change counts where it exceeds this many times the scatter of the ridge about its spline
+#: a change counts where it exceeds TRACK_SPREAD and this many times what the estimate cannot tell
+#: from a constant speed (module docstring)
 RESOLVE = 4.0
 
 
@@ -369,26 +384,6 @@ def _rank(r: Ridge, cur: float):
     return r.coherent, -round(abs(float(np.log(r.mean_c * cur))), 2), r.level
 
 
-def _smooth(x_frames, y, weight, x_eval, L):
-    """A least-squares cubic spline through ``(x_frames, y)`` (weights ``weight``), knots every
-    ``L`` in ``x``, evaluated at ``x_eval``; beyond the end frames, the straight line of its
-    slope there (a constant acceleration)."""
-    x0, x1 = float(x_frames[0]), float(x_frames[-1])
-    n_in = int(np.floor((x1 - x0) / L))
-    inner = np.linspace(x0, x1, n_in + 2)[1:-1] if n_in >= 1 else np.array([])
-    k = 3 if x_frames.size >= inner.size + 4 + 2 else 1
-    knots = np.r_[[x0] * (k + 1), inner, [x1] * (k + 1)]
-    try:
-        spl = make_lsq_spline(x_frames, y, knots, k=k, w=weight)
-    except (ValueError, np.linalg.LinAlgError):
-        return np.interp(x_eval, x_frames, y)
-    d = spl.derivative()
-    xe = np.asarray(x_eval, float)
-    v = spl(np.clip(xe, x0, x1))
-    v = np.where(xe < x0, spl(x0) + d(x0) * (xe - x0), v)
-    return np.where(xe > x1, spl(x1) + d(x1) * (xe - x1), v)
-
-
 def estimate(x_left, x_right, fs: float, nominal_hz: float, orders, *, wheel: bool = True,
              spread_limit: float = 0.005) -> SpeedEstimate:
     """The shaft's speed over the record ``(x_left, x_right)`` at ``fs`` from the record itself,
@@ -454,8 +449,8 @@ def _decide(t, t_e, f_cur, angle, nominal_hz, first, last, spread_limit) -> Spee
     envelopes' ``t_e``) and whether it is trusted (module docstring)."""
     best, t_frames, L = last
     fam = best.family
-    # the final profile: the estimate smoothed at the last step's frame length (what the earlier,
-    # shorter frames left of their noise goes), its mean the nominal speed
+    # the final speed: the estimate smoothed by a local line over the last step's frame (what the
+    # earlier, shorter frames left of their noise goes), its mean the nominal speed
     dense = np.linspace(angle[0], angle[-1], max(64, int(8 * (angle[-1] - angle[0]) / L)))
     a_t = np.interp(t, t_e, angle)
     f_fin = np.interp(a_t, dense, _local_line(angle, f_cur, dense, L))
