@@ -249,7 +249,9 @@ def _add_speed_options(p):
     sp.add_argument("--speed-csv", metavar="FILE", help="a speed profile: CSV of time s (from the "
                     "record's first sample) and speed in --speed-unit, covering the record")
     sp.add_argument("--order-tracking", default="auto", metavar="MODE", help="auto (order-track where "
-                    "the speed's range exceeds 0.5 %% of its mean), on or off (default: auto)")
+                    "the speed's range exceeds 0.5 %% of its mean; without a source of the speed, "
+                    "the speed read from the record itself), on or off (read at the given speed, "
+                    "the record's own speed not read; default: auto)")
     return sp
 
 

@@ -186,11 +186,16 @@ def analyse_record(rec: Record, speed, *, scale: float = 1.0, shaft=None, speed_
                    wheel_radius: float = 0.42, rpm=None, orders_text=None, bore=None, band=None,
                    criterion=None, nperseg=None, guided: bool = True, bearing=None, orders_left=None,
                    orders_right=None, bearing_left=None, bearing_right=None, bore_left=None,
-                   bore_right=None, order_tracking: str = "auto"):
+                   bore_right=None, order_tracking: str = "auto", estimate=None):
     """Analyse both sides of ``rec``: ``(input info, PairResult)``.  The shaft speed comes from
     the options, else from ``speed`` (its mean; the record order-tracked where
     :func:`.speed.wants_tracking` says so), else from the file; each side's bearing as
-    :func:`side_bearings` says."""
+    :func:`side_bearings` says.  Without ``speed`` (and not a result file, whose run stores its
+    speed), the speed over the record is read from the record (:func:`.speed.from_record`, the
+    given speed its start; ``estimate``: one already read over the whole record, a
+    :class:`axlebox.bearing.diagnostics.ias.SpeedEstimate`, for a window of it): a changing speed
+    read with trust is its clock, one that is not makes the verdict undecided; not with
+    ``order_tracking="off"``."""
     from axlebox.bearing.diagnostics.criterion import Criterion
     from axlebox.bearing.diagnostics.pair import analyse_pair
 
@@ -200,29 +205,37 @@ def analyse_record(rec: Record, speed, *, scale: float = 1.0, shaft=None, speed_
         raise ParameterError(f"--scale = {scale!r} is not allowed: expected a factor > 0")
     given = [o for o, v in (("--shaft-hz", shaft), ("--rpm", rpm), ("--speed-kmh", speed_kmh))
              if v is not None]
-    if given and speed is not None and rec.kind != "axlebox-result":
+    if given and speed is not None and rec.kind != "axlebox-result" and speed.estimate is None:
         raise ParameterError(f"{given[0]} is not allowed with a speed over time (--speed-channel, "
                              "--tacho or --speed-csv): expected one source of the speed")
-    tracked = sp.wants_tracking(order_tracking, speed, rec.fs) and not given
-    stats = speed.stats(rec.fs) if speed is not None else None
-    if speed is not None and not given:
-        f_shaft = stats["mean_hz"]
-    else:
-        f_shaft = shaft_speed(rec, shaft, speed_kmh, wheel_radius, rpm)
     sides = side_bearings(rec, orders_text=orders_text, bore=bore, bearing=bearing,
                           orders_left=orders_left, orders_right=orders_right,
                           bearing_left=bearing_left, bearing_right=bearing_right,
                           bore_left=bore_left, bore_right=bore_right)
     (bl, src_l), (br, src_r) = sides["left"], sides["right"]
+    rotor = rotor_of(shaft, rpm)
+    est = None
+    if speed is None and rec.kind != "axlebox-result" and order_tracking in ("auto", "on"):
+        est = estimate
+        if est is None:
+            speed, est = sp.from_record(rec.left * scale, rec.right * scale, rec.fs,
+                                        shaft_speed(rec, shaft, speed_kmh, wheel_radius, rpm),
+                                        (bl.orders, br.orders), rotor)
+    own = speed is not None and (not given or speed.estimate is not None)   # the speed over time's
+    tracked = sp.wants_tracking(order_tracking, speed, rec.fs) and own
+    stats = speed.stats(rec.fs) if speed is not None else None
+    if own:
+        f_shaft = stats["mean_hz"]
+    else:
+        f_shaft = shaft_speed(rec, shaft, speed_kmh, wheel_radius, rpm)
 
     def pair(angle):
         return analyse_pair(rec.left * scale, rec.right * scale, rec.fs, f_shaft,
                             (bl.orders, br.orders), (bl.bore, br.bore), criterion, band,
                             names=rec.names, nperseg=nperseg, guided=guided,
                             bearings=(bl.name, br.name),
-                            rotor=speed.rotor if speed is not None and not given else rotor_of(shaft, rpm),
-                            angle=angle, spread=0.0 if angle is not None or stats is None
-                            else stats["spread"])
+                            rotor=speed.rotor if own else rotor, angle=angle,
+                            spread=0.0 if angle is not None or stats is None else stats["spread"])
     res = pair(speed.angle if tracked else None)
     second = None
     if tracked and res.verdict.real is None and BOTH in res.verdict.words.values():
@@ -233,11 +246,20 @@ def analyse_record(rec: Record, speed, *, scale: float = 1.0, shaft=None, speed_
         second = in_time.verdict.rule
         if BOTH not in in_time.verdict.words.values():
             res = in_time
+    if est is not None and est.status == "untrusted":
+        res = sp.undecided(res, est)
+    if speed is not None:
+        sp_info = {"from": speed.source, **stats, "order_tracked": tracked,
+                   **({"second_look": second} if second else {})}
+    elif est is not None:
+        sp_info = {"from": "given", "mean_hz": f_shaft, "order_tracked": False}
+    else:
+        sp_info = None
+    if sp_info is not None and (est is not None or speed.estimate is not None):
+        sp_info["estimate"] = (est or speed.estimate).to_dict()
     info = {"kind": rec.kind, "left": rec.names[0], "right": rec.names[1],
             "fs_hz": rec.fs, "n_samples": int(rec.left.size), "scale": scale,
-            "shaft_hz": f_shaft, "rotor": res.rotor,
-            "speed": None if speed is None else {"from": speed.source, **stats, "order_tracked": tracked,
-                                                 **({"second_look": second} if second else {})},
+            "shaft_hz": f_shaft, "rotor": res.rotor, "speed": sp_info,
             "bearings": {"left": {**bl.to_dict(), "from": src_l},
                          "right": {**br.to_dict(), "from": src_r}},
             "band": list(band) if band is not None else
@@ -270,6 +292,9 @@ def run(path, *, json_out=None, figures=None, log=print, **options):
                      f"({b[s]['from']})" for s in ("left", "right"))
     log(f"{Path(path).name} ({rec.kind}): {rec.left.size} samples at {rec.fs:g} Hz, shaft "
         f"{info['shaft_hz']:.4g} Hz; {bear}" + "".join(f"; {n}" for n in rec.notes))
+    est = (info["speed"] or {}).get("estimate")
+    if est is not None:
+        log(f"speed from the record: {est['status']}: {est['reason']}")
     log(res.summary())
     for s in ("left", "right"):
         log(f"{s}: {res.verdict.words[s]}: {res.verdict.sentence(s)}")

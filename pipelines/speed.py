@@ -14,6 +14,16 @@ Sources, one at a time:
   speed in ``--speed-unit``), read at each sample by linear interpolation; it must cover the
   record.
 
+Where none is given (and the file is not a result file, whose run stores its speed), the speed
+over the record is read from the record itself (:func:`from_record`, tacholess: the ridge of a
+family of lines locked to the shaft, :mod:`axlebox.bearing.diagnostics.ias`), from the given
+speed (``--speed-kmh``, ``--rpm``, ``--shaft-hz``: the record's mean) as the starting guess.  A
+speed it finds constant within :data:`TRACK_SPREAD` (or no line to read it from) leaves the
+record read at the given speed, as before; a speed it reads changing is the record's clock
+(source ``estimated from the record (<family> ridge)``); a change it cannot read with trust (the
+ridge fades, jumps, or two families disagree) makes the verdict "undecided" with the reason
+(:func:`undecided`).
+
 With ``--order-tracking auto`` (the default) a record is order-tracked when its speed's range
 exceeds :data:`TRACK_SPREAD` of its mean: the fault-line search takes a drift of speed that small
 (its harmonic windows, :mod:`axlebox.bearing.diagnostics.faultlines`), beyond it the lines smear
@@ -41,7 +51,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from axlebox._params import ParameterError
-from axlebox.bearing.diagnostics import ordertrack
+from axlebox.bearing.diagnostics import ias, ordertrack
 
 #: the speed's range over its mean above which a record is order-tracked (module docstring)
 TRACK_SPREAD = 0.005
@@ -57,6 +67,7 @@ class Speed:
     source: str
     rotor: str = "wheel"          # what turns: "wheel" (km/h, a car's result) or "shaft" (rpm, Hz, tacho)
     f_hz: float | None = None     # the speed where every sample gave the same (read as given)
+    estimate: ias.SpeedEstimate | None = None   # where the speed was read from the record itself
 
     def hz(self, fs: float) -> np.ndarray:
         """Speed at each sample (Hz) of a record at ``fs``: the angle's central differences."""
@@ -154,6 +165,33 @@ def from_csv(path, n: int, fs: float, unit: str, wheel_radius: float) -> Speed:
                              f"0 to {t[-1]:.6g} s; expected a profile over all of it")
     f_hz = np.interp(t, tp, to_hz(vp, unit, wheel_radius, where))
     return _made(f_hz, fs, where, f"speed profile {path} ({unit})", unit)
+
+
+#: what a user gives where the record's own speed cannot be trusted
+GIVE = "give --speed-channel, --tacho or --speed-csv"
+
+
+def from_record(left, right, fs: float, nominal_hz: float, orders, rotor: str):
+    """The speed over a record of two channels from the record itself, from ``nominal_hz`` (the
+    given speed, the record's mean) and the sides' bearing ``orders`` (a (left, right) pair of
+    :class:`axlebox.bearing.frequencies.FaultOrders`): ``(Speed | None, SpeedEstimate)``, the
+    :class:`Speed` where the estimate reads a changing speed it trusts (module docstring)."""
+    est = ias.estimate(left, right, fs, nominal_hz, orders, spread_limit=TRACK_SPREAD)
+    if est.status != "changing":
+        return None, est
+    return Speed(est.angle, est.source, rotor, estimate=est), est
+
+
+def undecided(res, est):
+    """``res`` (a :class:`axlebox.bearing.diagnostics.pair.PairResult` read at the given speed)
+    with both sides "undecided": the speed changes and the record does not tell it with trust
+    (``est``, an untrusted :class:`axlebox.bearing.diagnostics.ias.SpeedEstimate`)."""
+    from dataclasses import replace
+
+    from axlebox.bearing.diagnostics.verdict import SIDES
+    v = replace(res.verdict, words={s: "undecided" for s in SIDES}, rule="speed not read", real=None,
+                note=f"{est.reason}; {GIVE}", kinds=dict.fromkeys(SIDES))
+    return replace(res, verdict=v)
 
 
 def wants_tracking(mode: str, speed: Speed | None, fs: float) -> bool:

@@ -1,6 +1,11 @@
 """A long record (a trip between stations) read in windows of whole shaft turns: each window with
 its speed range, its lines, indicators and verdict (:func:`.diagnose.analyse_record`, order-tracked
-within the window where its own speed changes), one JSON object a line (JSON Lines); and the
+within the window where its own speed changes), one JSON object a line (JSON Lines) that says
+which speed the window was read at (``shaft_hz``, its range ``speed_hz``) and where it came from
+(``speed_source``: the file's shaft angle, a speed channel, a tacho, a profile, ``given``, or
+``estimated from the record (<family> ridge)``: without a source the speed is read once over the
+whole record, :func:`.speed.from_record`, and every window on that clock; a change the record
+does not tell with trust makes every window undecided, ``speed_note`` says why); and the
 record's summary: the pair of words most windows give, with the share of the read windows that
 agree.  A window that cannot be read (too short for the analysis, a refusal of its samples) is
 marked ``"not read"`` with the reason; it counts in neither the verdicts nor the shares.
@@ -21,6 +26,10 @@ from axlebox.bearing.diagnostics.channel import jsonable
 
 from .diagnose import READ_OPTIONS, analyse_record, read_input
 from .speed import Speed
+
+#: the options of :func:`.diagnose.side_bearings` among :func:`.diagnose.analyse_record`'s
+BEARING_OPTIONS = ("orders_text", "bore", "bearing", "orders_left", "orders_right", "bearing_left",
+                   "bearing_right", "bore_left", "bore_right")
 
 
 @dataclass
@@ -117,36 +126,49 @@ def analyse_windows(path, turns: float, overlap: float = 0.5, **options) -> Wind
     """Read ``path`` once (:func:`.diagnose.read_input`) and analyse each window of ``turns``
     shaft turns (``overlap`` of a window shared with the next); the rest of ``options`` as
     :func:`.diagnose.analyse_record` takes them."""
-    from .diagnose import shaft_speed
+    from . import speed as sp
+    from .diagnose import rotor_of, shaft_speed, side_bearings
     rec, speed = read_input(path, **{k: v for k, v in options.items() if k in READ_OPTIONS})
     rest = {k: v for k, v in options.items() if k not in READ_OPTIONS or k == "wheel_radius"}
-    if speed is None:        # a constant speed: the options' or the file's
+    est = None
+    if speed is None:        # the options' or the file's speed: constant, or read from the record
         f = shaft_speed(rec, rest.get("shaft"), rest.get("speed_kmh"), rest.get("wheel_radius", 0.42),
                         rest.get("rpm"))
-        angle = np.arange(rec.left.size) * f / rec.fs
-    else:
-        angle = speed.angle
+        if rec.kind != "axlebox-result" and rest.get("order_tracking", "auto") in ("auto", "on"):
+            # read once over the whole record: a window is too short for a ridge, and every
+            # window must be read on the same clock
+            b = side_bearings(rec, **{k: rest[k] for k in BEARING_OPTIONS if k in rest})
+            scale = rest.get("scale", 1.0)
+            speed, est = sp.from_record(rec.left * scale, rec.right * scale, rec.fs, f,
+                                        (b["left"][0].orders, b["right"][0].orders),
+                                        rotor_of(rest.get("shaft"), rest.get("rpm")))
+    angle = speed.angle if speed is not None else np.arange(rec.left.size) * f / rec.fs
+    source = speed.source if speed is not None else ("given" if rec.kind != "axlebox-result"
+                                                     else "the file's speed")
     rows = []
     left, right = rec.left, rec.right
     for k, (i0, i1) in enumerate(bounds(angle, turns, overlap)):
         row = {"window": k, "t0_s": i0 / rec.fs, "t1_s": i1 / rec.fs,
-               "turns": float(angle[i1 - 1] - angle[i0])}
-        sub = Speed(angle[i0:i1], speed.source, speed.rotor, speed.f_hz) if speed is not None else None
+               "turns": float(angle[i1 - 1] - angle[i0]), "speed_source": source}
+        sub = (sp.Speed(angle[i0:i1], speed.source, speed.rotor, speed.f_hz, speed.estimate)
+               if speed is not None else None)
         if sub is not None:
             st = sub.stats(rec.fs)
             row["speed_hz"] = [st["min_hz"], st["max_hz"]]
         else:
             row["speed_hz"] = [float(f)] * 2
+        if est is not None and est.status == "untrusted":
+            row["speed_note"] = f"{est.reason}; {sp.GIVE}"
         rec.left, rec.right = left[i0:i1], right[i0:i1]
         try:
-            info, res = analyse_record(rec, sub, **rest)
+            info, res = analyse_record(rec, sub, estimate=est if sub is None else None, **rest)
         except ParameterError as err:
             row["not_read"] = str(err)
         else:
             v = res.verdict
-            sp = info["speed"] or {}
-            row.update(order_tracked=bool(sp.get("order_tracked")),
-                       **({"second_look": sp["second_look"]} if "second_look" in sp else {}),
+            spi = info["speed"] or {}
+            row.update(order_tracked=bool(spi.get("order_tracked")),
+                       **({"second_look": spi["second_look"]} if "second_look" in spi else {}),
                        shaft_hz=info["shaft_hz"], words=dict(v.words), **v.row())
         finally:
             rec.left, rec.right = left, right
@@ -155,7 +177,7 @@ def analyse_windows(path, turns: float, overlap: float = 0.5, **options) -> Wind
     return Windowed(rows, float(turns), float(overlap),
                     {"file": str(path), "kind": rec.kind, "left": rec.names[0], "right": rec.names[1],
                      "fs_hz": rec.fs, "speed": None if speed is None else speed.source,
-                     "notes": rec.notes},
+                     "speed_estimate": None if est is None else est.to_dict(), "notes": rec.notes},
                     (np.arange(angle.size)[::step] / rec.fs, Speed(angle, "").hz(rec.fs)[::step]))
 
 
@@ -168,6 +190,9 @@ def run_windows(path, turns: float, overlap: float = 0.5, *, out=None, figures=N
     w = analyse_windows(path, turns, overlap, **options)
     log(f"{Path(path).name}: {len(w.rows)} windows of {turns:g} shaft turns ({overlap:g} overlap); speed "
         f"from {w.info['speed'] or 'the options or the file (constant)'}")
+    if w.info.get("speed_estimate"):
+        e = w.info["speed_estimate"]
+        log(f"speed from the record: {e['status']}: {e['reason']}")
     for r in w.rows:
         head = (f"window {r['window']}: {r['t0_s']:.3f}-{r['t1_s']:.3f} s, {r['turns']:.2f} turns, shaft "
                 f"{r['speed_hz'][0]:.4g}-{r['speed_hz'][1]:.4g} Hz")

@@ -76,3 +76,34 @@ def test_the_report_shows_its_verdicts_and_speed_over_time(accel, tmp_path):
     assert len(rows) >= 2 and '"summary"' in rows[-1]
     assert (tmp_path / "rep" / f"fig_windows_{out.stem}.png").stat().st_size > 10_000
     assert "20-" in (tmp_path / "rep" / "index.html").read_text()   # its speeds read, not one
+
+
+def test_its_channels_as_a_csv_read_with_the_mean_speed_alone(accel, tmp_path):
+    """The two axle-box channels as a CSV (from 0.5 s, as the file is read), read with the mean of
+    the stored shaft angle as --speed-kmh, as a user without a speed channel reads them: the speed
+    is read from the record (bearing/diagnostics/ias.py, the BPFO ridge) and follows the stored
+    one, each over its mean, within 2.5 % (the BPFO line follows the cage, whose slip builds from
+    0 to 1.8 % over the run, benchmarks/README.md); in windows of 5.5 turns the defect side is
+    never healthy and no roller line (2BSF) is named, the healthy side never called faulty."""
+    from axlebox.bearing.frequencies import shaft_hz
+    from axlebox.pipelines import speed as sp
+    from axlebox.pipelines.diagnose import read_input, side_bearings
+    out, _, _ = accel
+    rec, stored = read_input(out)
+    csv = tmp_path / "accel.csv"
+    np.savetxt(csv, np.column_stack([rec.left, rec.right]), delimiter=",",
+               header=f"{rec.names[0]},{rec.names[1]}", comments="")
+    f_mean = (stored.angle[-1] - stored.angle[0]) * rec.fs / (stored.angle.size - 1)
+    kmh = f_mean * 2 * np.pi * 0.42 * 3.6
+    b = side_bearings(rec)
+    est, e = sp.from_record(rec.left, rec.right, rec.fs, shaft_hz(kmh), (b["left"][0].orders,
+                                                                         b["right"][0].orders), "wheel")
+    assert e.status == "changing" and e.family == "BPFO", e.reason
+    f_true, f_est = (np.gradient(a) for a in (stored.angle, est.angle))
+    assert np.max(np.abs(f_est / f_est.mean() / (f_true / f_true.mean()) - 1.0)) <= 0.025
+    w = analyse_windows(csv, 5.5, 0.75, left=rec.names[0], right=rec.names[1], fs=rec.fs,
+                        speed_kmh=kmh)
+    assert w.read and all(r["speed_source"] == "estimated from the record (BPFO ridge)" for r in w.read)
+    for r in w.read:
+        assert r["words"]["right"] != "healthy" and "2BSF" not in r["lines"], r
+        assert r["words"]["left"] not in ("real fault", "faults on both sides"), r

@@ -12,5 +12,8 @@ One channel:
 Two channels: :mod:`.lag` time lag, :mod:`.criterion` the paper's criterion, :mod:`.pair`
 both sides of one wheelset.
 
+While the speed changes: :mod:`.ordertrack` and :mod:`.clock` the record on the shaft's angle,
+:mod:`.ias` the shaft's speed read from the record itself (no tacho).
+
 Nothing heavy is imported here; import the module you need.
 """

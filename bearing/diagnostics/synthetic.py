@@ -59,26 +59,36 @@ def coaxial_pair(T: float, fs: float, f_fault: float, rng, *, amplitude: float =
     return (a + noise * wheel_rail_noise(n, fs, rng), b + noise * wheel_rail_noise(n, fs, rng))
 
 
-def swept_coaxial_pair(T: float, fs: float, order: float, f0: float, f1: float, rng, *,
-                       f_res: float = 600.0, f_bend: float = 546.0, zeta: float = 0.05,
-                       delay_s: float = 1.2e-3, gain: float = 0.3, noise: float = 0.5,
-                       jitter: float = 0.01) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def swept_coaxial_pair(T: float, fs: float, order: float, f0: float, f1: float, rng, **kw
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """:func:`coaxial_pair` while the shaft speeds up from ``f0`` to ``f1`` Hz at a constant rate
     over ``T`` s: a hit every ``1 / order`` of a turn (each ``jitter`` of a period off),
-    ``(defect side, healthy side, angle)``, the shaft's angle in revolutions at each sample."""
+    ``(defect side, healthy side, angle)``, the shaft's angle in revolutions at each sample
+    (:func:`angle_coaxial_pair` on that angle; ``kw`` as there)."""
     n = int(round(T * fs))
     t = np.arange(n) / fs
     angle = f0 * t + 0.5 * (f1 - f0) / T * t ** 2
+    return (*angle_coaxial_pair(angle, fs, order, rng, **kw), angle)
+
+
+def angle_coaxial_pair(angle, fs: float, order: float, rng, *, f_res: float = 600.0,
+                       f_bend: float = 546.0, zeta: float = 0.05, delay_s: float = 1.2e-3,
+                       gain: float = 0.3, noise: float = 0.5, jitter: float = 0.01,
+                       amplitude: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`coaxial_pair` on a shaft at ``angle`` (revolutions, increasing) at each sample, any
+    speed profile: a hit every ``1 / order`` of a turn, each ``jitter`` of a period off its place
+    (not accumulated: the defect is fixed on the ring), ``(defect side, healthy side)``."""
+    angle = np.asarray(angle, float)
+    n = angle.size
     k = np.arange(1, int(angle[-1] * order))
     hits = np.zeros(n)
     hits[np.clip(np.searchsorted(angle, (k + jitter * rng.standard_normal(k.size)) / order), 0,
                  n - 1)] = 1.0
     a = resonance(hits, fs, f_res, zeta)
-    a /= max(a.std(), 1e-300)
+    a = a / max(a.std(), 1e-300) * amplitude
     b = resonance(np.roll(a, int(round(delay_s * fs))), fs, f_bend, zeta)
-    b *= gain / max(b.std(), 1e-300)
-    return (a + noise * wheel_rail_noise(n, fs, rng), b + noise * wheel_rail_noise(n, fs, rng),
-            angle)
+    b *= gain * amplitude / max(b.std(), 1e-300)
+    return a + noise * wheel_rail_noise(n, fs, rng), b + noise * wheel_rail_noise(n, fs, rng)
 
 
 def both_sides_pair(T: float, fs: float, f_fault: float, rng, *, amplitude=(1.0, 1.0),

@@ -62,6 +62,8 @@ RULES = {
     "indicators disagree": "one fault and its copy, but RMS and SPM disagree",
     "lag contradicts": "one fault and its copy, but the lag contradicts RMS and SPM",
     "no line on the source": "the side the indicators name shows no fault line",
+    "speed not read": "the shaft's speed changes over the record and the record does not tell it "
+                      "(bearing/diagnostics/ias.py): no line can be read without it",
 }
 LINES_ONLY = {"wheel": "wheel lines only", "shaft": "shaft lines only"}    # the rule, by rotor
 _HOW = {"bearing order": "at its bearing's own order",
@@ -318,14 +320,16 @@ class Evidence:
 class Verdict:
     """``words``: side -> verdict; ``rule``: the key of :data:`RULES` that decided; ``real``:
     the side named the source (None where none is); ``evidence``: the :class:`Evidence` the
-    rule read; ``kinds``: side -> the :class:`FaultKind` of a side called faulty, else None.
-    Each side's reason: :meth:`sentence`."""
+    rule read; ``kinds``: side -> the :class:`FaultKind` of a side called faulty, else None;
+    ``note``: what the rule's words leave out and the reader needs first (the speed's change
+    that made the verdict undecided).  Each side's reason: :meth:`sentence`."""
 
     words: dict[str, str]
     rule: str
     real: str | None
     evidence: Evidence
     kinds: dict = field(default_factory=lambda: dict.fromkeys(SIDES))
+    note: str = ""
 
     def sentence(self, side: str) -> str:
         """``side``'s reason (:func:`sentence`)."""
@@ -333,7 +337,7 @@ class Verdict:
 
     def to_dict(self) -> dict:
         return {"words": dict(self.words), "rule": self.rule, "rule_text": RULES[self.rule],
-                "real": self.real, "evidence": self.evidence.to_dict(),
+                "note": self.note, "real": self.real, "evidence": self.evidence.to_dict(),
                 "kinds": {s: None if k is None else k.to_dict() for s, k in self.kinds.items()},
                 "sentences": {s: sentence(self, s) for s in SIDES}}
 
@@ -376,7 +380,7 @@ def _lines_text(v: Verdict, side: str) -> str:
 def sentence(v: Verdict, side: str) -> str:
     """One side's reason, rendered from the verdict's rule and evidence."""
     ev = v.evidence
-    parts = [RULES[v.rule]]
+    parts = [v.note, RULES[v.rule]] if v.note else [RULES[v.rule]]
     k = v.kinds.get(side)
     if k is not None:
         parts.append(f"fault: {k.text()}")
