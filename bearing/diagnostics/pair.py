@@ -14,6 +14,7 @@ import numpy as np
 from axlebox._params import ParameterError
 
 from ..frequencies import FaultOrders
+from . import acquisition
 from .channel import LINE_OPTIONS, LINES, ChannelResult, analyse, reguide, welch_segment
 from .coherence import line_timing
 from .gate import wheel_gate
@@ -34,7 +35,8 @@ class PairResult:
     ``verdict``: the :class:`.verdict.Verdict`; ``evidence``: the lines'
     :class:`.verdict.LineEvidence` it read; ``names``: the channels' names in the source;
     ``bearings``: each side's bearing name; ``rotor``: what turns the shaft, ``"wheel"`` (a
-    vehicle) or ``"shaft"`` (a machine; :data:`.verdict.ROTORS`)."""
+    vehicle) or ``"shaft"`` (a machine; :data:`.verdict.ROTORS`); ``warnings``: what the
+    acquisition spoiled but left readable (:mod:`.acquisition`: clipping)."""
 
     left: ChannelResult
     right: ChannelResult
@@ -50,6 +52,7 @@ class PairResult:
     x_right: np.ndarray = field(default=None, repr=False, compare=False)
     gate: object | None = None
     rotor: str = "wheel"
+    warnings: tuple[str, ...] = ()
 
     @property
     def shares(self) -> dict:
@@ -89,7 +92,7 @@ class PairResult:
                 "left": self.left.to_dict(), "right": self.right.to_dict(),
                 "lag": self.lag.to_dict(), "vf_diff_hz2": self.vf_diff,
                 "criterion": {**self.criterion.to_dict(), "m": self.m}, "rotor": self.rotor,
-                "verdict": self.verdict.to_dict(),
+                "verdict": self.verdict.to_dict(), "warnings": list(self.warnings),
                 "verdicts": {s: {"verdict": self.verdict.words[s], "reason": sentence(self.verdict, s)}
                              for s in SIDES}}
 
@@ -119,6 +122,7 @@ class PairResult:
                        f"; shares (this side's line over the other's, in the other's band) left "
                        f"{sh.share['left']:.3g}, right {sh.share['right']:.3g}"))
         out.append(f"rule: {self.verdict.rule}")
+        out += [f"warning: {w}" for w in self.warnings]
         return "\n".join(out)
 
     def plot(self, path=None):
@@ -234,6 +238,9 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
     if xs[0].size != xs[1].size:
         raise ParameterError(f"channels of {xs[0].size} and {xs[1].size} samples are not allowed: "
                              "expected two channels of the same length")
+    warnings = () if _wheel is not None else tuple(   # _wheel: the gated record of a call above
+        w for side, x, n in (("left", xs[0], names[0]), ("right", xs[1], names[1]))
+        for w in acquisition.check(x, f"{side} channel {n!r}"))
     if not (isinstance(shaft_hz, (int, float, np.floating)) and math.isfinite(shaft_hz) and shaft_hz > 0):
         raise ParameterError(f"shaft_hz = {shaft_hz!r} is not allowed: expected a frequency > 0 Hz")
     fo, bore = _pair_of(orders, "orders"), _pair_of(D, "D")
@@ -266,8 +273,9 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
                          gate=False, rotor=rotor, lines=lines, keep=keep,
                          _wheel={s: (r.wheel_env, r.wheel_spec) for s, r in res.items()},
                          **channel_kw)
-        return replace(p, gate=g, verdict=decide(p.left, p.right, p.lag, criterion,
-                                                 list(p.evidence), gate=g, rotor=rotor))
+        return replace(p, gate=g, warnings=warnings,
+                       verdict=decide(p.left, p.right, p.lag, criterion, list(p.evidence), gate=g,
+                                      rotor=rotor))
     if _wheel is not None:          # the wheel's lines as the record came, before the blanking
         res = {s: replace(r, wheel_env=_wheel[s][0], wheel_spec=_wheel[s][1]) for s, r in res.items()}
     line_kw = {k: v for k, v in channel_kw.items() if k in LINE_OPTIONS}
@@ -286,7 +294,8 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
     return PairResult(left=res["left"], right=res["right"], lag=lag,
                       vf_diff=abs(res["left"].VF - res["right"].VF), m=m, criterion=criterion,
                       verdict=v, names=tuple(names), evidence=tuple(evidence),
-                      bearings=tuple(bearings), x_left=xs[0], x_right=xs[1], rotor=rotor)
+                      bearings=tuple(bearings), x_left=xs[0], x_right=xs[1], rotor=rotor,
+                      warnings=warnings)
 
 
 def _lag(xs, fs, res, fo, shaft_hz, max_lag_s) -> LagResult:
