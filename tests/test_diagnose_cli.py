@@ -328,6 +328,23 @@ def test_vehicle_results_leave_out_the_track_fade_in(tmp_path):
     assert rec.left.size == n - int(0.5 * FS) and rec.shaft_hz == pytest.approx(shaft_hz(48.0))
 
 
+def test_a_quantized_real_style_record_reads(tmp_path, capsys):
+    """Issue 57: a record of two healthy bearings on one shaft, 20 kHz, stored to three decimals
+    of a unit whose RMS is 0.06 (test_diagnostics_channel.real_style, seed 83): before the SPM's
+    extrema were found on runs of equal samples this exited 1 with PyEMD's "`x` must be strictly
+    increasing sequence"; now it reads, both sides healthy (no bearing line in it).  The orders
+    are the Rexnord ZA-2115's (16 rollers a row, 0.331 in rollers on a 2.815 in pitch circle,
+    15.17 deg; Qiu et al., J. Sound Vib. 289 (2006) 1066-1090) at 2000 rpm."""
+    from test_diagnostics_channel import real_style
+    p = tmp_path / "ims.csv"
+    np.savetxt(p, np.c_[tuple(real_style(83))], fmt="%.3f", delimiter=",", header="b1,b2", comments="")
+    out = tmp_path / "ims.json"
+    rc = main(["diagnose", str(p), "--fs", "20000", "--rpm", "2000", "--orders",
+               "BPFO=7.092,BPFI=8.908,FTF=0.4433,BSF=4.198", "--bore", "0.0556", "--json", str(out)])
+    assert rc == 0, capsys.readouterr().err
+    assert json.loads(out.read_text())["verdict"]["words"] == {"left": "healthy", "right": "healthy"}
+
+
 def test_parse_orders_and_shaft_speed():
     assert diagnose.parse_orders(CWRU_ORDERS) == FaultOrders(FTF=0.39828, BPFO=3.5848,
                                                              BPFI=5.4152, BSF=2.35675)
