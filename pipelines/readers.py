@@ -407,7 +407,8 @@ def condition(rec: Record) -> Record:
         ok = x[np.isfinite(x)]
         if ok.size and ok.min() == ok.max():
             raise ParameterError(f"--{side} {name!r} is constant ({ok[0]:g} in all {ok.size} finite "
-                                 f"samples of {n}): a dropped sensor; expected a signal on both sides")
+                                 f"samples of {n}): a dropped sensor (or a range far too coarse); "
+                                 "expected a signal on both sides")
     bad = ~(np.isfinite(rec.left) & np.isfinite(rec.right))
     n_nan = int(np.count_nonzero(bad))
     n_gaps = int(np.count_nonzero(np.diff(np.r_[0, bad.astype(np.int8)]) == 1))

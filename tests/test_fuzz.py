@@ -569,9 +569,9 @@ def spoiled(kind: str, a, b, data):
         rms, dec = draw(st.floats(0.005, 2.0)), draw(st.integers(0, 4))
         g = rms / max(a.std(), b.std())
         return tuple(sy.quantize(g * x, 10.0 ** -dec) for x in (a, b)) + (f"RMS {rms:.3g}, {dec} decimals",)
-    if kind == "clipped":
-        p = draw(st.floats(0.3, 1.0))
-        return each(lambda x: sy.clip(x, np.quantile(np.abs(x), p))) + (f"at the {p:.3g} quantile, {side}",)
+    if kind == "clipped":        # 0.01 % to 70 % of the samples, evenly in the logarithm
+        p = 1.0 - 10.0 ** draw(st.floats(-4.0, -0.15))
+        return each(lambda x: sy.clip(x, np.quantile(np.abs(x), p))) + (f"at the {p:.4g} quantile, {side}",)
     if kind == "offset and drift":
         o, sl, w = draw(st.floats(-1e3, 1e3)), draw(st.floats(-20.0, 20.0)), draw(st.floats(0.0, 10.0))
         return each(lambda x: sy.drift(x, FS_SPOIL, o, sl, w, draw(st.floats(0.2, 100.0)))) + (

@@ -82,8 +82,8 @@ def check(x: np.ndarray, name: str) -> list[str]:
     samples (module docstring); returns the warnings for what is read (some clipping)."""
     lo, hi = float(np.min(x)), float(np.max(x))
     if lo == hi:
-        raise ParameterError(f"{name} is constant ({lo:g} in all {x.size} samples): a dropped sensor; "
-                             "expected a signal on both sides")
+        raise ParameterError(f"{name} is constant ({lo:g} in all {x.size} samples): a dropped sensor "
+                             "(or a range far too coarse); expected a signal on both sides")
     d = x - x.mean()
     rms = float(np.sqrt(np.mean(d * d)))
     q = quantum(x)
