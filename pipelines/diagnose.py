@@ -19,7 +19,7 @@ from axlebox.bearing.diagnostics.channel import jsonable
 from axlebox.bearing.catalogue import custom, lookup
 from axlebox.bearing.frequencies import FaultOrders, shaft_hz
 
-from .readers import Record, read
+from .readers import MAX_SAMPLES, Record, read
 
 BOTH = "faults on both sides"
 
@@ -142,15 +142,17 @@ def write_json(path, data: dict) -> Path:
 
 def read_input(path, *, left=None, right=None, fs=None, column: int = 2, speed_channel=None,
                speed_unit: str = "km/h", tacho=None, tacho_threshold=None, speed_csv=None,
-               wheel_radius: float = 0.42):
+               wheel_radius: float = 0.42, max_samples: int | None = None):
     """The record and its shaft speed over time (:mod:`.speed`; None where nothing gives it):
-    ``(Record, Speed | None)``; a tacho's record is cut to the span of its pulses."""
+    ``(Record, Speed | None)``; a tacho's record is cut to the span of its pulses.  The record
+    is read on its middle ``max_samples`` (all where None; :func:`.readers.read`) and around its
+    gaps (:func:`.readers.condition`); a speed channel or profile on the same samples."""
     from . import speed as sp
     given = [o for o, v in (("--speed-channel", speed_channel), ("--tacho", tacho),
                             ("--speed-csv", speed_csv)) if v is not None]
     if len(given) > 1:
         raise ParameterError(f"{' and '.join(given)} both given: expected one source of the speed")
-    rec = read(path, left, right, fs, column)
+    rec = read(path, left, right, fs, column, max_samples=max_samples)
     if given and rec.kind == "axlebox-result":
         raise ParameterError(f"{given[0]} is not allowed on a result file: it stores its own shaft "
                              "angle (a run along a speed profile) or speed (its config)")
@@ -162,7 +164,8 @@ def read_input(path, *, left=None, right=None, fs=None, column: int = 2, speed_c
             continue
         opt = "--speed-channel" if name is speed_channel else "--tacho"
         try:
-            x = read(path, name, name, rec.fs, column).left
+            x = read(path, name, name, rec.fs, column, samples=(rec.start, rec.start + rec.left.size),
+                     clean=False).left
         except ParameterError as err:
             raise ParameterError(str(err).replace("--left", opt)) from None
         if x.size != rec.left.size:
@@ -170,7 +173,8 @@ def read_input(path, *, left=None, right=None, fs=None, column: int = 2, speed_c
                                  f"have {rec.left.size}; expected one a sample")
         speed = make(x)
     if speed_csv is not None:
-        speed = sp.from_csv(speed_csv, rec.left.size, rec.fs, speed_unit, wheel_radius)
+        speed = sp.from_csv(speed_csv, rec.start + rec.left.size, rec.fs, speed_unit, wheel_radius)
+        speed = replace(speed, angle=speed.angle[rec.start:])     # times from the file's first sample
     if rec.angle is not None:
         speed = sp.Speed(rec.angle, f"the file's shaft angle ({rec.names[0].split('_')[0]})")
     if speed is not None and not np.all(np.isfinite(speed.angle)):      # a tacho's pulses' span
@@ -178,7 +182,9 @@ def read_input(path, *, left=None, right=None, fs=None, column: int = 2, speed_c
         sl = slice(keep[0], keep[-1] + 1)
         rec.left, rec.right = rec.left[sl], rec.right[sl]
         speed = sp.Speed(speed.angle[sl], speed.source, speed.rotor)
-        rec.notes.append(f"cut to the tacho's pulses: samples {keep[0]} to {keep[-1]}")
+        k0, k1 = rec.start + int(keep[0]), rec.start + int(keep[-1])
+        rec.notes.append(f"cut to the tacho's pulses: samples {k0} to {k1}")
+        rec.start = k0
     return rec, speed
 
 
@@ -273,11 +279,19 @@ READ_OPTIONS = ("left", "right", "fs", "column", "speed_channel", "speed_unit", 
 
 
 def analyse_file(path, **options):
-    """Read ``path`` (:func:`read_input`, the options of :data:`READ_OPTIONS`) and analyse both
+    """Read ``path`` (:func:`read_input`, the options of :data:`READ_OPTIONS`; at most
+    :data:`.readers.MAX_SAMPLES` a channel, the middle of a longer record) and analyse both
     sides (:func:`analyse_record`, the rest): ``(record, input info, PairResult)``."""
-    rec, speed = read_input(path, **{k: v for k, v in options.items() if k in READ_OPTIONS})
+    rec, speed = read_input(path, max_samples=MAX_SAMPLES,
+                            **{k: v for k, v in options.items() if k in READ_OPTIONS})
     rest = {k: v for k, v in options.items() if k not in READ_OPTIONS or k == "wheel_radius"}
-    info, res = analyse_record(rec, speed, **rest)
+    try:
+        info, res = analyse_record(rec, speed, **rest)
+    except ParameterError as err:
+        if not rec.notes:
+            raise
+        # what was read says why a record is too short, say: the stretch between its gaps
+        raise ParameterError(f"{err} ({'; '.join(rec.notes)})") from None
     return rec, {"file": str(path), **info}, res
 
 

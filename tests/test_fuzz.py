@@ -8,6 +8,7 @@ in one line; nothing else escapes (no traceback), and every case ends (hypothesi
 a per-case time limit instead).  ``AXLEBOX_FULL=1``: 500 cases per entry point; CI: 30.
 ``benchmarks/fuzz.py`` runs the full size and prints the distinct messages seen.
 """
+import json
 import os
 import re
 import signal
@@ -20,7 +21,7 @@ from unittest.mock import patch
 import h5py
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, given, note, settings
 from hypothesis import strategies as st
 
 from axlebox._params import ParameterError
@@ -513,6 +514,159 @@ def test_bodies_export(tiny_body_bytes, fmt, out, damage, data):
         src.write_bytes(damaged(tiny_body_bytes, data, anywhere=True) if damage else tiny_body_bytes)
         cli_exits_0_or_2("bodies export", ["bodies", "export", str(src), "--format", fmt, "--out",
                                            tmp if out == "(folder)" else str(Path(tmp) / out)])
+
+
+# ------------------------------------------ spoiled records: what a real acquisition does (issue 57)
+# Each class of spoiling drawn over its parameters, on a healthy wheelset and on an outer-ring
+# defect and its copy (bearing/diagnostics/synthetic.py, 1 s at 10 kHz, 48 km/h, the DTRB),
+# through ``axlebox diagnose`` on a CSV and through analyse_pair on the arrays: each is read
+# (exit 0) or refused in one line (exit 2 / ParameterError), never exit 1; and no spoiling turns
+# a healthy side faulty (real fault, faults on both sides), the worst error.  The outcomes
+# (read and right, read, refused, crashed) go to SEEN for benchmarks/fuzz.py's figure.
+
+N_SPOIL = 40 if full_size() else 3
+SPOIL_SETTINGS = settings(max_examples=N_SPOIL, deadline=None, database=None, derandomize=True,
+                          suppress_health_check=list(HealthCheck))
+FS_SPOIL, T_SPOIL, KMH = 1e4, 1.0, 48.0
+FAULTY = ("real fault", "faults on both sides")
+SPOIL_CLASSES = ("quantized (ADC bits)", "quantized (decimals)", "clipped", "offset and drift",
+                 "held stretch", "NaN gaps", "one channel all zeros", "channels of different lengths",
+                 "shorter than two cage periods")
+
+
+@pytest.fixture(scope="module")
+def bases():
+    """(left, right, defect side or None) for seeds 0-1: a healthy wheelset, a defect on the left."""
+    from axlebox.bearing.diagnostics.synthetic import coaxial_pair
+    from axlebox.bearing.frequencies import orders, shaft_hz
+    from axlebox.bearing.params import BearingParams
+    f = orders(BearingParams()).BPFO * shaft_hz(KMH)
+    out = []
+    for seed in range(2):
+        for amp in (0.0, 1.0):
+            a, b = coaxial_pair(T_SPOIL, FS_SPOIL, f, np.random.default_rng(seed), amplitude=amp)
+            out.append((a, b, "left" if amp else None))
+    return out
+
+
+def spoiled(kind: str, a, b, data):
+    """The pair ``a, b`` spoiled as ``kind`` says, its parameters drawn from ``data``: the two
+    channels (NaN where a sample is lost; a shorter channel padded with NaN, an empty cell in
+    the CSV) and a short description."""
+    from axlebox.bearing.diagnostics import synthetic as sy
+    n = a.size
+    draw = data.draw
+    side = draw(st.sampled_from(["left", "right", "both"]))
+    which = {"left": (True, False), "right": (False, True), "both": (True, True)}[side]
+
+    def each(fn):
+        return tuple(fn(x) if w else x for x, w in zip((a, b), which))
+    if kind == "quantized (ADC bits)":
+        bits, k = draw(st.integers(8, 16)), draw(st.floats(3.0, 50.0))
+        fsc = k * max(a.std(), b.std())
+        return each(lambda x: sy.adc(x, bits, fsc)) + (f"{bits} bits on +-{k:.3g} RMS, {side}",)
+    if kind == "quantized (decimals)":
+        rms, dec = draw(st.floats(0.005, 2.0)), draw(st.integers(0, 4))
+        g = rms / max(a.std(), b.std())
+        return tuple(sy.quantize(g * x, 10.0 ** -dec) for x in (a, b)) + (f"RMS {rms:.3g}, {dec} decimals",)
+    if kind == "clipped":        # 0.01 % to 70 % of the samples, evenly in the logarithm
+        p = 1.0 - 10.0 ** draw(st.floats(-4.0, -0.15))
+        return each(lambda x: sy.clip(x, np.quantile(np.abs(x), p))) + (f"at the {p:.4g} quantile, {side}",)
+    if kind == "offset and drift":
+        o, sl, w = draw(st.floats(-1e3, 1e3)), draw(st.floats(-20.0, 20.0)), draw(st.floats(0.0, 10.0))
+        return each(lambda x: sy.drift(x, FS_SPOIL, o, sl, w, draw(st.floats(0.2, 100.0)))) + (
+            f"offset {o:.3g}, slope {sl:.3g}/s, wander {w:.3g}, {side}",)
+    if kind == "held stretch":
+        i0, m = draw(st.integers(0, n - 1)), draw(st.integers(1, n))
+        v = draw(st.sampled_from([None, 0.0]))
+        return each(lambda x: sy.hold(x, i0, m, v)) + (f"{m} samples from {i0} held at {v}, {side}",)
+    if kind == "NaN gaps":
+        k, m = draw(st.integers(1, 20)), draw(st.integers(1, 2000))
+        starts = draw(st.lists(st.integers(0, n - 1), min_size=k, max_size=k))
+        return each(lambda x: sy.gaps(x, starts, m)) + (f"{k} gaps of {m} samples, {side}",)
+    if kind == "one channel all zeros":
+        z = draw(st.sampled_from(["left", "right"]))
+        return (np.zeros(n), b, "left all zeros") if z == "left" else (a, np.zeros(n), "right all zeros")
+    if kind == "channels of different lengths":
+        m = draw(st.integers(1, n - 1))
+        cut = np.r_[np.ones(n - m), np.full(m, np.nan)]
+        return each(lambda x: x * cut) + (f"{side} {m} samples shorter",)
+    m = draw(st.integers(8, int(0.9 / 2.203 * 2 * FS_SPOIL) - 1))     # two FTF periods at 48 km/h
+    return a[:m], b[:m], f"{m} samples"
+
+
+def score(entry: str, words: dict | None, defect, outcome: str) -> None:
+    """Counts ``outcome`` (a refusal's kind, or "crashed") or, for a read, whether its verdict
+    is right: the defect side a real fault and the other not faulty, or both healthy; and
+    asserts the worst error absent: no healthy side called faulty."""
+    if words is not None:
+        healthy = [s for s in ("left", "right") if s != defect]
+        assert not any(words[s] in FAULTY for s in healthy), (entry, words, defect)
+        right = (words[defect] == "real fault") if defect else True
+        outcome = "read, right" if right else f"read, {words}"
+    SEEN.setdefault(entry, Counter())[outcome] += 1
+
+
+def _csv(path: Path, a, b) -> None:
+    """Two columns; a NaN is written as an empty cell where the channel has ended (NaN to its
+    end), as ``nan`` elsewhere."""
+    def cells(x):
+        tail = x.size - np.argmax(~np.isnan(x[::-1])) if np.isfinite(x).any() else 0
+        return [("" if i >= tail else "nan") if v != v else repr(float(v)) for i, v in enumerate(x)]
+    path.write_text("a,b\n" + "\n".join(f"{u},{v}" for u, v in zip(cells(a), cells(b))) + "\n")
+
+
+@pytest.mark.parametrize("kind", SPOIL_CLASSES)
+@SPOIL_SETTINGS
+@given(data=st.data())
+def test_spoiled_record_through_the_command(bases, kind, data):
+    """``axlebox diagnose REC.csv --fs 1e4 --speed-kmh 48`` on a spoiled record: exit 0 or 2 in
+    one line; read, no healthy side called faulty."""
+    a, b, defect = bases[data.draw(st.integers(0, len(bases) - 1))]
+    x_l, x_r, what = spoiled(kind, a, b, data)
+    note(what)
+    with tempfile.TemporaryDirectory() as tmp:
+        p, out = Path(tmp) / "rec.csv", Path(tmp) / "rec.json"
+        _csv(p, x_l, x_r)
+        try:
+            rc = cli_exits_0_or_2(f"spoiled: {kind} (command)",
+                                  ["diagnose", str(p), "--fs", str(FS_SPOIL), "--speed-kmh", str(KMH),
+                                   "--json", str(out)])
+        except AssertionError:
+            score(f"spoiled: {kind} (command)", None, defect, "crashed")
+            raise
+        words = json.loads(out.read_text())["verdict"]["words"] if rc == 0 else None
+    score(f"spoiled: {kind}", words, defect, "refused" if rc else "")
+
+
+@pytest.mark.parametrize("kind", SPOIL_CLASSES)
+@SPOIL_SETTINGS
+@given(data=st.data())
+def test_spoiled_record_through_analyse_pair(bases, kind, data):
+    """``analyse_pair`` on the spoiled arrays: a result, or a one-line ParameterError (NaN and
+    channels of different lengths are refused there: reading around gaps is the readers' job);
+    no healthy side called faulty."""
+    from axlebox.bearing.catalogue import lookup
+    from axlebox.bearing.diagnostics.pair import analyse_pair
+    from axlebox.bearing.frequencies import shaft_hz
+    a, b, defect = bases[data.draw(st.integers(0, len(bases) - 1))]
+    x_l, x_r, what = spoiled(kind, a, b, data)
+    note(what)
+    if kind == "channels of different lengths":
+        x_l, x_r = x_l[np.isfinite(x_l)], x_r[np.isfinite(x_r)]
+    dtrb = lookup("dtrb")
+    entry = f"spoiled: {kind} (analyse_pair)"
+    with time_limit(60.0):
+        try:
+            r = analyse_pair(x_l, x_r, FS_SPOIL, shaft_hz(KMH), dtrb.orders, dtrb.bore)
+        except ParameterError as err:
+            assert str(err) and "\n" not in str(err), str(err)
+            SEEN.setdefault(entry, Counter())[kind_of(str(err))] += 1
+            return
+        except Exception as err:
+            score(entry, None, defect, f"crashed: {type(err).__name__}")
+            raise
+    score(entry, r.verdict.words, defect, "")
 
 
 def teardown_module():

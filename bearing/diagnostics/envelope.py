@@ -25,7 +25,7 @@ def _signal(x, name: str = "x") -> np.ndarray:
                              "at least 8 samples")
     bad = np.flatnonzero(~np.isfinite(x))
     if bad.size:
-        raise ParameterError(f"{name}[{bad[0]}] = {x[bad[0]]!r} is not allowed: expected finite "
+        raise ParameterError(f"{name}[{bad[0]}] = {float(x[bad[0]])!r} is not allowed: expected finite "
                              f"samples ({bad.size} are not)")
     return x
 

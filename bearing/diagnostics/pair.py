@@ -14,6 +14,7 @@ import numpy as np
 from axlebox._params import ParameterError
 
 from ..frequencies import FaultOrders
+from . import acquisition
 from .channel import LINE_OPTIONS, LINES, ChannelResult, analyse, reguide, welch_segment
 from .coherence import line_timing
 from .gate import wheel_gate
@@ -35,7 +36,8 @@ class PairResult:
     :class:`.verdict.LineEvidence` it read; ``names``: the channels' names in the source;
     ``bearings``: each side's bearing name; ``rotor``: what turns the shaft, ``"wheel"`` (a
     vehicle) or ``"shaft"`` (a machine; :data:`.verdict.ROTORS`); ``orders``: each side's
-    FaultOrders; ``spread``: the shaft speed's range over its mean as the record was read."""
+    FaultOrders; ``spread``: the shaft speed's range over its mean as the record was read;
+    ``warnings``: what the acquisition spoiled but left readable (:mod:`.acquisition`: clipping)."""
 
     def _kinds_kw(self) -> dict:
         """What :func:`.criterion.decide` names the faults' kinds from."""
@@ -58,6 +60,7 @@ class PairResult:
     rotor: str = "wheel"
     orders: tuple = ()
     spread: float = 0.0
+    warnings: tuple[str, ...] = ()
 
     @property
     def shares(self) -> dict:
@@ -97,7 +100,7 @@ class PairResult:
                 "left": self.left.to_dict(), "right": self.right.to_dict(),
                 "lag": self.lag.to_dict(), "vf_diff_hz2": self.vf_diff,
                 "criterion": {**self.criterion.to_dict(), "m": self.m}, "rotor": self.rotor,
-                "verdict": self.verdict.to_dict(),
+                "verdict": self.verdict.to_dict(), "warnings": list(self.warnings),
                 "verdicts": {s: {"verdict": self.verdict.words[s], "reason": sentence(self.verdict, s)}
                              for s in SIDES}}
 
@@ -130,6 +133,7 @@ class PairResult:
         for s, k in self.verdict.kinds.items():
             if k is not None:
                 out.append(f"{s} fault: {k.text()}")
+        out += [f"warning: {w}" for w in self.warnings]
         return "\n".join(out)
 
     def plot(self, path=None):
@@ -251,6 +255,9 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
     if xs[0].size != xs[1].size:
         raise ParameterError(f"channels of {xs[0].size} and {xs[1].size} samples are not allowed: "
                              "expected two channels of the same length")
+    warnings = () if _wheel is not None else tuple(   # _wheel: the gated record of a call above
+        w for side, x, n in (("left", xs[0], names[0]), ("right", xs[1], names[1]))
+        for w in acquisition.check(x, f"{side} channel {n!r}"))
     if not (isinstance(shaft_hz, (int, float, np.floating)) and math.isfinite(shaft_hz) and shaft_hz > 0):
         raise ParameterError(f"shaft_hz = {shaft_hz!r} is not allowed: expected a frequency > 0 Hz")
     fo, bore = _pair_of(orders, "orders"), _pair_of(D, "D")
@@ -283,9 +290,9 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
                          gate=False, rotor=rotor, lines=lines, keep=keep, spread=spread,
                          _wheel={s: (r.wheel_env, r.wheel_spec) for s, r in res.items()},
                          **channel_kw)
-        return replace(p, gate=g, verdict=decide(p.left, p.right, p.lag, criterion,
-                                                 list(p.evidence), gate=g, rotor=rotor,
-                                                 **p._kinds_kw()))
+        return replace(p, gate=g, warnings=warnings,
+                       verdict=decide(p.left, p.right, p.lag, criterion, list(p.evidence), gate=g,
+                                      rotor=rotor, **p._kinds_kw()))
     if _wheel is not None:          # the wheel's lines as the record came, before the blanking
         res = {s: replace(r, wheel_env=_wheel[s][0], wheel_spec=_wheel[s][1]) for s, r in res.items()}
     line_kw = {k: v for k, v in channel_kw.items() if k in LINE_OPTIONS}
@@ -306,7 +313,7 @@ def analyse_pair(x_left, x_right, fs: float, shaft_hz: float, orders, D,
                       vf_diff=abs(res["left"].VF - res["right"].VF), m=m, criterion=criterion,
                       verdict=v, names=tuple(names), evidence=tuple(evidence),
                       bearings=tuple(bearings), x_left=xs[0], x_right=xs[1], rotor=rotor,
-                      orders=tuple(fo), spread=float(spread))
+                      orders=tuple(fo), spread=float(spread), warnings=warnings)
 
 
 def _lag(xs, fs, res, fo, shaft_hz, max_lag_s) -> LagResult:

@@ -17,8 +17,9 @@ segments spread evenly over the record, each ``n_periods`` fault periods long (`
 
 1. the segment (mean removed) is scaled to unit standard deviation, decomposed into at most
    ``max_imf`` IMFs (extrema refined by parabolic interpolation, since a resonance of a few kHz
-   has only a few samples a cycle at 10 kHz) and scaled back, so SV is exactly proportional to
-   the amplitude (PyEMD's stopping thresholds are absolute numbers);
+   has only a few samples a cycle at 10 kHz; found on runs of equal samples, :class:`SiftEMD`)
+   and scaled back, so SV is exactly proportional to the amplitude (PyEMD's stopping thresholds
+   are absolute numbers);
 2. IMFs are kept from the first up to the most impulsive one (highest Pearson kurtosis):
    EMD sorts content from high to low frequency, the impulses ring the structure's
    high-frequency resonances, so they land in the first IMF(s) (split over two when modes
@@ -54,12 +55,86 @@ NORMAL_BELOW_DB = 21.0
 SERIOUS_ABOVE_DB = 35.0
 
 
+def run_extrema(T: np.ndarray, S: np.ndarray):
+    """``(max_pos, max_val, min_pos, min_val, indzer)`` of ``S`` sampled at ``T``, as PyEMD's
+    ``EMD.find_extrema`` returns them, found on the runs of equal samples.
+
+    An extremum is a run of equal samples (one sample or more, not at either end) above both
+    neighbouring runs (a maximum) or below both (a minimum).  A one-sample extremum at ``k`` is
+    refined by the parabola through ``k - 1``, ``k``, ``k + 1``, with PyEMD's own arithmetic
+    (``EMD._find_extrema_parabol``), so that on a record without equal neighbours the extrema
+    are PyEMD's to the last bit; its vertex lies within half a sample of ``k`` (the middle
+    sample is above or below both others), clipped there against rounding.  A run of two or
+    more samples stands at its middle with its value: the samples of a quantized signal near
+    its peak lie within half a step of it, and nothing in them says on which side the peak is.
+
+    Why not PyEMD's parabolic detection (``extrema_detection="parabol"``): it fits a parabola
+    to every three consecutive samples and keeps its vertex where it falls within half a sample
+    of the middle one.  Two equal neighbours put the vertex exactly on that half-sample border,
+    so every step of a quantized record (values stored to 0.001 of a unit whose RMS is 0.06:
+    about 2 % of the samples equal their neighbour) becomes an extremum, on a rising or falling
+    slope too, once or (by rounding) twice, a maximum and a minimum at one time.  Maxima and
+    minima then no longer alternate, and PyEMD's mirroring of the extrema at the record's ends
+    (``EMD.prepare_points_parabol``, which assumes they do) leaves knots out of order or short
+    of the ends: scipy's spline refuses them (``ValueError: `x` must be strictly increasing
+    sequence``, a real record's SPM stopped on it) or the envelopes come out shorter than the
+    record (a broadcast error).  Here maxima and minima alternate by construction, one a run,
+    each within its own run's span, so the positions increase strictly; PyEMD's
+    ``extrema_detection="simple"`` finds plateaus so too but gives up the parabolic refinement.
+
+    ``indzer``: the zero crossings, as PyEMD counts them (for its stopping rule)."""
+    S1, S2 = S[:-1], S[1:]
+    indzer = np.nonzero(S1 * S2 < 0)[0]
+    if np.any(S == 0):                     # PyEMD's: a run of zeros is one crossing, at its middle
+        indz = np.nonzero(S == 0)[0]
+        if np.any(np.diff(indz) == 1):
+            dz = np.diff(np.concatenate(([0], S == 0, [0])))
+            indz = np.round((np.nonzero(dz == 1)[0] + np.nonzero(dz == -1)[0] - 1) / 2.0)
+        indzer = np.sort(np.append(indzer, indz))
+    first = np.flatnonzero(np.r_[True, S[1:] != S[:-1]])          # each run's first sample
+    last = np.r_[first[1:] - 1, S.size - 1]
+    v = S[first]
+    mid = slice(1, -1)                                             # the end runs are not extrema
+    is_max = (v[mid] > v[:-2]) & (v[mid] > v[2:])
+    is_min = (v[mid] < v[:-2]) & (v[mid] < v[2:])
+    f, la = first[mid], last[mid]
+    pos = 0.5 * (T[f] + T[la])                                     # runs of two or more samples
+    val = v[mid].copy()
+    one = np.flatnonzero((f == la) & (is_max | is_min))
+    if one.size:
+        k = f[one]
+        Tp, T0, Tn = T[k - 1], T[k], T[k + 1]
+        Sp, S0, Sn = S[k - 1], S[k], S[k + 1]
+        # EMD._find_extrema_parabol's arithmetic, term by term
+        TnTp, T0Tn, TpT0 = Tn - Tp, T0 - Tn, Tp - T0
+        scale = Tp * Tn * Tn + Tp * Tp * T0 + T0 * T0 * Tn - Tp * Tp * Tn - Tp * T0 * T0 - T0 * Tn * Tn
+        a = (T0Tn * Sp + TnTp * S0 + TpT0 * Sn) / scale
+        b = ((S0 - Sn) * Tp**2 + (Sn - Sp) * T0**2 + (Sp - S0) * Tn**2) / scale
+        c = (T0 * Tn * T0Tn * Sp + Tn * Tp * TnTp * S0 + Tp * T0 * TpT0 * Sn) / scale
+        a[a == 0] = 1e-14
+        t = np.clip(-0.5 * b / a, T0 - 0.5 * (T0 - Tp), T0 + 0.5 * (Tn - T0))
+        pos[one], val[one] = t, a * t * t + b * t + c
+    return pos[is_max], val[is_max], pos[is_min], val[is_min], indzer
+
+
+class SiftEMD(EMD):
+    """PyEMD's EMD (cubic-spline envelopes, its mirroring at the ends and stopping rules) with
+    the parabolic extrema of :func:`run_extrema`, which hold on records with runs of equal
+    samples (quantized, clipped or held)."""
+
+    def __init__(self, **kw):
+        super().__init__(extrema_detection="parabol", **kw)    # parabol: the mirroring of points off the grid
+
+    def find_extrema(self, T, S):
+        return run_extrema(T, S)
+
+
 def _segment_level(seg: np.ndarray, max_imf: int) -> float:
     seg = seg - seg.mean()
     s = seg.std()
     if s == 0.0:
         return 0.0
-    emd = EMD(extrema_detection="parabol")
+    emd = SiftEMD()
     emd.emd(seg / s, max_imf=max_imf)
     imfs, _ = emd.get_imfs_and_residue()
     if imfs.shape[0] == 0:

@@ -105,3 +105,53 @@ def both_sides_pair(T: float, fs: float, f_fault: float, rng, *, amplitude=(1.0,
     own_r, copy_l = np.roll(own_r, k), np.roll(copy_l, k)
     return (own_l + copy_l + noise * wheel_rail_noise(n, fs, rng),
             own_r + copy_r + noise * wheel_rail_noise(n, fs, rng))
+
+
+# ------------------------------------------------------------------ what an acquisition spoils
+# The ways a real acquisition spoils a record (issue 57, item 1), each a function of the channel
+# and its parameters, for the property-based tests and benchmarks/fuzz.py.
+
+
+def quantize(x, step: float) -> np.ndarray:
+    """``x`` rounded to a multiple of ``step``: an ADC's least significant bit, or samples
+    stored to a few decimals (``step = 10**-decimals``)."""
+    return np.round(np.asarray(x, float) / step) * step
+
+
+def adc(x, bits: int, full_scale: float) -> np.ndarray:
+    """``x`` through an ideal ADC of ``bits`` bits on ``+- full_scale``: clipped at the range
+    (the codes' ends) and quantized to ``2 full_scale / 2**bits``."""
+    step = 2.0 * full_scale / 2 ** bits
+    return np.clip(quantize(x, step), -full_scale, full_scale - step)
+
+
+def clip(x, level: float) -> np.ndarray:
+    """``x`` clipped at ``+- level`` (an amplifier or ADC saturating)."""
+    return np.clip(np.asarray(x, float), -level, level)
+
+
+def drift(x, fs: float, offset: float, slope: float = 0.0, amplitude: float = 0.0,
+          period_s: float = 60.0) -> np.ndarray:
+    """``x`` plus a DC ``offset``, a linear drift of ``slope`` units a second and a slow
+    sinusoidal wander of ``amplitude`` and period ``period_s`` (a sensor's bias settling, a
+    temperature's swing)."""
+    t = np.arange(np.asarray(x).size) / fs
+    return np.asarray(x, float) + offset + slope * t + amplitude * np.sin(2 * np.pi * t / period_s)
+
+
+def hold(x, start: int, n: int, value: float | None = None) -> np.ndarray:
+    """``x`` with samples ``start .. start + n`` held at ``value`` (default: the sample before,
+    a logger repeating its last reading while the sensor is away)."""
+    y = np.array(x, float)
+    start = int(np.clip(start, 0, y.size))
+    y[start:start + n] = y[max(start - 1, 0)] if value is None else value
+    return y
+
+
+def gaps(x, starts, length: int) -> np.ndarray:
+    """``x`` with ``length`` samples from each of ``starts`` set to NaN (a logger's lost
+    packets)."""
+    y = np.array(x, float)
+    for s in np.atleast_1d(starts):
+        y[int(s):int(s) + length] = np.nan
+    return y
