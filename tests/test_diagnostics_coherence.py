@@ -54,6 +54,39 @@ def test_coherence_of_two_drifting_lines_is_the_dirichlet_kernel(delta):
     assert (delta == 0.0) == (want == "coherent")
 
 
+@pytest.mark.parametrize("delta, p", [(0.0, 0.15), (1.0, 0.5)])
+def test_a_copy_whose_strength_changes_is_still_one_train(delta, p):
+    """Side B carries A's 40 Hz modulation (``delta`` = 0: a copy) over the record's first
+    ``p`` only, then its carrier alone: a copy whose path stops carrying the line, as the accelerating
+    car's healthy side stops carrying the copy's 5th harmonic (coherence.py).  The segments'
+    coherence is then the Cauchy-Schwarz bound ``(sum_j u_j)^2 / (K sum_j u_j^2)``, ``u_j`` the
+    share of segment j's Hann weight before the change (about ``p``): what a copy in step with
+    its source gives when its strength changes.  The copy's reference ``g2_copy`` is that bound,
+    so the coherent fraction is 1 and the line one train; B's line ``delta`` Hz off A's (its own
+    timing) still reads ``|sum_j u_j exp(2 pi i delta t_j)|^2 / (sum_j u_j)^2``, the Dirichlet
+    kernel over the segments that hold it (half the record, two turns of the phase: about 0):
+    two trains.  (With the stationary reference
+    ``rho_a / (1 + rho_a) rho_b / (1 + rho_b)``, 1 here, the copy read a fraction of 0.15:
+    independent, a healthy side called faulty.)"""
+    f, T = 40.0, 8.0
+    t = np.arange(int(T * FS)) / FS
+    gate = t < p * T
+    b = np.where(gate, am(f + delta), np.cos(2 * np.pi * 3000.0 * t))
+    tm = timing(am(f), b, FS, f, [BAND], [BAND], n_periods=8)
+    h = tm.pairs[0].harmonics[0]
+    nper = int(round(8 * FS / f))
+    step = nper - nper // 2
+    starts = np.arange(1 + (t.size - nper) // step) * step
+    w = np.hanning(nper + 2)[1:-1]
+    u = np.array([np.sum(w * gate[j:j + nper]) / np.sum(w) for j in starts])
+    bound = np.sum(u) ** 2 / (u.size * np.sum(u ** 2))
+    assert bound == pytest.approx(p, abs=0.01)
+    assert h.g2_copy == pytest.approx(bound, rel=0.03)
+    expect = abs(np.sum(u * np.exp(2j * np.pi * delta * starts / FS))) ** 2 / np.sum(u) ** 2
+    assert h.c == pytest.approx(expect, abs=0.03)
+    assert tm.decision == ("coherent" if delta == 0.0 else "independent"), h
+
+
 def test_timing_is_symmetric_and_refuses_bad_input():
     """Swapping the channels swaps rho_a and rho_b and leaves the coherence as it was."""
     rng = np.random.default_rng(1)

@@ -200,6 +200,7 @@ def _segments(e: np.ndarray, nper: int) -> np.ndarray:
     return np.fft.rfft(seg * get_window("hann", nper), axis=1)
 
 
+LN2 = math.log(2.0)      # an exponential variable's median over its mean (a noise bin's power)
 HALF = 24                # bins each side of a harmonic kept: the window and its noise ring
 
 
@@ -225,6 +226,22 @@ def _bins(sideband_bins: float | None, comb: int) -> tuple[np.ndarray, np.ndarra
     return win, (keep if keep.size >= 8 else near)
 
 
+def _copy_g2(Za, Zb, win, ring) -> float:
+    """What a perfect copy would give the window's coherence, segment by segment: each side's
+    line power in segment ``j``, ``s_j = P_j - N_j`` (the window's bins ``win`` less the noise,
+    the median of the ring's bins ``ring`` over ``ln 2``, an exponential variable's median over
+    its mean; at least 0), and ``g2_copy = (sum_j sqrt(s_a,j s_b,j))^2 / (sum_j P_a,j sum_j
+    P_b,j)``: the Cauchy-Schwarz bound of the segments' cross-spectrum for two lines in step
+    whose strengths are what each side shows.  Where the lines hold their strength over the
+    record it is Bendat and Piersol's ``rho_a / (1 + rho_a) rho_b / (1 + rho_b)``; where a
+    copy's strength changes (the accelerating car: module docstring) it is lower, by what the
+    change alone takes from the coherence, so ``c`` reads the lines' timing alone."""
+    P = [np.sum(np.abs(Z[:, win]) ** 2, axis=1) for Z in (Za, Zb)]
+    s = [np.maximum(p - win.size * np.median(np.abs(Z[:, ring]) ** 2, axis=1) / LN2, 0.0)
+         for p, Z in zip(P, (Za, Zb))]
+    return float(np.sum(np.sqrt(s[0] * s[1])) ** 2 / max(float(np.sum(P[0]) * np.sum(P[1])), 1e-300))
+
+
 def _harmonic(Za, Zb, k, f_bin, K, win, ring) -> Harmonic:
     """The statistics of one harmonic from the two sides' segment FFTs over the bins centred on
     it; ``win``/``ring``: the line's and the noise's bin offsets (:func:`_bins`)."""
@@ -238,7 +255,7 @@ def _harmonic(Za, Zb, k, f_bin, K, win, ring) -> Harmonic:
     ra = max(Pa - Na, 0.0) / max(Na, 1e-300)
     rb = max(Pb - Nb, 0.0) / max(Nb, 1e-300)
     g2 = float(np.abs(Sab[i + win]).sum() ** 2 / max(Pa * Pb, 1e-300))
-    g2c = ra / (1 + ra) * rb / (1 + rb)
+    g2c = _copy_g2(Za, Zb, i + win, i + ring)
     c = g2 / g2c if g2c > 0 else math.nan
     z = (_fisher(g2c) - _fisher(g2)) * math.sqrt(max(2 * K - 2, 1.0))
     db = [10 * math.log10(r) if r > 0 else -math.inf for r in (ra, rb)]
