@@ -110,15 +110,21 @@ def synthetic(seeds: int) -> None:
           f"clock; coherent fraction per harmonic, median of {seeds} seeds [the coherence a fixed "
           "delay's turn leaves]")
     for name, T, f0, f1 in cases:
-        for delay, undo in ((0.0, False), (1.2e-3, False), (1.2e-3, True), (5e-3, False), (5e-3, True)):
+        variants = [(0.0, None), (1.2e-3, None), (1.2e-3, "true"), (5e-3, None), (5e-3, "true")]
+        if f1 != f0:
+            variants[1:1] = [(0.0, "lag")]
+        for delay, undo in variants:
             cs = []
             for s in range(seeds):
                 a, b, ang = swept_coaxial_pair(T, FS, order, f0, f1, np.random.default_rng(s),
                                                delay_s=delay, noise=0.1)
                 if f1 == f0:
                     ang = f0 * np.arange(a.size) / FS
-                if undo:                       # the copy's delay taken out in time, before the clock
+                if undo == "true":             # the copy's delay taken out in time, before the clock
                     b = np.roll(b, -int(round(delay * FS)))
+                elif undo == "lag":            # the envelopes' lag, as read in time, taken out
+                    lag = time_lag(a, b, FS, band, 0.5 / (order * f0)).delay_b_samples / FS
+                    b = _shift(b, lag, FS)
                 f_mean = (ang[-1] - ang[0]) * FS / (ang.size - 1)
                 with angle_clock(ang, FS):
                     t = co.timing(a, b, FS, order * f_mean, [band], [band], line="BPFO")
@@ -129,9 +135,10 @@ def synthetic(seeds: int) -> None:
             nper = int(round(max(8, int(T * order * f_mean) // 16) * FS / (order * f_mean)))
             tj = (np.arange(1 + (a.size - nper) // (nper // 2)) * (nper // 2) + nper / 2) / FS
             fj = f0 + (f1 - f0) * tj / T
-            tau = 0.0 if undo else delay
+            tau = delay if undo is None else 0.0
             pred = [abs(np.mean(np.exp(2j * np.pi * k * order * fj * tau))) ** 2 for k in range(1, n + 1)]
-            lab = f"delay {delay * 1e3:.1f} ms" + (", taken out" if undo else "")
+            lab = f"delay {delay * 1e3:.1f} ms" + {None: "", "true": ", taken out",
+                                                    "lag": ", its lag out"}[undo]
             print(f"   {name:24s} {lab:24s} " + " ".join(f"k{k + 1} {med[k]:.2f} [{pred[k]:.2f}]"
                                                        for k in range(n)))
     row = []
@@ -334,17 +341,42 @@ def candidates(path, rec, speed, worst) -> None:
                     for p, q in near))
 
 
+def constant(paths) -> None:
+    """Records at a constant speed: each line's least coherent fraction and the verdict, before
+    and now (the product's reading of the file, the paper's criterion and the relative one)."""
+    from axlebox.pipelines.diagnose import analyse_file
+    print("\n4. constant-speed records (read in time, as `axlebox diagnose FILE`): the least coherent "
+          "fraction of each line seen on both sides and the verdict, before -> now")
+    for path in paths:
+        for crit in (Criterion(), Criterion(mode="relative")):
+            _, _, res = analyse_file(path, criterion=crit)
+            old = verdict_before(res)
+            lines = []
+            for e in res.evidence:
+                if e.timing is not None:
+                    c0, c1 = stationary_timing(e.timing).c_min, e.timing.c_min
+                    lines.append(f"{e.key} {'-' if c0 is None else f'{c0:.3f}'} -> "
+                                 f"{'-' if c1 is None else f'{c1:.3f}'}")
+            w0, w1 = old.words, res.verdict.words
+            print(f"   {path.split('/')[-1]} ({crit.mode}): {'; '.join(lines) or 'no line on both sides'}; "
+                  f"left {w0['left']}, right {w0['right']} -> left {w1['left']}, right {w1['right']}")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("result", nargs="?", help="a result file of accelerating_20_60kmh")
     ap.add_argument("--synthetic", action="store_true")
     ap.add_argument("--seeds", type=int, default=5)
+    ap.add_argument("--constant", nargs="*", default=(), metavar="FILE",
+                    help="records at a constant speed to read before and now")
     a = ap.parse_args()
     t0 = time.perf_counter()
     if a.synthetic:
         synthetic(a.seeds)
     if a.result:
         car(a.result)
+    if a.constant:
+        constant(a.constant)
     print(f"\nwall {time.perf_counter() - t0:.1f} s")
 
 
