@@ -85,15 +85,16 @@ pair of :mod:`.synthetic` (benchmarks/README.md "The copy under traction"):
   in step with its source (its lines stay locked to the defect row's roller passes), but its
   envelope's pulse grows later and broader as the car speeds up (peak 1.6 -> 3.3 ms after the
   impact, width 5.4 -> 7.7 ms, in 312-625 Hz from 20-23 to 27-29 km/h; the defect side's holds),
-  so its 5th harmonic fades into the floor (117 -> 8 on the defect row's clock, the floor 5)
-  while the defect side's holds.  The fading follows the speed (correlation -0.96 over twelfths
+  so its 5th harmonic fades into the floor (locked to the defect row's roller passes, 117 ->
+  8 against a floor of 18 and 6 beside it) while the defect side's holds (62 -> 48).  The fading follows the speed (correlation -0.96 over twelfths
   of the record), not the drive's torque split between the wheels, the axle's torsion (partial
   correlation with the left wheel's creep force at a given speed -0.13); it is no fixed filter
   of the harmonic's frequency, the band's edge (at the same 99-102 Hz the sides' ratio reads
   0.14-0.48 late and 1.5-2.1 early); and no delay (the healthy side shifted by -20 to +20 ms
   before the clock: 0.63 at best).  The stationary reference took that change for a second
-  train: 0.58 at the 5th harmonic over the 2.5 s (0.10 in the 4 s run's windows), which the
-  segments' reads 0.90, none significantly under a copy.
+  train: 0.58 at the 5th harmonic over the 2.5 s, significantly under a copy (0.10 in a window
+  of the 4 s run, benchmarks/README.md, issue 51), which the segments' reads 0.90, no harmonic
+  significantly under a copy.
 * *A path's delay turns the copy's lines* (not mended: the second look, pipelines/speed.py).  A
   delay ``tau`` in time is ``f(t) tau`` turns on the clock, so harmonic ``k`` of order ``O``
   turns against its source by ``2 pi k O (f1 - f0) tau`` over the record
