@@ -84,14 +84,15 @@ pair of :mod:`.synthetic` (benchmarks/README.md "The copy under traction"):
 * *The copy's strength changes with the speed* (mended here).  The healthy side carries the copy
   in step with its source (its lines stay locked to the defect row's roller passes), but its
   envelope's pulse grows later and broader as the car speeds up (peak 1.6 -> 3.3 ms after the
-  impact, width 5.4 -> 7.7 ms, in 312-625 Hz from 20-23 to 27-29 km/h; the defect side's holds),
+  impact, width 5.4 -> 7.7 ms, in 312.5-625 Hz from 20-23 to 27-29 km/h; the defect side's holds),
   so its 5th harmonic fades into the floor (locked to the defect row's roller passes, 117 ->
-  8 against a floor of 18 and 6 beside it) while the defect side's holds (62 -> 48).  The fading follows the speed (correlation -0.96 over twelfths
-  of the record), not the drive's torque split between the wheels, the axle's torsion (partial
-  correlation with the left wheel's creep force at a given speed -0.13); it is no fixed filter
-  of the harmonic's frequency, the band's edge (at the same 99-102 Hz the sides' ratio reads
-  0.14-0.48 late and 1.5-2.1 early); and no delay (the healthy side shifted by -20 to +20 ms
-  before the clock: 0.63 at best).  The stationary reference took that change for a second
+  8 against a floor of 18 and 6 beside it) while the defect side's holds (62 -> 48).  The
+  fading follows the speed (correlation -0.96 over twelfths of the record), not the drive's
+  torque split between the wheels, the axle's torsion (partial correlation with the left
+  wheel's creep force at a given speed -0.13); it is no fixed filter of the harmonic's
+  frequency, the band's edge (at the same 99-102 Hz the sides' ratio reads 0.14-0.48 late and
+  1.5-2.1 early); and no delay (the healthy side shifted by -20 to +20 ms before the clock:
+  0.63 at best).  The stationary reference took that change for a second
   train: 0.58 at the 5th harmonic over the 2.5 s, significantly under a copy (0.10 in a window
   of the 4 s run, benchmarks/README.md, issue 51), which the segments' reads 0.90, no harmonic
   significantly under a copy.
