@@ -245,9 +245,9 @@ def analyse_record(rec: Record, speed, *, scale: float = 1.0, shaft=None, speed_
     res = pair(speed.angle if tracked else None)
     second = None
     if tracked and res.verdict.real is None and BOTH in res.verdict.words.values():
-        # a healthy side called faulty is the worst error: under a changing speed the copy test
-        # can read a copy as a second train (module docstring), so both sides faulty stands only
-        # where the record read in time says so too; else the reading in time is the verdict
+        # a healthy side called faulty is the worst error: under a changing speed a copy's path
+        # delay turns its lines against its source's as two trains drift (speed.py docstring),
+        # so both sides faulty stands only where the record read in time says so too
         in_time = pair(None)
         second = in_time.verdict.rule
         if BOTH not in in_time.verdict.words.values():

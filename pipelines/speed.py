@@ -37,11 +37,18 @@ before).
 
 A second look (:func:`axlebox.pipelines.diagnose.analyse_record`): an order-tracked reading that
 calls both sides faulty (each side's own line, by the copy-or-source test) stands only where the
-record read in time says so too; else the reading in time is the verdict.  Under traction the
-accelerating car's healthy side carries its copy with a coherence that drops at the 5th BPFO
-harmonic in its narrow bands (0.10 in 781-1094 Hz against 0.59 at the least at a constant 26
-km/h), which the test reads as a second train; a healthy side called faulty is the worst error
-the product can make (benchmarks/README.md, issue 51).
+record read in time says so too; else the reading in time is the verdict.  Why (measured,
+benchmarks/README.md "The copy under traction"; :mod:`axlebox.bearing.diagnostics.coherence`,
+"While the speed changes"): a copy reaches the other side a path's delay ``tau`` later in time,
+which on the shaft's clock is ``f(t) tau`` of a turn, so while the speed changes the copy's
+harmonic ``k`` of order ``O`` turns against its source by ``2 pi k O (f1 - f0) tau``; on one
+speed ramp that turn and two trains' drift grow alike, and the copy test cannot tell them apart.
+A source and its copy through a 5 ms path over 20-80 km/h read "faults on both sides" on the
+clock (tests/test_second_look.py), and a healthy side called faulty is the worst error the
+product can make.  The accelerating car no longer needs it: its copy's 5th harmonic fades as the
+car speeds up (the copy's strength, not its timing), which the copy test took for a second train
+(0.10 in the healthy side's 781-1094 Hz band) until its reference was taken segment by segment
+(issue 57).
 """
 from __future__ import annotations
 

@@ -15,6 +15,7 @@ import pytest
 
 from axlebox._params import ParameterError
 from axlebox.bearing.catalogue import lookup
+from axlebox.bearing.diagnostics.clock import angle_clock
 from axlebox.bearing.diagnostics.coherence import C_COPY, timing
 from axlebox.bearing.diagnostics.criterion import Criterion
 from axlebox.bearing.diagnostics.families import copy_case, two_source_case
@@ -52,6 +53,70 @@ def test_coherence_of_two_drifting_lines_is_the_dirichlet_kernel(delta):
     want = "independent" if h.c <= C_INDEPENDENT else "partly coherent" if h.c <= C_COPY else "coherent"
     assert t.decision == want, (delta, h)
     assert (delta == 0.0) == (want == "coherent")
+
+
+@pytest.mark.parametrize("delta, p", [(0.0, 0.15), (1.0, 0.5)])
+def test_a_copy_whose_strength_changes_is_still_one_train(delta, p):
+    """Side B carries A's 40 Hz modulation (``delta`` = 0: a copy) over the record's first
+    ``p`` only, then its carrier alone: a copy whose path stops carrying the line, as the accelerating
+    car's healthy side stops carrying the copy's 5th harmonic (coherence.py).  The segments'
+    coherence is then the Cauchy-Schwarz bound ``(sum_j u_j)^2 / (K sum_j u_j^2)``, ``u_j`` the
+    share of segment j's Hann weight before the change (about ``p``): what a copy in step with
+    its source gives when its strength changes.  The copy's reference ``g2_copy`` is that bound,
+    so the coherent fraction is 1 and the line one train; B's line ``delta`` Hz off A's (its own
+    timing) still reads ``|sum_j u_j exp(2 pi i delta t_j)|^2 / (sum_j u_j)^2``, the Dirichlet
+    kernel over the segments that hold it (half the record, two turns of the phase: about 0):
+    two trains.  (With the stationary reference
+    ``rho_a / (1 + rho_a) rho_b / (1 + rho_b)``, 1 here, the copy read a fraction of 0.15:
+    independent, a healthy side called faulty.)"""
+    f, T = 40.0, 8.0
+    t = np.arange(int(T * FS)) / FS
+    gate = t < p * T
+    b = np.where(gate, am(f + delta), np.cos(2 * np.pi * 3000.0 * t))
+    tm = timing(am(f), b, FS, f, [BAND], [BAND], n_periods=8)
+    h = tm.pairs[0].harmonics[0]
+    nper = int(round(8 * FS / f))
+    step = nper - nper // 2
+    starts = np.arange(1 + (t.size - nper) // step) * step
+    w = np.hanning(nper + 2)[1:-1]
+    u = np.array([np.sum(w * gate[j:j + nper]) / np.sum(w) for j in starts])
+    bound = np.sum(u) ** 2 / (u.size * np.sum(u ** 2))
+    assert bound == pytest.approx(p, abs=0.01)
+    assert h.g2_copy == pytest.approx(bound, rel=0.03)
+    expect = abs(np.sum(u * np.exp(2j * np.pi * delta * starts / FS))) ** 2 / np.sum(u) ** 2
+    assert h.c == pytest.approx(expect, abs=0.03)
+    assert tm.decision == ("coherent" if delta == 0.0 else "independent"), h
+
+
+@pytest.mark.parametrize("tau", [0.0, 5e-3, 10e-3])
+def test_a_delayed_copy_turns_on_the_shaft_clock_as_its_delay_says(tau):
+    """A line locked to the shaft (order 8.72, the DTRB's BPFO) while the shaft speeds up from 2
+    to 8 Hz over 8 s, and its copy ``tau`` later in time: on the shaft's clock the copy's segment
+    ``j`` turns by ``2 pi O f(t) tau`` (a fixed delay in time is a share of a turn that grows with
+    the speed), so the segments' coherence is ``|mean_j <exp(2 pi i O f(t) tau)>_j|^2``, each
+    segment's term its Hann-weighted mean over the instants it spans, 1 for no delay.  What the
+    copy test cannot tell from two trains drifting apart: the reason for the second look
+    (pipelines/speed.py)."""
+    O, f0, f1, T = 8.72, 2.0, 8.0, 8.0
+    t = np.arange(int(T * FS)) / FS
+
+    def theta(s):
+        return f0 * s + 0.5 * (f1 - f0) / T * s ** 2
+
+    a = (1 + 0.5 * np.cos(2 * np.pi * O * theta(t))) * np.cos(2 * np.pi * 3000.0 * t)
+    b = (1 + 0.5 * np.cos(2 * np.pi * O * theta(t - tau))) * np.cos(2 * np.pi * 3000.0 * t)
+    angle = theta(t)
+    f_mean = (angle[-1] - angle[0]) * FS / (angle.size - 1)
+    with angle_clock(angle, FS) as clock:
+        h = timing(a, b, FS, O * f_mean, [BAND], [BAND], n_periods=8).pairs[0].harmonics[0]
+    nper = int(round(8 * FS / (O * f_mean)))
+    w = np.hanning(nper + 2)[1:-1]
+    turn = [np.sum(w * np.exp(2j * np.pi * O * (f0 + (f1 - f0) * clock.t_k[j:j + nper] / T) * tau))
+            / np.sum(w) for j in range(0, t.size - nper + 1, nper - nper // 2)]
+    expect = abs(np.mean(turn)) ** 2
+    assert h.g2 == pytest.approx(expect, abs=0.005)
+    assert h.c == pytest.approx(h.g2, rel=1e-3)            # no noise, one strength: g2_copy is 1
+    assert (tau == 0.0) == (expect > 0.99) and (tau < 0.01 or expect < 0.5)
 
 
 def test_timing_is_symmetric_and_refuses_bad_input():
