@@ -602,7 +602,8 @@ def score(entry: str, words: dict | None, defect, outcome: str) -> None:
     if words is not None:
         healthy = [s for s in ("left", "right") if s != defect]
         assert not any(words[s] in FAULTY for s in healthy), (entry, words, defect)
-        right = (words[defect] == "real fault") if defect else True
+        right = (words[defect] == "real fault") if defect else \
+            words == {"left": "healthy", "right": "healthy"}
         outcome = "read, right" if right else f"read, {words}"
     SEEN.setdefault(entry, Counter())[outcome] += 1
 

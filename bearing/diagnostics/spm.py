@@ -126,6 +126,7 @@ class SiftEMD(EMD):
         super().__init__(extrema_detection="parabol", **kw)    # parabol: the mirroring of points off the grid
 
     def find_extrema(self, T, S):
+        """The extrema of ``S`` at times ``T``: :func:`run_extrema`."""
         return run_extrema(T, S)
 
 
