@@ -7,7 +7,9 @@ file's first bytes (not its name):
   the loader that runs it (vehicle: :func:`axlebox.mbs.config.validate`, ``run.speed_kmh``,
   ``wheelset.r0`` and ``[bearing]``; rig: :func:`axlebox.bearing.rig.config_from_dict`,
   ``rig.speed_kmh``, ``rig.r_wheel`` and its ``[bearing]``), defaults filled in as a run fills
-  them.
+  them; the most loaded roller's load on each side (the 99th percentile of the sensor's
+  bearing's ``bearings/bearing<k><L|R>/roller1_cup_force``, both rows, past the fade-in), for the
+  defect's size (bearing/diagnostics/size.py: a loaded roller's contact approach).
 * MATLAB ``.mat`` v5 (scipy.io.loadmat) and v7.3 (HDF5 after a 512-byte header; MATLAB stores
   arrays column-major, so h5py sees them transposed: a column vector reads as (1, n)).
 * any other HDF5: ``--left``/``--right`` are dataset paths; ``fs`` from --fs or the datasets'
@@ -53,6 +55,7 @@ class Record:
     bearing: object = None        # the file's bearing (catalogue.Bearing), where its config has one
     notes: list[str] = field(default_factory=list)
     angle: np.ndarray | None = None   # the shaft's angle (turns) at each sample, where the file has it
+    roller_loads: tuple | None = None  # (left, right) most loaded roller's load (N), where stored
 
 
 def file_kind(path) -> str:
@@ -131,8 +134,9 @@ def _read_result(path, left, right, fs, column: int) -> Record:
         fs_file = f[f"signals/{names[0]}/acceleration"].attrs.get("fs_hz")
         cfg = _file_config(f, path)
         angle = _stored_angle(f, cfg, names, chans[0].size)
+        loads = _roller_loads(f, cfg, names)
     rec = Record(chans[0], chans[1], _need_fs(fs if fs is not None else fs_file, "this result file"),
-                 tuple(names), "axlebox-result", angle=angle)
+                 tuple(names), "axlebox-result", angle=angle, roller_loads=loads)
     vehicle = isinstance(cfg, CarConfig)
     if cfg is not None:                       # the run's own speed, wheel and bearing
         rec.shaft_hz = shaft_hz(*((cfg.run.speed_kmh, cfg.wheelset.r0) if vehicle
@@ -159,6 +163,24 @@ def _stored_angle(f: h5py.File, cfg, names, n: int) -> np.ndarray | None:
     if ds is None or ds.shape[0] != n:
         return None
     return np.asarray(ds[()], float) / (2 * np.pi)
+
+
+def _roller_loads(f: h5py.File, cfg, names) -> tuple | None:
+    """Each sensor's bearing's most loaded roller's load (N) in a car run: the 99th percentile of
+    its roller 1's cup force (both rows; roller 1 passes the load zone once a cage turn) after
+    the track's fade-in; None where the file stores none."""
+    if not isinstance(cfg, CarConfig):
+        return None
+    out = []
+    for n in names:
+        ds = f.get(f"bearings/bearing{n.removeprefix('ws').replace('_', '')}/roller1_cup_force")
+        t = f.get("time")
+        if ds is None or t is None or ds.shape[0] != t.shape[0]:
+            out.append(None)
+            continue
+        q = np.asarray(ds[()], float)[np.asarray(t[()]) >= TRACK_FADE_IN_S]
+        out.append(float(np.percentile(q, 99.0)) if q.size else None)
+    return tuple(out)
 
 
 def _file_config(f: h5py.File, path):

@@ -34,7 +34,8 @@ class PairResult:
     ``verdict``: the :class:`.verdict.Verdict`; ``evidence``: the lines'
     :class:`.verdict.LineEvidence` it read; ``names``: the channels' names in the source;
     ``bearings``: each side's bearing name; ``rotor``: what turns the shaft, ``"wheel"`` (a
-    vehicle) or ``"shaft"`` (a machine; :data:`.verdict.ROTORS`)."""
+    vehicle) or ``"shaft"`` (a machine; :data:`.verdict.ROTORS`); ``sizes``: side -> the
+    defect's :class:`.size.SizeResult` where it was read (:func:`.size.side_sizes`)."""
 
     left: ChannelResult
     right: ChannelResult
@@ -50,6 +51,7 @@ class PairResult:
     x_right: np.ndarray = field(default=None, repr=False, compare=False)
     gate: object | None = None
     rotor: str = "wheel"
+    sizes: dict = field(default_factory=dict, compare=False)
 
     @property
     def shares(self) -> dict:
@@ -91,7 +93,8 @@ class PairResult:
                 "criterion": {**self.criterion.to_dict(), "m": self.m}, "rotor": self.rotor,
                 "verdict": self.verdict.to_dict(),
                 "verdicts": {s: {"verdict": self.verdict.words[s], "reason": sentence(self.verdict, s)}
-                             for s in SIDES}}
+                             for s in SIDES},
+                "sizes": {s: r.to_dict() for s, r in self.sizes.items()}}
 
     def summary(self) -> str:
         """A few lines for a terminal."""
@@ -119,6 +122,9 @@ class PairResult:
                        f"; shares (this side's line over the other's, in the other's band) left "
                        f"{sh.share['left']:.3g}, right {sh.share['right']:.3g}"))
         out.append(f"rule: {self.verdict.rule}")
+        for s, r in self.sizes.items():
+            if r.status != "not read":
+                out.append(f"{s} defect size ({r.kind}, {r.line}): {r.text()}: {r.reason}")
         return "\n".join(out)
 
     def plot(self, path=None):
