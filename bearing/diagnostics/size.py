@@ -93,7 +93,7 @@ AR_ORDER_S = 1.6e-3
 #: the converter's pass band over fs: the whitened signal is band-limited to it
 PASSBAND = 0.45
 #: the fault's harmonics summed in |R|
-N_HARMONICS = 8
+N_HARMONICS = 4
 #: the bootstrap's resamples and the interval's percentiles
 N_BOOT = 200
 PERCENTILES = (5.0, 95.0)
