@@ -107,6 +107,14 @@ def test_verdict_labels_are_what_diagnose_says(dataset, sweep_dir):
         assert r.verdict_vf_m == pytest.approx(v.evidence.vf.m, rel=1e-12)
         assert r.verdict_lag_leading == (v.evidence.lag.leading or "none")
         assert r.left_reason == v.sentence("left")
+        # each side's defect size as the diagnosis reads it (bearing/diagnostics/size.py)
+        for s in ("left", "right"):
+            got = pair.sizes[s]
+            assert r[f"{s}_size"] == got.status
+            assert (r[f"{s}_size"] == "not read") == (pair.verdict.words[s] not in
+                                                      ("real fault", "faults on both sides"))
+            if got.width_m is not None:
+                assert r[f"{s}_width_mm"] == pytest.approx(1e3 * got.width_m, rel=1e-12)
 
 
 def test_card_states_how_it_was_made(dataset):

@@ -440,6 +440,20 @@ def estimate(x, fs: float, shaft_hz: float, orders: FaultOrders, kind: str, geom
 FAULTY = ("real fault", "faults on both sides")
 
 
+def size_columns(r: SizeResult | None, prefix: str = "") -> dict:
+    """A side's size as table columns after ``prefix``: ``size`` (its status), ``width_mm``,
+    ``width_lo_mm``, ``width_hi_mm`` (NaN where there is none) and ``events_ms``, the events'
+    separation (the report's summary, the dataset's labels)."""
+    nan = float("nan")
+    if r is None:
+        r = SizeResult("not read")
+    lo, hi = r.interval_m if r.interval_m is not None else (nan, nan)
+    return {f"{prefix}size": r.status,
+            f"{prefix}width_mm": 1e3 * r.width_m if r.width_m is not None else nan,
+            f"{prefix}width_lo_mm": 1e3 * lo, f"{prefix}width_hi_mm": 1e3 * hi,
+            f"{prefix}events_ms": 1e3 * r.dt_s if r.dt_s is not None else nan}
+
+
 def geometry_of(bearing, roller_load: float | None = None) -> Geometry | None:
     """The :class:`Geometry` of a catalogue bearing (:class:`axlebox.bearing.catalogue.Bearing`)
     and its most loaded roller's load (N; the approach ``(Q / K)^(9/10)`` where its contacts'
