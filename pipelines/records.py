@@ -44,13 +44,15 @@ class Scored:
     real: str | None = None
     evidence: dict = field(default_factory=dict)
     sentences: dict = field(default_factory=dict)
+    sizes: dict = field(default_factory=dict)       # end -> its defect size (size.SizeResult)
 
     def to_dict(self) -> dict:
-        """JSON-ready: the manifest row, the words, the rule, the real end, the evidence and the
-        sentences."""
+        """JSON-ready: the manifest row, the words, the rule, the real end, the evidence, the
+        sentences and each end's defect size."""
         return {"row": dict(self.row), "words": dict(self.words), "rule": self.rule,
                 "real": self.real, "evidence": dict(self.evidence),
-                "sentences": dict(self.sentences)}
+                "sentences": dict(self.sentences),
+                "sizes": {e: r.to_dict() for e, r in self.sizes.items()}}
 
     @property
     def faulty(self) -> str:
@@ -90,11 +92,13 @@ class Score:
                 out.append(f"{fault} | " + " | ".join(str(c[w]) for w in WORDS)
                            + f" | {sum(c.values())}")
             out.append("")
-        out += ["| file | faulty end | fault | faulty end called | healthy end called | rule |",
-                "| --- | --- | --- | --- | --- | --- |"]
+        out += ["| file | faulty end | fault | faulty end called | healthy end called | rule | "
+                "faulty end's size |",
+                "| --- | --- | --- | --- | --- | --- | --- |"]
         for r in self.records:
+            sz = r.sizes.get(r.row["faulty_end"])
             out.append(f"| {r.row['file']} | {r.row['faulty_end']} | {r.row['fault']} | {r.faulty} "
-                       f"| {r.healthy} | {r.rule} |")
+                       f"| {r.healthy} | {r.rule} | {sz.text() if sz is not None else '-'} |")
         return "\n".join(out)
 
 
@@ -142,7 +146,8 @@ def score(manifest, bearings: dict, *, scale: float = 1.0, criterion=None,
         words = {end[s]: v.words[s] for s in end}
         assert all(w in VERDICTS for w in words.values())
         out.append(Scored(row, words, v.rule, end.get(v.real), v.row(),
-                          {end[s]: v.sentence(s) for s in end}))
+                          {end[s]: v.sentence(s) for s in end},
+                          {end[s]: r for s, r in pair.sizes.items()}))
         log(f"{row['file']}: {row['fault']} at {row['faulty_end']}: {ends[0]} {words[ends[0]]}, "
             f"{ends[1]} {words[ends[1]]} ({v.rule})")
     return Score(out)

@@ -1,73 +1,78 @@
 """How large: a local defect's width along the raceway from the rollers' entry and exit events.
 
-**The events.**  A roller that meets a local defect wider than it can bridge loses its load as
-it enters (the de-stressing: the ring's force steps down, a low-frequency event) and takes it
-up again as it leaves (the re-stressing: the force steps back, an impulse where the roller
-strikes the far edge); the time between the two, Δt, is the time the roller takes to cross
-the defect (Sawalhi and Randall, Mech. Syst. Signal Process. 25 (2011) 846-870: the entry in a
-lower band, the exit in a higher one, their separation read on the prewhitened signal and its
-cepstrum; the separation depends on the load and the speed through where the roller leaves
-and meets the raceway, Kogan, Bortman and Klein, Nonlinear Dyn. 87 (2017) 219-236).
+**The events.**  A roller that meets a local defect it cannot bridge loses its load as it enters
+(the de-stressing: the ring's force steps down, a low-frequency event) and takes it up again as
+it leaves (the re-stressing: the force steps back, an impulse where the roller strikes the far
+edge); the time between the two is the time the roller takes across the defect (Sawalhi and
+Randall, Mech. Syst. Signal Process. 25 (2011) 846-870: the two events' separation read on the
+prewhitened signal).  Where along the defect the roller leaves and meets the raceway depends on
+its load and speed (Kogan, Bortman and Klein, Nonlinear Dyn. 87 (2017) 219-236), so the
+conversion to a width below bounds it between the defect's edges and the quasi-static points.
+A defect narrower than a loaded roller unloads in is ridden over: the load only dips, and the
+dip's edges (the slope breaks of the clearance, Eq. 14) are then its only events.
 
-**Reading Δt** (:func:`event_lag`).  The record is prewhitened by its own linear prediction
-(an autoregressive model of order ``ar_order_s x fs``, Yule-Walker): what the structure's
-resonances make predictable is taken out, what is left is each event's excitation, a short
-pulse (Sawalhi and Randall, sec. 4).  The entry and the exit are force steps of opposite sign,
-so each pass of a roller leaves two pulses Δt apart; the product ``e(t) e(t + l)`` of the
-whitened signal then recurs at the fault's rate ``alpha`` at the lag ``l = Δt`` and nowhere
-else past the pulses' own width.  The cyclic autocorrelation
+**Reading the separation Δt** (:func:`event_lag`).
 
-``R_k(l) = (1/N) sum_t e(t) e(t + l) exp(-2 pi i k alpha t)``,   ``k = 1 .. K``,
+1. Prewhitening (Sawalhi and Randall, sec. 4): the record's linear prediction error under an AR
+   model of order ``AR_ORDER_S x fs`` (Yule-Walker), fitted on the quieter half of the record
+   only (windows of a quarter fault period, those of energy at most the median, :func:`whiten`):
+   there the structure rings to the background (the track, the rolling contacts), so the model
+   learns the path and not the events, whose echo an AR model longer than it would learn and
+   take out where the events dominate the record (measured on spall_record: fitted on the whole
+   record, entry and exit 7-10 samples apart read at twice that).  Band-limited to ``0.45 fs``
+   (a converter's pass band; whitening lifts the empty transition band above it) and upsampled
+   ``upsample`` times (band-limited, so the lag is read to a fraction of a sample).
+2. The entry and the exit of each pass are two pulses Δt apart, so the product ``e(t) e(t + l)``
+   recurs at the fault's rate ``alpha`` at ``l = Δt``.  The cyclic autocorrelation at the first
+   :data:`N_HARMONICS` harmonics of ``alpha`` (Antoni, Bonnardot, Raad and El Badaoui, Mech.
+   Syst. Signal Process. 18 (2004) 1285-1314),
 
-(the second-order cyclostationary part at the fault's harmonics: Antoni, Bonnardot, Raad and
-El Badaoui, Mech. Syst. Signal Process. 18 (2004) 1285-1314) keeps that echo and drops the
-stationary part of the record (the track's excitation, the structure's ringing), whatever the
-events' signs; ``|R|(l) = sum_k |R_k(l)|``.  Δt is the lag of its highest peak between the
-resolution limit and half the fault period (a defect is narrower than the roller pitch,
-bearing/defects.py, and its events come in a pair), on the whitened signal band-limited to
-``0.45 fs`` (a converter's pass band; the whitening lifts the empty transition band above it)
-and upsampled ``upsample`` times (band-limited, so the lag is read to a fraction of a sample),
-refined by a parabola through the peak.  ``alpha`` is the fault line's frequency refined on
-the record (the whitened signal's squared spectrum near the kinematic line: the rollers slip
-by a per cent or two).  The peak must stand ``min_snr`` times over the median of ``|R|`` over
-the lags searched (the floor of lags without an echo; :data:`MIN_SNR`): else there is no pair
-of events to read.
+   ``R_k(l) = (1/N) sum_t e(t) e(t + l) exp(-2 pi i k alpha t)``,   ``|R|(l) = sum_k |R_k(l)|``,
 
-**The interval** comes from the spread over the impulses: the record is cut into blocks of
-whole fault periods, each block's ``R_k(l)`` summed on its own; ``n_boot`` bootstrap resamples
-of the blocks give Δt again, and the 5th and 95th percentiles of those Δt, each carried through
-the conversion below, are the interval (with the conversion's own bounds where the load is
-unknown, below).
+   keeps what recurs with the fault whatever the events' signs, and drops the stationary part
+   (four harmonics: rollers slipping 2 % from period to period decohere the higher ones,
+   tests/test_size.py).  ``alpha`` is the line's frequency refined on the record (the
+   whitened signal's squared spectrum, within ``slip`` of the line as found).
+3. Δt is the lag of the highest local maximum of ``|R|`` between :data:`RESOLUTION_SAMPLES` and
+   0.45 of the fault period (a pair's separation is read modulo the period; a defect is
+   narrower than the roller pitch, bearing/defects.py), refined by a parabola; it must stand
+   :data:`MIN_SNR` times over the median of ``|R|`` over those lags, else no pair is read.
 
-**Resolution.**  Two pulses closer than the whitened pulse's own width cannot be told from one:
-at the record's rate ``fs`` with its anti-alias band to ``0.45 fs`` the whitened pulse's
-autocorrelation reaches its floor about four samples out (:data:`RESOLUTION_SAMPLES`; measured
-on an event through the sensor model of pipelines/sensor.py, tests/test_size.py), so lags
-below that are not searched, and a peak that sits at that limit is not a reading.  A side whose
-events are not found there is "below resolution" where even the widest defect the bearing's
-kinematics allow a loaded roller to bridge would be crossed in fewer than that many samples,
-else "no events" (a defect the roller bridges without unloading, or impulses too weak).
+**The interval** comes from the spread over the impulses: the record is cut into blocks of one
+fault period, each block's ``R_k(l)`` summed alone; :data:`N_BOOT` bootstrap resamples of the
+blocks give Δt again, their :data:`PERCENTILES` widened by :data:`TIMING_SAMPLES` each way (the
+events' shapes differ, entry a step and exit an impact, which moves the peak by up to about half
+a sample on spall_record's pairs), then carried through the conversion and its bounds.
 
-**Conversion** (:func:`width_from_lag`).  A roller rolls over a ring at the rolling speed
-``v = pi f_s D_m (1 - g^2) / 2`` (``g = (D_b/D_m) cos(alpha) = 1 - 2 FTF``, the cage order;
-the speed of the contact point over either raceway and over the roller: outer ring ``omega_c
-D_o / 2``, inner ring ``(omega_s - omega_c) D_i / 2``, roller ``omega_b D_b / 2``, with ``D_o
-= D_m (1 + g)``, ``D_i = D_m (1 - g)``: Harris and Kotzalas, Rolling Bearing Analysis, 5th ed.,
-vol. 1, sec. 8.2).  A defect of width W on a surface of diameter D spans the angle
-``tau = 2 arcsin(W / D)`` (Eq. 14 of the paper; bearing/defects.py), crossed in ``tau D / (2 v)``.
-Over it the model's clearance is ``h = A sin(pi x / tau)``, ``A = r - sqrt(r^2 - (W/2)^2)`` (a
-roller of radius r dropping into the defect; the depth H caps it, assumed deeper here): a
-roller whose contact approach under its load is ``delta`` loses its load only where ``h >
-delta``, from ``x_1 = (tau / pi) arcsin(delta / A)`` to ``tau - x_1``, so the events are
+**Resolution** (:data:`RESOLUTION_SAMPLES`).  A single event leaves lobes of its own in ``|R|``
+near zero lag, from the colour whitening leaves (the path's anti-resonances, which an AR model
+cannot take out): on the model's axle box out to 6.5 samples (the quasi-dynamic car at 10 kHz),
+on spall_record's one-mode path to 5; a lag inside them is not an echo.  So lags under 7 samples
+are not read: where no pair is found past them, the side is "below resolution", the width a
+roller crosses in 7 samples its upper bound, or "bridged" where the load is known and a loaded
+roller would ride over a wider defect than that.  A path with several close modes
+(spall_record's three, 700, 2300 and 3700 Hz) leaves lobes up to 15-20 times the floor at 6.3
+samples and beyond, which this reading cannot tell from an echo: measured, benchmarks/README.md.
 
-``Δt = (tau - 2 x_1) D / (2 v)``,
-
-solved for W (monotonic).  Where ``A <= delta`` (``W <= W_delta = 2 sqrt(2 r delta)``) the roller
-bridges the defect with part of its load and there are no events: the width is then at most
-``W_delta``.  With the approach unknown (a record without its load), ``delta = 0``: the events
-read as the whole width, a lower bound; the interval's top is then the width that the same Δt
-gives with a roller at the bearing's catalogue load... not known either, so it is the Δt's own
-percentile alone and the result says the load is unknown.
+**Conversion** (:func:`width_from_lag`, :func:`estimate`).  A roller rolls over a ring at the
+rolling speed ``v = pi f_s D_m (1 - g^2) / 2`` (``g = (D_b/D_m) cos(alpha) = 1 - 2 FTF``: the
+contact point's speed over either raceway and over the roller, ``omega_c D_o / 2``, ``(omega_s -
+omega_c) D_i / 2``, ``omega_b D_b / 2`` with ``D_o = D_m (1 + g)``, ``D_i = D_m (1 - g)``; Harris
+and Kotzalas, Rolling Bearing Analysis, 5th ed., vol. 1, sec. 8.2).  A defect of width W on a
+surface of diameter D spans ``tau = 2 arcsin(W / D)`` (Eq. 14; bearing/defects.py), crossed in
+``tau D / (2 v)``: the whole width ``W_0 = D sin(v Δt / D)``.  Over it the clearance is ``h = A
+sin(pi x / tau)``, ``A = r - sqrt(r^2 - (W/2)^2)`` (a roller of radius r dropping into the gap;
+the depth H, which caps it, taken as deeper), and a roller whose contact approach under its load
+is ``delta`` unloads only where ``h > delta`` (quasi-static), from ``x_1 = (tau / pi)
+arcsin(delta / A)`` to ``tau - x_1``: the events ``(tau - 2 x_1) D / (2 v)`` apart, solved for
+``W_1`` (monotonic; :func:`event_angle`).  Where ``W_0`` is at most the bridged width
+``W_delta = 2 sqrt(2 r delta - delta^2)`` (``A = delta``) the roller rides over the defect and
+the events are its edges: ``W = W_0``.  Else the roller leaves the raceway between the edge and
+the quasi-static point: ``W = (W_0 + W_1) / 2``, the interval from ``W_0`` at the spread's low
+end to ``W_1`` at its high end.  ``delta = (Q / K)^(9/10)``, Q the most loaded roller's load and
+K its two raceway contacts in series (Eq. 10; :func:`geometry_of`); where the load is unknown,
+the whole width ``W_0`` and its spread alone, which a loaded roller's later unloading would make
+too narrow by ``2 x_1``.
 """
 from __future__ import annotations
 
@@ -87,7 +92,7 @@ from .envelope import _signal, check_fs
 #: the shortest lag read as a pair of events, in samples of the record (module docstring)
 RESOLUTION_SAMPLES = 7.0
 #: the echo's peak over the median of |R| over the lags searched (module docstring)
-MIN_SNR = 15.0
+MIN_SNR = 20.0
 #: the prediction filter's length (s): AR order ar_order_s x fs (16 at 10 kHz)
 AR_ORDER_S = 1.6e-3
 #: the converter's pass band over fs: the whitened signal is band-limited to it
