@@ -164,3 +164,25 @@ def test_refusals_name_the_field():
         size.event_lag(np.random.default_rng(0).standard_normal(300), FS, F_FAULT)
     r = size.estimate(record(25.0), FS, 4.2, o, "outer", None)
     assert r.status == "not read" and "--bearing" in r.reason
+
+
+def test_a_changing_speed_read_on_the_shafts_clock():
+    """The 25-sample record played with the shaft speeding up by a fifth over it: in time the
+    fault's rate sweeps and the echo smears; read at equal steps of the shaft's angle, the
+    events are those of the mean speed again."""
+    p = BearingParams()
+    o = fault_orders(p)
+    x0 = record(25.0)
+    n = x0.size
+    f_s = F_FAULT / o.BPFO                           # the shaft rate the record was made at
+    u = np.linspace(0.0, 1.0, n)
+    warp = (0.9 * u + 0.1 * u * u) / 1.0             # its own time at our samples: 0.9 -> 1.1 speed
+    x = np.interp(warp * (n - 1), np.arange(n), x0)
+    angle = f_s * warp * (n - 1) / FS                # turns
+    g = size.Geometry(p.D_m, p.D_b)
+    r = size.estimate(x, FS, f_s, o, "outer", g, angle=angle)
+    v = size.rolling_speed(o, f_s, p.D_m)
+    assert r.status == "sized"
+    assert r.width_m == pytest.approx(size.width_from_lag(25.0 / FS, v, p.D_o), rel=0.05)
+    with pytest.raises(ParameterError, match="angle of 3 samples"):
+        size.estimate(x, FS, f_s, o, "outer", g, angle=[0.0, 1.0, 2.0])

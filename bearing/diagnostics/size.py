@@ -104,8 +104,10 @@ N_BOOT = 200
 PERCENTILES = (5.0, 95.0)
 #: the events' timing on the sample grid: the interval is widened by this many samples each way
 TIMING_SAMPLES = 0.5
-#: the record read at most (samples): memory and time flat in the length
-MAX_SAMPLES = 1 << 21
+#: the record read at most (samples), and the bootstrap's units at most: memory and time flat
+#: in the record's length
+MAX_SAMPLES = 1 << 20
+MAX_BLOCKS = 400
 #: kind of defect -> the line its impulses recur at
 LINE_OF = {"outer": "BPFO", "inner": "BPFI", "roller": "2BSF"}
 KIND_OF = {v: k for k, v in LINE_OF.items()}
@@ -237,17 +239,23 @@ def event_lag(x, fs: float, f_line: float, *, slip: float = 0.03, min_lag_s: flo
                              "longest lag: expected at least 4")
     N = 1 << int(np.ceil(np.log2(P + L)))
     k = np.arange(1, n_harmonics + 1)
-    Rb = np.empty((nb, n_harmonics, L), complex)
+    # the bootstrap's units: single periods, or runs of consecutive ones where there are more
+    # than MAX_BLOCKS (memory flat in the record's length)
+    G = min(nb, MAX_BLOCKS)
+    group = np.arange(nb) * G // nb
+    Rb = np.zeros((G, n_harmonics, L), complex)
     t = np.arange(P)
-    for c0 in range(0, nb, 64):                      # 64 blocks at a time: memory flat
-        b = np.arange(c0, min(nb, c0 + 64))
+    step = max(1, (1 << 22) // (n_harmonics * N))      # blocks a pass: arrays of 4 M at most
+    for c0 in range(0, nb, step):
+        b = np.arange(c0, min(nb, c0 + step))
         start = b * P
         seg = eu[start[:, None] + t]                                   # (blocks, P)
         ext = np.zeros((b.size, N))
         ext[:, :P + L] = eu[start[:, None] + np.arange(P + L)]
         w = np.exp(-2j * np.pi * alpha / fu * k[None, :, None] * (start[:, None, None] + t))
         C = np.fft.fft(np.conj(seg[:, None, :] * w), N)                 # (blocks, K, N)
-        Rb[b] = np.fft.ifft(np.fft.fft(ext, N)[:, None, :] * np.conj(C), N)[:, :, :L]
+        R = np.fft.ifft(np.fft.fft(ext, N)[:, None, :] * np.conj(C), N)[:, :, :L]
+        np.add.at(Rb, group[b], R)
     n = nb * P
 
     def curve(R):            # |R|(l), summed over the harmonics
@@ -259,8 +267,8 @@ def event_lag(x, fs: float, f_line: float, *, slip: float = 0.03, min_lag_s: flo
     snr = float(Rsum[int(round(top))] / floor) if top is not None and floor > 0 else 0.0
     dt = top / fu if top is not None and snr >= MIN_SNR else None
     rng = np.random.default_rng(seed)
-    counts = rng.multinomial(nb, np.full(nb, 1.0 / nb), size=n_boot).astype(float)
-    boots = curve((counts @ Rb.reshape(nb, -1)).reshape(n_boot, n_harmonics, L))
+    counts = rng.multinomial(G, np.full(G, 1.0 / G), size=n_boot).astype(float)
+    boots = curve((counts @ Rb.reshape(G, -1)).reshape(n_boot, n_harmonics, L))
     boot = np.array([np.nan if (p := _peak(r, i0, i1)) is None else p / fu for r in boots])
     lags = np.arange(i0, i1 + 1)
     return EventLag(dt_s=dt, boot_s=boot, snr=snr, alpha_hz=alpha, n_blocks=nb, min_lag_s=lo,
@@ -377,11 +385,13 @@ class SizeResult:
 
 
 def estimate(x, fs: float, shaft_hz: float, orders: FaultOrders, kind: str, geometry: Geometry | None,
-             *, f_line: float | None = None, **kw) -> SizeResult:
+             *, f_line: float | None = None, angle=None, **kw) -> SizeResult:
     """The size of a ``kind`` defect (``"outer"``, ``"inner"``, ``"roller"``) whose impulses are
     in the record ``x`` at ``fs`` of a shaft turning at ``shaft_hz``, in a bearing of fault
     ``orders`` and ``geometry`` (module docstring).  ``f_line``: the line's frequency as found
-    (Hz; default the kinematic one); ``kw`` to :func:`event_lag`."""
+    (Hz; default the kinematic one); ``angle``: the shaft's angle (turns) at each sample where
+    the speed changes: the record is read at equal steps of it (:mod:`.clock`), as at its mean
+    speed, which ``shaft_hz`` then is; ``kw`` to :func:`event_lag`."""
     if kind not in LINE_OF:
         raise ParameterError(f"kind = {kind!r} is not allowed: expected one of {', '.join(LINE_OF)}")
     line = LINE_OF[kind]
@@ -389,6 +399,17 @@ def estimate(x, fs: float, shaft_hz: float, orders: FaultOrders, kind: str, geom
         return SizeResult("not read", kind, line, reason="the bearing's pitch and roller diameters "
                           "are unknown (a bearing given by its orders alone): name it, e.g. --bearing")
     fs = check_fs(fs)
+    if angle is not None:
+        from scipy.interpolate import CubicSpline
+
+        from .clock import make
+        x = _signal(x)
+        if np.size(angle) != x.size:
+            raise ParameterError(f"angle of {np.size(angle)} samples is not allowed: the record has "
+                                 f"{x.size}; expected one angle a sample")
+        ck = make(angle, fs)
+        x = CubicSpline(ck.t, x)(ck.t_k)
+        shaft_hz = ck.f_mean
     f0 = orders.at(shaft_hz)[line] if f_line is None else float(f_line)
     v = rolling_speed(orders, shaft_hz, geometry.pitch)
     D = surface_diameter(kind, orders, geometry.pitch, geometry.roller)
@@ -508,13 +529,6 @@ def side_sizes(pair, orders, geometry=(None, None), angle=None, kinds=None) -> d
         if x is None:
             out[side] = SizeResult("not read", kind, LINE_OF[kind], reason="the signal is not kept")
             continue
-        shaft = c.shaft_hz
-        if angle is not None:
-            from .clock import make
-            from scipy.interpolate import CubicSpline
-            ck = make(angle, c.fs)
-            x = CubicSpline(ck.t, x)(ck.t_k)
-            shaft = ck.f_mean
         o = orders[i] if isinstance(orders, (tuple, list)) else orders
-        out[side] = estimate(x, c.fs, shaft, o, kind, geometry[i], f_line=f_found)
+        out[side] = estimate(x, c.fs, c.shaft_hz, o, kind, geometry[i], f_line=f_found, angle=angle)
     return out
