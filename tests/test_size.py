@@ -186,3 +186,20 @@ def test_a_changing_speed_read_on_the_shafts_clock():
     assert r.width_m == pytest.approx(size.width_from_lag(25.0 / FS, v, p.D_o), rel=0.05)
     with pytest.raises(ParameterError, match="angle of 3 samples"):
         size.estimate(x, FS, f_s, o, "outer", g, angle=[0.0, 1.0, 2.0])
+
+
+@pytest.mark.parametrize("case", ["v20_w1", "v40_w3"])
+def test_the_models_known_widths(case):
+    """The quasi-dynamic car's defect side (tests/data/make_size_excerpts.py: 1 s at 10 kHz of
+    an outer-ring defect W wide, read with the file's roller load): 1 mm at 20 km/h, ridden
+    over (its edges 17 samples apart), and 3 mm at 40 km/h, the roller unloading (26 samples):
+    the width within 5 % and its interval holding it."""
+    from pathlib import Path
+    d = np.load(Path(__file__).parent / "data" / "size_excerpts.npz")
+    fs, f_s, _, W, Q = d[f"{case}_meta"]
+    x = d[f"{case}_x"] * float(d["lsb"])
+    b = catalogue.lookup("dtrb")
+    r = size.estimate(x, fs, f_s, b.orders, "outer", size.geometry_of(b, Q))
+    assert r.status == "sized", r.reason
+    assert r.width_m == pytest.approx(W, rel=0.05)
+    assert r.interval_m[0] <= W <= r.interval_m[1]
