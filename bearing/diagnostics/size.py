@@ -111,7 +111,7 @@ MAX_BLOCKS = 400
 #: kind of defect -> the line its impulses recur at
 LINE_OF = {"outer": "BPFO", "inner": "BPFI", "roller": "2BSF"}
 KIND_OF = {v: k for k, v in LINE_OF.items()}
-STATUSES = ("sized", "bridged", "below resolution", "no events", "not read")
+STATUSES = ("sized", "bridged", "below resolution", "not read")
 
 
 def whiten(x: np.ndarray, order: int, quiet: int | None = None) -> np.ndarray:
@@ -324,8 +324,8 @@ def width_from_lag(dt: float, v: float, D: float, r: float | None = None,
     if delta is None or r is None or delta <= 0:
         return D * math.sin(min(0.5 * target, 0.5 * math.pi))
     lo, hi = bridged_width(r, delta), 2.0 * r
-    if event_angle(hi, D, r, delta) <= target:     # wider than the roller: not a local defect
-        return D * math.sin(min(0.5 * target, 0.5 * math.pi)) + (lo if lo < hi else 0.0)
+    if event_angle(hi, D, r, delta) <= target:     # wider than the roller: beyond Eq. 14's defects,
+        return D * math.sin(min(0.5 * target, 0.5 * math.pi))    # the whole width, a lower bound
     return brentq(lambda W: event_angle(W, D, r, delta) - target, lo * (1 + 1e-12), hi, xtol=1e-9)
 
 
