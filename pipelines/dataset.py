@@ -8,8 +8,9 @@ the vertical acceleration (column 2) of the two axle boxes of its defect's wheel
 (kind, W, L, H, row; "none" without one), which side is real ("left", "right", "both" or
 "none"), and the verdict the criterion gives on the whole record (:func:`.diagnose.analyse_file`):
 each side's word and reason, the rule that decided and the evidence it read
-(:meth:`axlebox.bearing.diagnostics.verdict.Verdict.row`, columns ``verdict_*``), with where it
-came from (file, first sample's index in the file's arrays).
+(:meth:`axlebox.bearing.diagnostics.verdict.Verdict.row`, columns ``verdict_*``) and each side's
+defect size as read (:func:`axlebox.bearing.diagnostics.size.size_columns`, ``left_size``,
+``left_width_mm`` ...), with where it came from (file, first sample's index in the file's arrays).
 
 Format: one NetCDF-4 file (HDF5 underneath, written by xarray through h5netcdf), because the
 windows are a dense (window x sample) array per side and the labels are per-window coordinates:
@@ -130,6 +131,7 @@ def build(sweep_dir, *, window_s: float = 0.5, hop_s: float = 0.25, criterion=No
     import xarray as xr
 
     from axlebox.bearing.diagnostics.criterion import Criterion
+    from axlebox.bearing.diagnostics.size import size_columns
 
     from .diagnose import analyse_file
     window_s, hop_s = _positive(window_s, "--window"), _positive(hop_s, "--hop")
@@ -149,7 +151,8 @@ def build(sweep_dir, *, window_s: float = 0.5, hop_s: float = 0.25, criterion=No
                "left_reason": v.sentence("left"), "right_reason": v.sentence("right"),
                "speed_from": (info["speed"] or {}).get("from", "config"),
                "order_tracked": bool((info["speed"] or {}).get("order_tracked", False)),
-               **v.row("verdict_")}
+               **v.row("verdict_"),
+               **{k: val for s in SIDES for k, val in size_columns(pair.sizes.get(s), f"{s}_").items()}}
         for i in starts:
             rows.append({**lab, "start_index": int(i), "t_start": float(i / fs)})
         left.append(xl)
@@ -218,16 +221,15 @@ labels = ds.drop_dims("sample").to_dataframe()
   each side's compared indicators, the lag (`verdict_lag_leading`, `verdict_lag_s`), each
   fault line seen and how its source was found (`verdict_lines`), the whole orders of the
   wheel's rate on each side (`verdict_orders_left`, `_right`), the blanking of a wheel flat's
-  strikes (`verdict_gate_*`, NaN without), the fault's kind named on each side called faulty
-  (`verdict_kind_left`, `_right`: outer ring, inner ring, roller, "kind undecided" or none;
-  `verdict_kinds_*` every kind that fits); where the speed came from (`speed_from`) and whether
-  the record was read on the shaft's clock (`order_tracked`). The criterion with every
-  threshold is the file's `criterion` attribute (JSON).
+               "speed_from": (info["speed"] or {}).get("from", "config"),
+               "order_tracked": bool((info["speed"] or {}).get("order_tracked", False)),
+               **v.row("verdict_"),
+               **{k: val for s in SIDES for k, val in size_columns(pair.sizes.get(s), f"{s}_").items()}}
 
 ## Cases
 
-| case | km/h | left | right | real side | verdicts (left / right) | rule | windows |
-| --- | --- | --- | --- | --- | --- | --- | --- |
+| case | km/h | left | right | real side | verdicts (left / right) | rule | width read (L / R) | windows |
+| --- | --- | --- | --- | --- | --- | --- | --- | --- |
 {table}
 
 ## How it was made, and what it is not
@@ -261,9 +263,12 @@ def write(sweep_dir, out, *, window_s: float = 0.5, hop_s: float = 0.25, criteri
         r = g.iloc[0]
         side = {s: (f"{r[f'{s}_kind']} {1e3 * r[f'{s}_W']:g} mm row {r[f'{s}_row']}"
                     if r[f"{s}_kind"] != "none" else "none") for s in SIDES}
+        read = {s: (f"{r[f'{s}_width_mm']:.2f} mm ({r[f'{s}_width_lo_mm']:.2f}-"
+                    f"{r[f'{s}_width_hi_mm']:.2f})" if r[f"{s}_size"] == "sized" else r[f"{s}_size"])
+                for s in SIDES}
         table.append(f"| {case} | {r['speed_kmh']:g} | {side['left']} | {side['right']} | "
                      f"{r['real_side']} | {r['left_verdict']} / {r['right_verdict']} | "
-                     f"{r['verdict_rule']} | {len(g)} |")
+                     f"{r['verdict_rule']} | {read['left']} / {read['right']} | {len(g)} |")
     card = CARD.format(src=sweep_dir, out=out, window=ds.attrs["window_s"], hop=hop_s,
                        date=datetime.date.today().isoformat(),
                        machine=f"{platform.machine()}, {os.cpu_count()} cores",

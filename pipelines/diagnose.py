@@ -243,6 +243,7 @@ def analyse_record(rec: Record, speed, *, scale: float = 1.0, shaft=None, speed_
                             rotor=speed.rotor if own else rotor, angle=angle,
                             spread=0.0 if angle is not None or stats is None else stats["spread"])
     res = pair(speed.angle if tracked else None)
+    res = _sized(res, rec, (bl, br), speed.angle if tracked else None)
     second = None
     if tracked and res.verdict.real is None and BOTH in res.verdict.words.values():
         # a healthy side called faulty is the worst error: under a changing speed a copy's path
@@ -251,7 +252,7 @@ def analyse_record(rec: Record, speed, *, scale: float = 1.0, shaft=None, speed_
         in_time = pair(None)
         second = in_time.verdict.rule
         if BOTH not in in_time.verdict.words.values():
-            res = in_time
+            res = _sized(in_time, rec, (bl, br), None)
     if est is not None and est.status == "untrusted":
         res = sp.undecided(res, est)
     if speed is not None:
@@ -272,6 +273,15 @@ def analyse_record(rec: Record, speed, *, scale: float = 1.0, shaft=None, speed_
             "spectral kurtosis" + (", guided on the side without the other's fault line" if guided else ""),
             "notes": rec.notes}
     return info, res
+
+
+def _sized(res, rec: Record, bearings, angle):
+    """``res`` with each faulty side's defect size (bearing/diagnostics/size.py), from each
+    side's bearing's diameters and, where the file stores it, its most loaded roller's load."""
+    from axlebox.bearing.diagnostics.size import geometry_of, side_sizes
+    loads = rec.roller_loads or (None, None)
+    geometry = tuple(geometry_of(b, q) for b, q in zip(bearings, loads))
+    return replace(res, sizes=side_sizes(res, tuple(b.orders for b in bearings), geometry, angle))
 
 
 READ_OPTIONS = ("left", "right", "fs", "column", "speed_channel", "speed_unit", "tacho",

@@ -7,7 +7,9 @@ file's first bytes (not its name):
   the loader that runs it (vehicle: :func:`axlebox.mbs.config.validate`, ``run.speed_kmh``,
   ``wheelset.r0`` and ``[bearing]``; rig: :func:`axlebox.bearing.rig.config_from_dict`,
   ``rig.speed_kmh``, ``rig.r_wheel`` and its ``[bearing]``), defaults filled in as a run fills
-  them.
+  them; the most loaded roller's load on each side (the 99th percentile of the sensor's
+  bearing's ``bearings/bearing<k><L|R>/roller1_cup_force``, both rows, past the fade-in), for the
+  defect's size (bearing/diagnostics/size.py: a loaded roller's contact approach).
 * MATLAB ``.mat`` v5 (scipy.io.loadmat) and v7.3 (HDF5 after a 512-byte header; MATLAB stores
   arrays column-major, so h5py sees them transposed: a column vector reads as (1, n)).
 * any other HDF5: ``--left``/``--right`` are dataset paths; ``fs`` from --fs or the datasets'
@@ -78,6 +80,7 @@ class Record:
     angle: np.ndarray | None = None   # the shaft's angle (turns) at each sample, where the file has it
     start: int = 0                    # the file's index of the first sample read
     n_file: int = 0                   # samples a channel in the file
+    roller_loads: tuple | None = None  # (left, right) most loaded roller's load (N), where stored
 
 
 def file_kind(path) -> str:
@@ -208,7 +211,9 @@ def _read_result(path, left, right, fs, column: int, samples=None, max_samples=N
         left, right = (_channel(d[a:b, column], nm, s, finite=False)
                        for d, nm, s in zip(ds, names, ("left", "right")))
         angle = _stored_angle(f, cfg, names, n, (a, b))
-    rec = Record(left, right, fs, tuple(names), "axlebox-result", angle=angle, start=a, n_file=n)
+        loads = _roller_loads(f, cfg, names)
+    rec = Record(left, right, fs, tuple(names), "axlebox-result", angle=angle, start=a, n_file=n,
+                 roller_loads=loads)
     if cfg is not None:                       # the run's own speed, wheel and bearing
         rec.shaft_hz = shaft_hz(*((cfg.run.speed_kmh, cfg.wheelset.r0) if vehicle
                                   else (cfg.speed_kmh, cfg.r_wheel)))
@@ -230,6 +235,24 @@ def _stored_angle(f: h5py.File, cfg, names, n: int, span) -> np.ndarray | None:
     if ds is None or ds.shape[0] != n:
         return None
     return np.asarray(ds[span[0]:span[1]], float) / (2 * np.pi)
+
+
+def _roller_loads(f: h5py.File, cfg, names) -> tuple | None:
+    """Each sensor's bearing's most loaded roller's load (N) in a car run: the 99th percentile of
+    its roller 1's cup force (both rows; roller 1 passes the load zone once a cage turn) after
+    the track's fade-in; None where the file stores none."""
+    if not isinstance(cfg, CarConfig):
+        return None
+    out = []
+    for n in names:
+        ds = f.get(f"bearings/bearing{n.removeprefix('ws').replace('_', '')}/roller1_cup_force")
+        t = f.get("time")
+        if ds is None or t is None or ds.shape[0] != t.shape[0]:
+            out.append(None)
+            continue
+        q = np.asarray(ds[()], float)[np.asarray(t[()]) >= TRACK_FADE_IN_S]
+        out.append(float(np.percentile(q, 99.0)) if q.size else None)
+    return tuple(out)
 
 
 def _file_config(f: h5py.File, path):

@@ -45,13 +45,15 @@ class Scored:
     evidence: dict = field(default_factory=dict)
     sentences: dict = field(default_factory=dict)
     kind: str = "not named"         # the faulty end's fault kind as named (or "kind undecided: ...")
+    sizes: dict = field(default_factory=dict)       # end -> its defect size (size.SizeResult)
 
     def to_dict(self) -> dict:
-        """JSON-ready: the manifest row, the words, the rule, the real end, the evidence and the
-        sentences."""
+        """JSON-ready: the manifest row, the words, the rule, the real end, the evidence, the
+        sentences and each end's defect size."""
         return {"row": dict(self.row), "words": dict(self.words), "rule": self.rule,
                 "real": self.real, "evidence": dict(self.evidence),
-                "sentences": dict(self.sentences), "kind": self.kind}
+                "sentences": dict(self.sentences), "kind": self.kind,
+                "sizes": {e: r.to_dict() for e, r in self.sizes.items()}}
 
     @property
     def faulty(self) -> str:
@@ -105,10 +107,11 @@ class Score:
         for fault, c in sorted(self.kinds.items()):
             out.append(f"{fault} | " + " | ".join(str(c[k]) for k in named) + f" | {sum(c.values())}")
         out += ["", "| file | faulty end | fault | faulty end called | its kind | healthy end called "
-                "| rule |", "| --- | --- | --- | --- | --- | --- | --- |"]
+                "| rule | faulty end's size |", "| --- | --- | --- | --- | --- | --- | --- | --- |"]
         for r in self.records:
+            sz = r.sizes.get(r.row["faulty_end"])
             out.append(f"| {r.row['file']} | {r.row['faulty_end']} | {r.row['fault']} | {r.faulty} "
-                       f"| {r.kind} | {r.healthy} | {r.rule} |")
+                       f"| {r.kind} | {r.healthy} | {r.rule} | {sz.text() if sz is not None else '-'} |")
         return "\n".join(out)
 
 
@@ -159,8 +162,9 @@ def score(manifest, bearings: dict, *, scale: float = 1.0, criterion=None,
         fk = v.kinds[side]
         out.append(Scored(row, words, v.rule, end.get(v.real), v.row(),
                           {end[s]: v.sentence(s) for s in end},
-                          "not named" if fk is None else fk.kind if fk.decided else
-                          "kind undecided: " + " or ".join(fk.named)))
+                          kind="not named" if fk is None else fk.kind if fk.decided else
+                          "kind undecided: " + " or ".join(fk.named),
+                          sizes={end[s]: r for s, r in pair.sizes.items()}))
         log(f"{row['file']}: {row['fault']} at {row['faulty_end']}: {ends[0]} {words[ends[0]]}, "
             f"{ends[1]} {words[ends[1]]} ({v.rule})")
     return Score(out)

@@ -35,6 +35,8 @@ from axlebox.mbs.comfort import RideComfort, floor_comfort, nmv_words, sperling_
 
 from . import conclusions
 from . import report_figures as figs
+from axlebox.bearing.diagnostics.size import size_columns
+
 from .diagnose import analyse_file
 from .readers import TRACK_FADE_IN_S
 
@@ -73,6 +75,7 @@ class Case:
                 r.update({f"{side}_{k}": getattr(c, k) for k in SUMMARY_FIELDS})
                 r[f"{side}_lines"] = " ".join(c.detected)
                 r[f"{side}_verdict"] = p.verdict.words[side]
+                r.update(size_columns(p.sizes.get(side), f"{side}_"))
             lead = {"a": "left", "b": "right"}.get(p.lag.leading, "neither")
             r.update(lag_s=p.lag.lag_s, leading=lead, lag_correlation=p.lag.peak, vf_diff=p.vf_diff,
                      criterion_m=p.m, **p.verdict.row("verdict_"))
@@ -237,7 +240,7 @@ def write_tables(cases: list[Case], out: Path) -> tuple[Path, Path]:
 
 def _table_html(cases: list[Case]) -> str:
     head = ["case", "side", "sensor", "RMS m/s&sup2;", "peak m/s&sup2;", "kurtosis", "SPM dB",
-            "FC Hz", "VF Hz&sup2;", "lines", "verdict", "lag ms", "&Delta;VF Hz&sup2;"]
+            "FC Hz", "VF Hz&sup2;", "lines", "verdict", "defect width", "lag ms", "&Delta;VF Hz&sup2;"]
     # id: a stable handle on the verdict table for links and tests/test_report_browser.py
     out = ["<table id='verdicts'><tr>" + "".join(f"<th>{h}</th>" for h in head) + "</tr>"]
     for c in cases:
@@ -248,7 +251,8 @@ def _table_html(cases: list[Case]) -> str:
             cells = [f"{s.rms:.4g}", f"{s.peak:.4g}", f"{s.kurtosis:.3g}",
                      f"{s.spm_db:.1f} ({s.spm_class})", f"{s.FC:.0f}", f"{s.VF:.3g}",
                      html.escape(" ".join(s.detected) or "none"),
-                     f"<span title='{html.escape(why)}'>{html.escape(verdict)}</span>"]
+                     f"<span title='{html.escape(why)}'>{html.escape(verdict)}</span>",
+                     _size_cell(p.sizes.get(side))]
             first = (f"<td rowspan=2>{html.escape(c.label)}</td>" if i == 0 else "")
             tail = (f"<td rowspan=2 class=num>{1e3 * p.lag.lag_s:.2f}</td>"
                     f"<td rowspan=2 class=num>{p.vf_diff:.3g}</td>"
@@ -257,6 +261,12 @@ def _table_html(cases: list[Case]) -> str:
                        + "".join(_td(v) for v in cells) + tail + "</tr>")
     out.append("</table>")
     return "\n".join(out)
+
+
+def _size_cell(r) -> str:
+    if r is None or r.status == "not read":
+        return "&ndash;"
+    return f"<span title='{html.escape(r.reason)}'>{html.escape(r.text())}</span>"
 
 
 def _td(v: str) -> str:

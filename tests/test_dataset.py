@@ -114,6 +114,14 @@ def test_verdict_labels_are_what_diagnose_says(dataset, sweep_dir):
             faulty = r[f"{side}_verdict"] in ("real fault", "faults on both sides")
             assert kind == ("outer ring" if faulty else "none"), (name, side, kind)
         assert (r.speed_from, bool(r.order_tracked)) == ("config", False)
+        # each side's defect size as the diagnosis reads it (bearing/diagnostics/size.py)
+        for s in ("left", "right"):
+            got = pair.sizes[s]
+            assert r[f"{s}_size"] == got.status
+            assert (r[f"{s}_size"] == "not read") == (pair.verdict.words[s] not in
+                                                      ("real fault", "faults on both sides"))
+            if got.width_m is not None:
+                assert r[f"{s}_width_mm"] == pytest.approx(1e3 * got.width_m, rel=1e-12)
 
 
 def test_card_states_how_it_was_made(dataset):

@@ -37,7 +37,9 @@ class PairResult:
     ``bearings``: each side's bearing name; ``rotor``: what turns the shaft, ``"wheel"`` (a
     vehicle) or ``"shaft"`` (a machine; :data:`.verdict.ROTORS`); ``orders``: each side's
     FaultOrders; ``spread``: the shaft speed's range over its mean as the record was read;
-    ``warnings``: what the acquisition spoiled but left readable (:mod:`.acquisition`: clipping)."""
+    ``warnings``: what the acquisition spoiled but left readable (:mod:`.acquisition`: clipping);
+    ``sizes``: side -> the defect's :class:`.size.SizeResult` where it was read
+    (:func:`.size.side_sizes`)."""
 
     def _kinds_kw(self) -> dict:
         """What :func:`.criterion.decide` names the faults' kinds from."""
@@ -61,6 +63,7 @@ class PairResult:
     orders: tuple = ()
     spread: float = 0.0
     warnings: tuple[str, ...] = ()
+    sizes: dict = field(default_factory=dict, compare=False)
 
     @property
     def shares(self) -> dict:
@@ -102,7 +105,8 @@ class PairResult:
                 "criterion": {**self.criterion.to_dict(), "m": self.m}, "rotor": self.rotor,
                 "verdict": self.verdict.to_dict(), "warnings": list(self.warnings),
                 "verdicts": {s: {"verdict": self.verdict.words[s], "reason": sentence(self.verdict, s)}
-                             for s in SIDES}}
+                             for s in SIDES},
+                "sizes": {s: r.to_dict() for s, r in self.sizes.items()}}
 
     def summary(self) -> str:
         """A few lines for a terminal."""
@@ -134,6 +138,9 @@ class PairResult:
             if k is not None:
                 out.append(f"{s} fault: {k.text()}")
         out += [f"warning: {w}" for w in self.warnings]
+        for s, r in self.sizes.items():
+            if r.status != "not read":
+                out.append(f"{s} defect size ({r.kind}, {r.line}): {r.text()}: {r.reason}")
         return "\n".join(out)
 
     def plot(self, path=None):

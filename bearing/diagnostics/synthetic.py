@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.signal import butter, lfilter, sosfilt
+from scipy.signal import butter, lfilter, resample_poly, sosfilt
 
 
 def resonance(x, fs: float, f: float, zeta: float) -> np.ndarray:
@@ -155,3 +155,71 @@ def gaps(x, starts, length: int) -> np.ndarray:
     for s in np.atleast_1d(starts):
         y[int(s):int(s) + length] = np.nan
     return y
+
+
+#: structural modes (Hz, damping ratio) of :func:`spall_record`: three housing modes in the
+#: band a 10 kHz acquisition keeps
+SPALL_MODES = ((700.0, 0.05), (2300.0, 0.03), (3700.0, 0.02))
+SPALL_EVENTS = ("steps", "dip", "single")
+
+
+def spall_record(T: float, fs: float, f_fault: float, dt_s: float, rng, *, events: str = "steps",
+                 up: int = 20, rise_s: float = 5e-5, impact: float = 0.5,
+                 modes=SPALL_MODES, background: float = 1.0, noise: float = 0.3, white: float = 0.02,
+                 jitter: float = 0.01, start_s: float = 0.01) -> tuple[np.ndarray, np.ndarray]:
+    """``(x, entries)``: ``T`` s at ``fs`` of a ring carrying a local defect the rollers cross in
+    ``dt_s``, one pass a fault period ``1 / f_fault`` (each ``jitter`` of a period off), and
+    the instants (s) each pass begins.  The ring's force, built at ``up x fs``:
+
+    * ``"steps"``: the roller's load drops as it enters and comes back as it leaves (Sawalhi and
+      Randall, MSSP 25 (2011) 846-870): ``-[s(t - t_k) - s(t - t_k - dt_s)]``, ``s`` a
+      raised-cosine step over ``rise_s``, and at the exit a half-sine impact of ``impact`` over
+      ``rise_s`` (the roller striking the far edge);
+    * ``"dip"``: a roller that bridges the defect without unloading: a half-sine dip of the load
+      over ``dt_s`` (no entry or exit event, only the dip's edges);
+    * ``"single"``: one impact a pass (no pair of events).
+
+    The structure (its ``modes``, Hz and damping ratio, acceleration response summed) carries
+    the defect's force and a broadband background force (the rolling contacts' and the
+    track's), whose response has ``background`` times the defect's RMS; then to ``fs`` through
+    ``scipy.signal.resample_poly``'s anti-alias filter, scaled to the defect's unit RMS, plus
+    :func:`wheel_rail_noise` (the body's low-frequency motion) of RMS ``noise`` and the sensor's
+    white noise of RMS ``white``."""
+    if events not in SPALL_EVENTS:
+        raise ValueError(f"events = {events!r} is not allowed: expected one of {SPALL_EVENTS}")
+    fh = fs * up
+    n = int(round(T * fh))
+    t = np.arange(n) / fh
+    F = np.zeros(n)
+    period = 1.0 / f_fault
+    w = max(int(round(rise_s * fh)), 1)
+    entries = []
+    tk = start_s
+    while tk + dt_s + 4 * rise_s < T - 0.002:
+        entries.append(tk)
+        i0, i1 = int(tk * fh), min(n, int((tk + dt_s + 4 * rise_s) * fh) + 2)
+        tt = t[i0:i1] - tk
+        if events == "steps":
+            s1 = 0.5 - 0.5 * np.cos(np.pi * np.clip(tt / rise_s, 0.0, 1.0))
+            s2 = 0.5 - 0.5 * np.cos(np.pi * np.clip((tt - dt_s) / rise_s, 0.0, 1.0))
+            F[i0:i1] += s2 - s1
+            j = int(round((tk + dt_s) * fh))
+            F[j:j + w] += impact * np.sin(np.pi * np.arange(w) / w)[:max(0, n - j)]
+        elif events == "dip":
+            F[i0:i1] -= np.where(tt < dt_s, np.sin(np.pi * np.clip(tt / dt_s, 0.0, 1.0)), 0.0)
+        else:
+            F[i0:i0 + w] += np.sin(np.pi * np.arange(w) / w)[:n - i0]
+        tk += period * (1 + jitter * rng.standard_normal())
+    nfft = 1 << int(np.ceil(np.log2(2 * n)))
+    om = 2 * np.pi * np.fft.rfftfreq(nfft, 1 / fh)
+    H = sum(-om ** 2 / ((2 * np.pi * f) ** 2 - om ** 2 + 2j * z * (2 * np.pi * f) * om) for f, z in modes)
+
+    def response(force):
+        return resample_poly(np.fft.irfft(np.fft.rfft(force, nfft) * H, nfft)[:n], 1, up)
+    x = response(F)
+    x /= max(x.std(), 1e-300)
+    b = response(rng.standard_normal(n))
+    x += background * b / max(b.std(), 1e-300)
+    m = x.size
+    return (x + noise * wheel_rail_noise(m, fs, rng) + white * rng.standard_normal(m),
+            np.array(entries))
