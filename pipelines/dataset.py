@@ -221,10 +221,15 @@ labels = ds.drop_dims("sample").to_dataframe()
   each side's compared indicators, the lag (`verdict_lag_leading`, `verdict_lag_s`), each
   fault line seen and how its source was found (`verdict_lines`), the whole orders of the
   wheel's rate on each side (`verdict_orders_left`, `_right`), the blanking of a wheel flat's
-               "speed_from": (info["speed"] or {}).get("from", "config"),
-               "order_tracked": bool((info["speed"] or {}).get("order_tracked", False)),
-               **v.row("verdict_"),
-               **{k: val for s in SIDES for k, val in size_columns(pair.sizes.get(s), f"{s}_").items()}}
+  strikes (`verdict_gate_*`, NaN without), the fault's kind named on each side called faulty
+  (`verdict_kind_left`, `_right`: outer ring, inner ring, roller, "kind undecided" or none;
+  `verdict_kinds_*` every kind that fits); where the speed came from (`speed_from`) and whether
+  the record was read on the shaft's clock (`order_tracked`); per side the defect's size the
+  diagnosis reads from the rollers' entry and exit events (`left_size`: sized, bridged, below
+  resolution or not read; `left_width_mm` with its interval `left_width_lo_mm`,
+  `left_width_hi_mm`, NaN where none; `left_events_ms`, the events' separation): an estimate to
+  compare with the true `left_W`.  The criterion with every threshold is the file's `criterion`
+  attribute (JSON).
 
 ## Cases
 
