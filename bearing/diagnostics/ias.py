@@ -226,39 +226,55 @@ class SpeedEstimate:
                 "max_hz": None if self.f_hz is None else float(np.max(self.f_hz))}
 
 
-def _maps(envs, angle, fs, L, fams, grid):
-    """``(maps, frame centres in turns)``: each family's multi-order maps (frames x grid) of the
-    envelopes ``envs`` read on ``angle``, frames of ``L`` turns, and the frame threshold of its
-    highest cell (:func:`frame_threshold` over the cells the highest harmonic's span of the grid
-    covers): ``{family: (S, capped S, threshold)}``; in the capped map each harmonic counts up to
-    ``K threshold / 2`` at most, so that a ridge stands only where at least half the family's
-    harmonics do (one strong line of another family, met by one harmonic, does not)."""
+#: frames of an STFT taken at once (the memory of a long record's spectra stays bounded)
+CHUNK = 512
+
+
+def _whitened(envs, angle, fs, L, top):
+    """``(orders, W, frame centres in turns)``: the envelopes ``envs`` read on ``angle``, their
+    STFT over frames of ``L`` turns (Hann, 3/4 overlapping; :data:`CHUNK` frames at a time),
+    each bin's power over its frame's floor (:func:`_floor`), both sides averaged, up to ``top``
+    orders (float32: orders x frames)."""
     n = max(16, int(round(L * PER_REV)))
-    W = 0.0
-    for e in envs:
-        r = ordertrack.to_angle(e, fs, angle, PER_REV)
-        o, th, Z = stft(r.x, PER_REV, window="hann", nperseg=n, noverlap=3 * n // 4, nfft=4 * n,
-                        boundary=None, padded=False, detrend="constant")
-        P = np.abs(Z) ** 2
-        W = W + P / _floor(P, 8 * int(np.ceil(4 * L)))
-        th = th + r.angle0
-    W = W / len(envs)
-    out = {}
-    for fam in fams:
-        K = fam.harmonics
-        thr = frame_threshold(K, max(1.0, K * fam.order * (grid[-1] - grid[0]) * L))
-        cap = 0.5 * K * thr
-        S = np.zeros((W.shape[1], grid.size))
-        Sc = np.zeros_like(S)
-        for m in range(1, K + 1):
-            q = m * fam.order * grid
-            j = np.clip(np.searchsorted(o, q) - 1, 0, o.size - 2)
-            w = (q - o[j]) / (o[j + 1] - o[j])
-            Wm = W[j].T * (1 - w) + W[j + 1].T * w
-            S += Wm
-            Sc += np.minimum(Wm, cap)
-        out[fam] = (S / K, Sc / K, thr)
-    return out, th
+    hop = n - 3 * n // 4
+    recs = [ordertrack.to_angle(e, fs, angle, PER_REV) for e in envs]
+    size = min(r.x.size for r in recs)
+    frames = 1 + (size - n) // hop if size >= n else 0
+    o = np.fft.rfftfreq(4 * n, 1.0 / PER_REV)
+    keep = min(o.size, int(np.searchsorted(o, top)) + 2)
+    W = np.zeros((keep, max(frames, 0)), dtype=np.float32)
+    for k0 in range(0, frames, CHUNK):
+        k1 = min(frames, k0 + CHUNK)
+        for r in recs:
+            seg = r.x[k0 * hop:(k1 - 1) * hop + n]
+            _, _, Z = stft(seg, PER_REV, window="hann", nperseg=n, noverlap=3 * n // 4, nfft=4 * n,
+                           boundary=None, padded=False, detrend="constant")
+            P = np.abs(Z[:keep, :k1 - k0]) ** 2
+            W[:, k0:k1] += (P / _floor(P, 8 * int(np.ceil(4 * L))) / len(recs)).astype(np.float32)
+    th = recs[0].angle0 + (np.arange(frames) * hop + n / 2) / PER_REV
+    return o[:keep], W, th
+
+
+def _family_maps(o, W, fam: Family, grid, L):
+    """``(S, capped S, threshold)``: the family's multi-order map (frames x grid) of the whitened
+    spectra ``W`` at ``orders`` ``o``, and the frame threshold of its highest cell
+    (:func:`frame_threshold` over the cells the highest harmonic's span of the grid covers); in
+    the capped map each harmonic counts up to ``K threshold / 2`` at most, so that a ridge stands
+    only where at least half the family's harmonics do (one strong line of another family, met
+    by one harmonic, does not)."""
+    K = fam.harmonics
+    thr = frame_threshold(K, max(1.0, K * fam.order * (grid[-1] - grid[0]) * L))
+    cap = np.float32(0.5 * K * thr)
+    S = np.zeros((W.shape[1], grid.size), dtype=np.float32)
+    Sc = np.zeros_like(S)
+    for m in range(1, K + 1):
+        q = m * fam.order * grid
+        j = np.clip(np.searchsorted(o, q) - 1, 0, o.size - 2)
+        w = ((q - o[j]) / (o[j + 1] - o[j])).astype(np.float32)
+        Wm = W[j].T * (1 - w) + W[j + 1].T * w
+        S += Wm
+        Sc += np.minimum(Wm, cap)
+    return S / K, Sc / K, thr
 
 
 def _floor(P: np.ndarray, block: int) -> np.ndarray:
@@ -274,18 +290,31 @@ def _floor(P: np.ndarray, block: int) -> np.ndarray:
     return np.maximum(out, np.finfo(float).tiny)
 
 
+def _best_before(D: np.ndarray, cost: float) -> tuple[np.ndarray, np.ndarray]:
+    """For each cell ``i``: ``max_j D[j] - cost |i - j|`` and the ``j`` that gives it, in O(G):
+    the L1 distance transform, one running maximum from each side (``max_{j<=i} (D[j] + cost j)
+    - cost i``, and its mirror)."""
+    idx = np.arange(D.size)
+    out = []
+    for sign, sl in ((1.0, slice(None)), (-1.0, slice(None, None, -1))):
+        A = (D + sign * cost * idx)[sl]
+        run = np.maximum.accumulate(A)
+        at = np.maximum.accumulate(np.where(A >= run, np.arange(A.size), 0))
+        out.append((run[sl] - sign * cost * idx, (at if sign > 0 else A.size - 1 - at)[sl]))
+    (fv, fi), (bv, bi) = out
+    take = bv > fv
+    return np.where(take, bv, fv), np.where(take, bi, fi)
+
+
 def _viterbi(S: np.ndarray, cost: float) -> np.ndarray:
     """The path (a grid index a frame) maximising the summed ``S`` less ``cost`` per grid step
-    moved between frames."""
+    moved between frames (dynamic programming; the step's maximum by :func:`_best_before`)."""
     J, G = S.shape
-    idx = np.arange(G)
-    pen = cost * np.abs(idx[:, None] - idx[None, :])
-    D = S[0].copy()
+    D = S[0].astype(float)
     back = np.zeros((J, G), dtype=np.int32)
     for j in range(1, J):
-        M = D[None, :] - pen
-        back[j] = np.argmax(M, axis=1)
-        D = S[j] + M[idx, back[j]]
+        best, back[j] = _best_before(D, cost)
+        D = S[j] + best
     path = np.empty(J, dtype=np.int64)
     path[-1] = int(np.argmax(D))
     for j in range(J - 1, 0, -1):
@@ -354,18 +383,21 @@ def _through(x_frames, y, held, x_eval, L):
 
 
 def _local_line(x, y, x_eval, width):
-    """``y(x)`` smoothed by a local straight line at each ``x_eval`` through the points within
-    ``width / 2``, Hann-weighted (a kernel that does not ring at a step, as a spline does, and
-    keeps a constant acceleration, also at the ends)."""
+    """``y(x)`` (``x`` increasing) smoothed by a local straight line at each ``x_eval`` through
+    the points within ``width / 2``, Hann-weighted (a kernel that does not ring at a step, as a
+    spline does, and keeps a constant acceleration, also at the ends)."""
     out = np.empty(len(x_eval))
+    lo = np.searchsorted(x, np.asarray(x_eval) - width / 2)
+    hi = np.searchsorted(x, np.asarray(x_eval) + width / 2)
     for i, x0 in enumerate(x_eval):
-        u = (x - x0) / width
-        w = np.where(np.abs(u) < 0.5, np.cos(np.pi * u) ** 2, 0.0)
-        if np.count_nonzero(w) < 3:
+        xs, ys = x[lo[i]:hi[i]], y[lo[i]:hi[i]]
+        u = (xs - x0) / width
+        w = np.cos(np.pi * u) ** 2
+        if np.count_nonzero(w > 0) < 3:
             out[i] = np.interp(x0, x, y)
             continue
-        sw, swx, swy = w.sum(), (w * u).sum(), (w * y).sum()
-        swxx, swxy = (w * u * u).sum(), (w * u * y).sum()
+        sw, swx, swy = w.sum(), (w * u).sum(), (w * ys).sum()
+        swxx, swxy = (w * u * u).sum(), (w * u * ys).sum()
         det = sw * swxx - swx * swx
         out[i] = swy / sw if det <= 1e-12 * sw * sw else (swxx * swy - swx * swxy) / det
     return out
@@ -425,11 +457,17 @@ def estimate(x_left, x_right, fs: float, nominal_hz: float, orders, *, wheel: bo
                                  f"follow a line locked to the shaft ({4 * MIN_TURNS:g} at least)",
                                  float(nominal_hz))
         grid = np.exp(np.linspace(np.log(lo), np.log(hi), GRID))
-        maps, th = _maps(envs, angle, fs_e, L, fams, grid)
+        o, W, th = _whitened(envs, angle, fs_e, L, 1.05 * top * hi)
+        if th.size < 4:
+            return SpeedEstimate("no ridge", f"the record holds {turns:.3g} shaft turns: too few "
+                                 "frames to follow a line locked to the shaft", float(nominal_hz))
         t_frames = np.interp(th, angle, t_e)
         cur = float(np.mean(f_cur)) / nominal_hz
-        ridges = [_near_ridge(S, Sc, grid, fam, t_frames, t_e, thr, L, cur)
-                  for fam, (S, Sc, thr) in maps.items()]
+        ridges = []
+        for fam in fams:            # one family's maps at a time: a long record's are large
+            S, Sc, thr = _family_maps(o, W, fam, grid, L)
+            ridges.append(_near_ridge(S, Sc, grid, fam, t_frames, t_e, thr, L, cur))
+        del W
         near = [r for r in ridges if _near(r, cur) and r.held.sum() >= 3]
         if first is None:
             first = (near, t_frames)
@@ -451,9 +489,10 @@ def _decide(t, t_e, f_cur, angle, nominal_hz, first, last, spread_limit) -> Spee
     fam = best.family
     # the final speed: the estimate smoothed by a local line over the last step's frame (what the
     # earlier, shorter frames left of their noise goes), its mean the nominal speed
-    dense = np.linspace(angle[0], angle[-1], max(64, int(8 * (angle[-1] - angle[0]) / L)))
+    # (on points L/16 apart: the estimate is linear between frames L/4 apart)
+    dense = np.linspace(angle[0], angle[-1], max(64, int(16 * (angle[-1] - angle[0]) / L)))
     a_t = np.interp(t, t_e, angle)
-    f_fin = np.interp(a_t, dense, _local_line(angle, f_cur, dense, L))
+    f_fin = np.interp(a_t, dense, _local_line(dense, np.interp(dense, angle, f_cur), dense, L))
     f_fin = np.maximum(f_fin, 1e-3 * nominal_hz)
     angle = ordertrack.angle_from_speed(t, f_fin)
     scale = nominal_hz * (t[-1] - t[0]) / (angle[-1] - angle[0])
