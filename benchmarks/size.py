@@ -97,6 +97,18 @@ def vehicle_case(path, log=print) -> dict:
     return row
 
 
+def healthy_case(path, log=print) -> dict:
+    """A run without a defect: both sides' verdicts and sizes (none is due)."""
+    from axlebox.pipelines.diagnose import analyse_file
+    from axlebox.pipelines.readers import result_config
+    _, _, pair = analyse_file(path)
+    row = {"case": Path(path).stem, "speed_kmh": result_config(path).run.speed_kmh,
+           "verdicts": " / ".join(pair.verdict.words[s] for s in ("left", "right")),
+           "sizes": " / ".join(pair.sizes[s].status for s in ("left", "right"))}
+    log(f"{row['case']}: no defect: {row['verdicts']}; sizes {row['sizes']}")
+    return row
+
+
 def cwru(manifest, log=print) -> list[dict]:
     from axlebox.bearing import catalogue
     from axlebox.bearing.diagnostics import size
@@ -220,18 +232,25 @@ def main(argv) -> int:
         files += (sorted(q for q in p.glob("*.h5") if not q.name.endswith((".partial.h5", ".stream.h5")))
                   if p.is_dir() else [p])
     t0 = time.perf_counter()
-    rows = []
+    rows, healthy = [], []
     for f in files:
-        _, _, W, _, _ = truth(f) if _has_defect(f) else (None, None, 0.0, None, None)
-        if W:
+        if _has_defect(f):
             rows.append(vehicle_case(f))
+        else:
+            healthy.append(healthy_case(f))
     real = cwru(opts["--cwru"]) if "--cwru" in opts else []
     print()
     print(markdown(rows, real))
+    if healthy:
+        print("\n| case (no defect) | km/h | verdicts (left / right) | sizes (left / right) |\n"
+              "| --- | --- | --- | --- |")
+        for h in healthy:
+            print(f"| {h['case']} | {h['speed_kmh']:g} | {h['verdicts']} | {h['sizes']} |")
     print(f"\n{len(rows)} cases, {len(real)} records in {time.perf_counter() - t0:.0f} s")
     if "--json" in opts:
         from axlebox.bearing.diagnostics.channel import jsonable
-        Path(opts["--json"]).write_text(json.dumps(jsonable({"cases": rows, "records": real}), indent=1,
+        Path(opts["--json"]).write_text(json.dumps(jsonable({"cases": rows, "healthy": healthy,
+                                                             "records": real}), indent=1,
                                                    allow_nan=False) + "\n")
     return 0
 
