@@ -81,7 +81,8 @@ def vehicle_case(path, log=print) -> dict:
     D = size.surface_diameter(kind, b.orders, b.pitch, b.roller)
     crossing = 2 * math.asin(W / D) * D / (2 * v) * rec.fs
     diag = pair.sizes.get(side) if pair is not None else None
-    row = {"case": Path(path).stem, "model": f"{cfg.bearing.__class__.__name__} {cfg.bearing.model}",
+    from axlebox.bearing import models
+    row = {"case": Path(path).stem, "model": f"{models.name(cfg.bearing).upper()} {cfg.bearing.model}",
            "kind": kind, "side": side, "speed_kmh": kmh, "W_mm": 1e3 * W, "fs_hz": rec.fs,
            "crossing_samples": crossing,
            "verdict": pair.verdict.words[side] if pair is not None else "not diagnosed",
@@ -89,8 +90,12 @@ def vehicle_case(path, log=print) -> dict:
            "diagnosis": diag.to_dict() if diag is not None else None, "alone": alone.to_dict(),
            "wall_s": time.perf_counter() - t0}
     row["judge_alone"] = judge(W, crossing, alone)
-    row["judge_diagnosis"] = (judge(W, crossing, diag) if diag is not None and diag.status != "not read"
-                              else ("miss", "miss"))
+    if pair is None:                          # not diagnosed (a run too short): not counted
+        row["judge_diagnosis"] = ("-", "-")
+    elif diag is None or diag.status == "not read":   # the side not called faulty: no size
+        row["judge_diagnosis"] = ("miss", "miss")
+    else:
+        row["judge_diagnosis"] = judge(W, crossing, diag)
     log(f"{row['case']}: {kind} {1e3 * W:g} mm at {kmh:g} km/h ({crossing:.1f} samples): "
         f"{row['verdict']}; diagnosis {diag.text() if diag else '-'}; alone {alone.text()} "
         f"[{alone.reason}] ({row['wall_s']:.0f} s)")
