@@ -44,11 +44,17 @@ MISS_SAMPLES = 5.0                 # the issue's: a miss where the crossing take
 
 
 def truth(path):
-    """``(kind, side, W, speed_kmh, row)`` of a vehicle result's first defect."""
+    """``(defects, speed_kmh, config)`` of a vehicle result: each side's first defect on the
+    first defect's wheelset, ``(kind, side, W)``."""
     from axlebox.pipelines.readers import result_config
     cfg = result_config(path)
-    d = cfg.defects[0]
-    return d.defect.kind, {"L": "left", "R": "right"}[d.side], d.defect.W, cfg.run.speed_kmh, cfg
+    ws = cfg.defects[0].wheelset
+    out = {}
+    for d in cfg.defects:
+        side = {"L": "left", "R": "right"}[d.side]
+        if d.wheelset == ws and side not in out:
+            out[side] = (d.defect.kind, side, d.defect.W)
+    return list(out.values()), cfg.run.speed_kmh, cfg
 
 
 def judge(W, crossing_samples, r) -> tuple[str, str]:
@@ -60,46 +66,50 @@ def judge(W, crossing_samples, r) -> tuple[str, str]:
             "hit" if abs(r.width_m - W) <= 0.25 * W else "miss")
 
 
-def vehicle_case(path, log=print) -> dict:
+def vehicle_case(path, log=print) -> list[dict]:
+    """One row a defect side of a vehicle result (module docstring)."""
+    from axlebox._params import ParameterError
+    from axlebox.bearing import models
     from axlebox.bearing.diagnostics import size
     from axlebox.pipelines.diagnose import analyse_file
-    from axlebox._params import ParameterError
     from axlebox.pipelines.readers import read
-    kind, side, W, kmh, cfg = truth(path)
+    defects, kmh, cfg = truth(path)
     t0 = time.perf_counter()
     try:
         rec, info, pair = analyse_file(path)
     except ParameterError as err:             # a short run: the estimator alone still reads it
         rec, pair = read(path), None
         log(f"{Path(path).name}: not diagnosed ({err})")
-    i = ("left", "right").index(side)
-    b = rec.bearing
-    g = size.geometry_of(b, (rec.roller_loads or (None, None))[i])
-    x = (rec.left, rec.right)[i]
-    alone = size.estimate(x, rec.fs, rec.shaft_hz, b.orders, kind, g)
-    v = size.rolling_speed(b.orders, rec.shaft_hz, b.pitch)
-    D = size.surface_diameter(kind, b.orders, b.pitch, b.roller)
-    crossing = 2 * math.asin(W / D) * D / (2 * v) * rec.fs
-    diag = pair.sizes.get(side) if pair is not None else None
-    from axlebox.bearing import models
-    row = {"case": Path(path).stem, "model": f"{models.name(cfg.bearing).upper()} {cfg.bearing.model}",
-           "kind": kind, "side": side, "speed_kmh": kmh, "W_mm": 1e3 * W, "fs_hz": rec.fs,
-           "crossing_samples": crossing,
-           "verdict": pair.verdict.words[side] if pair is not None else "not diagnosed",
-           "delta_um": None if g is None or g.delta is None else 1e6 * g.delta,
-           "diagnosis": diag.to_dict() if diag is not None else None, "alone": alone.to_dict(),
-           "wall_s": time.perf_counter() - t0}
-    row["judge_alone"] = judge(W, crossing, alone)
-    if pair is None:                          # not diagnosed (a run too short): not counted
-        row["judge_diagnosis"] = ("-", "-")
-    elif diag is None or diag.status == "not read":   # the side not called faulty: no size
-        row["judge_diagnosis"] = ("miss", "miss")
-    else:
-        row["judge_diagnosis"] = judge(W, crossing, diag)
-    log(f"{row['case']}: {kind} {1e3 * W:g} mm at {kmh:g} km/h ({crossing:.1f} samples): "
-        f"{row['verdict']}; diagnosis {diag.text() if diag else '-'}; alone {alone.text()} "
-        f"[{alone.reason}] ({row['wall_s']:.0f} s)")
-    return row
+    rows = []
+    for kind, side, W in defects:
+        i = ("left", "right").index(side)
+        b = rec.bearing
+        g = size.geometry_of(b, (rec.roller_loads or (None, None))[i])
+        alone = size.estimate((rec.left, rec.right)[i], rec.fs, rec.shaft_hz, b.orders, kind, g)
+        v = size.rolling_speed(b.orders, rec.shaft_hz, b.pitch)
+        D = size.surface_diameter(kind, b.orders, b.pitch, b.roller)
+        crossing = 2 * math.asin(W / D) * D / (2 * v) * rec.fs
+        diag = pair.sizes.get(side) if pair is not None else None
+        row = {"case": Path(path).stem + ("" if len(defects) == 1 else f" {side}"),
+               "model": f"{models.name(cfg.bearing).upper()} {cfg.bearing.model}", "kind": kind,
+               "side": side, "speed_kmh": kmh, "W_mm": 1e3 * W, "fs_hz": rec.fs,
+               "crossing_samples": crossing,
+               "verdict": pair.verdict.words[side] if pair is not None else "not diagnosed",
+               "delta_um": None if g is None or g.delta is None else 1e6 * g.delta,
+               "diagnosis": diag.to_dict() if diag is not None else None, "alone": alone.to_dict(),
+               "wall_s": time.perf_counter() - t0}
+        row["judge_alone"] = judge(W, crossing, alone)
+        if pair is None:                          # not diagnosed (a run too short): not counted
+            row["judge_diagnosis"] = ("-", "-")
+        elif diag is None or diag.status == "not read":   # the side not called faulty: no size
+            row["judge_diagnosis"] = ("miss", "miss")
+        else:
+            row["judge_diagnosis"] = judge(W, crossing, diag)
+        log(f"{row['case']}: {kind} {1e3 * W:g} mm at {kmh:g} km/h ({crossing:.1f} samples): "
+            f"{row['verdict']}; diagnosis {diag.text() if diag else '-'}; alone {alone.text()} "
+            f"[{alone.reason}] ({row['wall_s']:.0f} s)")
+        rows.append(row)
+    return rows
 
 
 def healthy_case(path, log=print) -> dict:
@@ -240,7 +250,7 @@ def main(argv) -> int:
     rows, healthy = [], []
     for f in files:
         if _has_defect(f):
-            rows.append(vehicle_case(f))
+            rows += vehicle_case(f)
         else:
             healthy.append(healthy_case(f))
     real = cwru(opts["--cwru"]) if "--cwru" in opts else []
