@@ -44,11 +44,17 @@ MISS_SAMPLES = 5.0                 # the issue's: a miss where the crossing take
 
 
 def truth(path):
-    """``(kind, side, W, speed_kmh, row)`` of a vehicle result's first defect."""
+    """``(defects, speed_kmh, config)`` of a vehicle result: each side's first defect on the
+    first defect's wheelset, ``(kind, side, W)``."""
     from axlebox.pipelines.readers import result_config
     cfg = result_config(path)
-    d = cfg.defects[0]
-    return d.defect.kind, {"L": "left", "R": "right"}[d.side], d.defect.W, cfg.run.speed_kmh, cfg
+    ws = cfg.defects[0].wheelset
+    out = {}
+    for d in cfg.defects:
+        side = {"L": "left", "R": "right"}[d.side]
+        if d.wheelset == ws and side not in out:
+            out[side] = (d.defect.kind, side, d.defect.W)
+    return list(out.values()), cfg.run.speed_kmh, cfg
 
 
 def judge(W, crossing_samples, r) -> tuple[str, str]:
@@ -60,40 +66,61 @@ def judge(W, crossing_samples, r) -> tuple[str, str]:
             "hit" if abs(r.width_m - W) <= 0.25 * W else "miss")
 
 
-def vehicle_case(path, log=print) -> dict:
+def vehicle_case(path, log=print) -> list[dict]:
+    """One row a defect side of a vehicle result (module docstring)."""
+    from axlebox._params import ParameterError
+    from axlebox.bearing import models
     from axlebox.bearing.diagnostics import size
     from axlebox.pipelines.diagnose import analyse_file
-    from axlebox._params import ParameterError
     from axlebox.pipelines.readers import read
-    kind, side, W, kmh, cfg = truth(path)
+    defects, kmh, cfg = truth(path)
     t0 = time.perf_counter()
     try:
         rec, info, pair = analyse_file(path)
     except ParameterError as err:             # a short run: the estimator alone still reads it
         rec, pair = read(path), None
         log(f"{Path(path).name}: not diagnosed ({err})")
-    i = ("left", "right").index(side)
-    b = rec.bearing
-    g = size.geometry_of(b, (rec.roller_loads or (None, None))[i])
-    x = (rec.left, rec.right)[i]
-    alone = size.estimate(x, rec.fs, rec.shaft_hz, b.orders, kind, g)
-    v = size.rolling_speed(b.orders, rec.shaft_hz, b.pitch)
-    D = size.surface_diameter(kind, b.orders, b.pitch, b.roller)
-    crossing = 2 * math.asin(W / D) * D / (2 * v) * rec.fs
-    diag = pair.sizes.get(side) if pair is not None else None
-    row = {"case": Path(path).stem, "model": f"{cfg.bearing.__class__.__name__} {cfg.bearing.model}",
-           "kind": kind, "side": side, "speed_kmh": kmh, "W_mm": 1e3 * W, "fs_hz": rec.fs,
-           "crossing_samples": crossing,
-           "verdict": pair.verdict.words[side] if pair is not None else "not diagnosed",
-           "delta_um": None if g is None or g.delta is None else 1e6 * g.delta,
-           "diagnosis": diag.to_dict() if diag is not None else None, "alone": alone.to_dict(),
-           "wall_s": time.perf_counter() - t0}
-    row["judge_alone"] = judge(W, crossing, alone)
-    row["judge_diagnosis"] = (judge(W, crossing, diag) if diag is not None and diag.status != "not read"
-                              else ("miss", "miss"))
-    log(f"{row['case']}: {kind} {1e3 * W:g} mm at {kmh:g} km/h ({crossing:.1f} samples): "
-        f"{row['verdict']}; diagnosis {diag.text() if diag else '-'}; alone {alone.text()} "
-        f"[{alone.reason}] ({row['wall_s']:.0f} s)")
+    rows = []
+    for kind, side, W in defects:
+        i = ("left", "right").index(side)
+        b = rec.bearing
+        g = size.geometry_of(b, (rec.roller_loads or (None, None))[i])
+        alone = size.estimate((rec.left, rec.right)[i], rec.fs, rec.shaft_hz, b.orders, kind, g)
+        v = size.rolling_speed(b.orders, rec.shaft_hz, b.pitch)
+        D = size.surface_diameter(kind, b.orders, b.pitch, b.roller)
+        crossing = 2 * math.asin(W / D) * D / (2 * v) * rec.fs
+        diag = pair.sizes.get(side) if pair is not None else None
+        row = {"case": Path(path).stem + ("" if len(defects) == 1 else f" {side}"),
+               "model": f"{models.name(cfg.bearing).upper()} {cfg.bearing.model}", "kind": kind,
+               "side": side, "speed_kmh": kmh, "W_mm": 1e3 * W, "fs_hz": rec.fs,
+               "crossing_samples": crossing,
+               "verdict": pair.verdict.words[side] if pair is not None else "not diagnosed",
+               "delta_um": None if g is None or g.delta is None else 1e6 * g.delta,
+               "diagnosis": diag.to_dict() if diag is not None else None, "alone": alone.to_dict(),
+               "wall_s": time.perf_counter() - t0}
+        row["judge_alone"] = judge(W, crossing, alone)
+        if pair is None:                          # not diagnosed (a run too short): not counted
+            row["judge_diagnosis"] = ("-", "-")
+        elif diag is None or diag.status == "not read":   # the side not called faulty: no size
+            row["judge_diagnosis"] = ("miss", "miss")
+        else:
+            row["judge_diagnosis"] = judge(W, crossing, diag)
+        log(f"{row['case']}: {kind} {1e3 * W:g} mm at {kmh:g} km/h ({crossing:.1f} samples): "
+            f"{row['verdict']}; diagnosis {diag.text() if diag else '-'}; alone {alone.text()} "
+            f"[{alone.reason}] ({row['wall_s']:.0f} s)")
+        rows.append(row)
+    return rows
+
+
+def healthy_case(path, log=print) -> dict:
+    """A run without a defect: both sides' verdicts and sizes (none is due)."""
+    from axlebox.pipelines.diagnose import analyse_file
+    from axlebox.pipelines.readers import result_config
+    _, _, pair = analyse_file(path)
+    row = {"case": Path(path).stem, "speed_kmh": result_config(path).run.speed_kmh,
+           "verdicts": " / ".join(pair.verdict.words[s] for s in ("left", "right")),
+           "sizes": " / ".join(pair.sizes[s].status for s in ("left", "right"))}
+    log(f"{row['case']}: no defect: {row['verdicts']}; sizes {row['sizes']}")
     return row
 
 
@@ -220,18 +247,25 @@ def main(argv) -> int:
         files += (sorted(q for q in p.glob("*.h5") if not q.name.endswith((".partial.h5", ".stream.h5")))
                   if p.is_dir() else [p])
     t0 = time.perf_counter()
-    rows = []
+    rows, healthy = [], []
     for f in files:
-        _, _, W, _, _ = truth(f) if _has_defect(f) else (None, None, 0.0, None, None)
-        if W:
-            rows.append(vehicle_case(f))
+        if _has_defect(f):
+            rows += vehicle_case(f)
+        else:
+            healthy.append(healthy_case(f))
     real = cwru(opts["--cwru"]) if "--cwru" in opts else []
     print()
     print(markdown(rows, real))
+    if healthy:
+        print("\n| case (no defect) | km/h | verdicts (left / right) | sizes (left / right) |\n"
+              "| --- | --- | --- | --- |")
+        for h in healthy:
+            print(f"| {h['case']} | {h['speed_kmh']:g} | {h['verdicts']} | {h['sizes']} |")
     print(f"\n{len(rows)} cases, {len(real)} records in {time.perf_counter() - t0:.0f} s")
     if "--json" in opts:
         from axlebox.bearing.diagnostics.channel import jsonable
-        Path(opts["--json"]).write_text(json.dumps(jsonable({"cases": rows, "records": real}), indent=1,
+        Path(opts["--json"]).write_text(json.dumps(jsonable({"cases": rows, "healthy": healthy,
+                                                             "records": real}), indent=1,
                                                    allow_nan=False) + "\n")
     return 0
 

@@ -35,8 +35,13 @@ dip's edges (the slope breaks of the clearance, Eq. 14) are then its only events
    whitened signal's squared spectrum, within ``slip`` of the line as found).
 3. Δt is the lag of the highest local maximum of ``|R|`` between :data:`RESOLUTION_SAMPLES` and
    0.45 of the fault period (a pair's separation is read modulo the period; a defect is
-   narrower than the roller pitch, bearing/defects.py), refined by a parabola; it must stand
-   :data:`MIN_SNR` times over the median of ``|R|`` over those lags, else no pair is read.
+   narrower than the roller pitch, bearing/defects.py), refined by a parabola.  It must stand
+   :data:`MIN_SNR` times over the median of ``|R|`` over those lags, and no recurrence under
+   the resolution (past the pulse's own main lobe and first sidelobe,
+   :data:`PEAK_FROM_SAMPLES`) may stand :data:`UNRESOLVED` times higher: a pair comes with the
+   pulses' own lobes either side of its lag, so an unresolved pair shows past the resolution as
+   its lag plus a lobe (spall_record's pairs 5 samples apart read at 10 without that test).
+   Else no pair is read.
 
 **The interval** comes from the spread over the impulses: the record is cut into blocks of one
 fault period, each block's ``R_k(l)`` summed alone; :data:`N_BOOT` bootstrap resamples of the
@@ -50,9 +55,9 @@ cannot take out): on the model's axle box out to 6.5 samples (the quasi-dynamic 
 on spall_record's one-mode path to 5; a lag inside them is not an echo.  So lags under 7 samples
 are not read: where no pair is found past them, the side is "below resolution", the width a
 roller crosses in 7 samples its upper bound, or "bridged" where the load is known and a loaded
-roller would ride over a wider defect than that.  A path with several close modes
-(spall_record's three, 700, 2300 and 3700 Hz) leaves lobes up to 15-20 times the floor at 6.3
-samples and beyond, which this reading cannot tell from an echo: measured, benchmarks/README.md.
+roller would ride over a wider defect than that.  Through a path of several close modes
+(spall_record's three, 700, 2300 and 3700 Hz) a pair's recurrence stands only 8-17 times its
+floor and most pairs are not read (none is read wrong): benchmarks/README.md "How large".
 
 **Conversion** (:func:`width_from_lag`, :func:`estimate`).  A roller rolls over a ring at the
 rolling speed ``v = pi f_s D_m (1 - g^2) / 2`` (``g = (D_b/D_m) cos(alpha) = 1 - 2 FTF``: the
@@ -91,8 +96,16 @@ from .envelope import _signal, check_fs
 
 #: the shortest lag read as a pair of events, in samples of the record (module docstring)
 RESOLUTION_SAMPLES = 7.0
+#: the highest recurrence is looked for from this lag on (samples): past a band-limited pulse's
+#: own main lobe and first sidelobe (to 0.45 fs: its first zero at 1.1 samples, the sidelobe at
+#: 1.6)
+PEAK_FROM_SAMPLES = 2.0
+#: a pair past the resolution is read only where no recurrence under it stands this many times
+#: higher: else the strongest is unresolved, and what stands past the resolution is its
+#: companion (its lag plus one of the pulses' own lobes)
+UNRESOLVED = 1.25
 #: the echo's peak over the median of |R| over the lags searched (module docstring)
-MIN_SNR = 20.0
+MIN_SNR = 15.0
 #: the prediction filter's length (s): AR order ar_order_s x fs (16 at 10 kHz)
 AR_ORDER_S = 1.6e-3
 #: the converter's pass band over fs: the whitened signal is band-limited to it
@@ -261,15 +274,27 @@ def event_lag(x, fs: float, f_line: float, *, slip: float = 0.03, min_lag_s: flo
     def curve(R):            # |R|(l), summed over the harmonics
         return np.abs(R).sum(axis=-2) / n
 
+    # the highest recurrence past the pulse's own main lobe and first sidelobe; one under the
+    # resolution is an unresolved pair (or the pulse's own lobe), whose companions past it
+    # (the pair's lag plus a lobe) must not be read as the pair
+    j0 = min(i0, int(np.floor(PEAK_FROM_SAMPLES * U)))
+
+    def pair_lag(R):
+        p = _peak(R, i0, i1)
+        q = _peak(R, j0, i0) if j0 < i0 else None
+        if p is None or (q is not None and R[int(round(q))] > UNRESOLVED * R[int(round(p))]):
+            return None
+        return p
+
     Rsum = curve(Rb.sum(axis=0))
-    top = _peak(Rsum, i0, i1)
+    top = pair_lag(Rsum)
     floor = float(np.median(Rsum[i0:i1 + 1]))
     snr = float(Rsum[int(round(top))] / floor) if top is not None and floor > 0 else 0.0
     dt = top / fu if top is not None and snr >= MIN_SNR else None
     rng = np.random.default_rng(seed)
     counts = rng.multinomial(G, np.full(G, 1.0 / G), size=n_boot).astype(float)
     boots = curve((counts @ Rb.reshape(G, -1)).reshape(n_boot, n_harmonics, L))
-    boot = np.array([np.nan if (p := _peak(r, i0, i1)) is None else p / fu for r in boots])
+    boot = np.array([np.nan if (p := pair_lag(r)) is None else p / fu for r in boots])
     lags = np.arange(i0, i1 + 1)
     return EventLag(dt_s=dt, boot_s=boot, snr=snr, alpha_hz=alpha, n_blocks=nb, min_lag_s=lo,
                     max_lag_s=hi, lags_s=lags / fu, R=Rsum[i0:i1 + 1] / max(Rsum[0], 1e-300))
