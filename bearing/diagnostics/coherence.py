@@ -87,10 +87,12 @@ run, 20-33 km/h; the defect on wheelset 2's right side) and on the swept pair of
   envelope's pulse changes as the car speeds up (3 s run, 312.5-625 Hz, 20-23 -> 26-29 km/h:
   peak 1.6 -> 3.3 ms after the impact, width 5.4 -> 7.7 ms; the defect side's holds), and its
   5th harmonic fades into the floor (117 -> 8 against a floor of 18 and 6) while the defect
-  side's holds (62 -> 48).  No fixed filter of the harmonic's frequency does that, the band's
-  edge (at one frequency, 99-102 Hz, the sides' ratio reads 0.14-0.48 late and 1.5-2.1 early),
-  nor any fixed delay (the healthy side shifted by -20 to +20 ms before the clock: 0.63 at
-  best).  The stationary reference took the change for a second train (0.58 at the 5th
+  side's holds (62 -> 48); in the healthy side's other bands its 5th over 1st harmonic follows
+  the drive's torque split between the wheels (the left wheel's creep force, partial
+  correlations +0.44 to +0.66 at a given speed).  No fixed filter of the harmonic's frequency
+  does that, the band's edge (at one frequency, 99-102 Hz, the sides' ratio reads 0.14-0.48
+  late and 1.5-2.1 early), nor any fixed delay (the healthy side shifted by -20 to +20 ms before
+  the clock: 0.63 at best).  The stationary reference took the change for a second train (0.58 at the 5th
   harmonic over the 3 s run's 2.5 s; 0.11 in the 4 s run's window 0.62-2.64 s); the segments'
   reads 0.90 and 0.17, no harmonic significantly under a copy, and the order-tracked reading is
   right there without the second look.
