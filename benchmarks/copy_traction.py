@@ -199,6 +199,7 @@ def car(path: str) -> None:
           "harmonic over the pairs of own bands (* significant), with the stationary reference "
           "(before) and the segments' (now), and the verdict each gives; then the product's")
     worst = None
+    healthy_bands = set()
     for i0, i1, name in wins:
         a = ang[i0:i1]
         f = np.gradient(a) * fs
@@ -209,6 +210,8 @@ def car(path: str) -> None:
         info, prod = analyse_record(rec, Speed(a, speed.source, speed.rotor), order_tracking="on")
         rec.left, rec.right = L, R
         ev = next((e for e in res.evidence if e.line == "BPFO" and e.timing is not None), None)
+        if ev is not None:
+            healthy_bands.update(p.band_a for p in ev.timing.pairs)
         print(f"   {name}: {i0 / fs:.2f}-{i1 / fs:.2f} s, shaft {f.min():.2f}-{f.max():.2f} Hz")
         if ev is not None:
             old = verdict_before(res)
@@ -231,7 +234,7 @@ def car(path: str) -> None:
         c_old, c_new, ba, bb, name, i0, i1, f_line = worst
         print(f"   the least 5th harmonic before: {c_old:.2f} ({name}, {rec.names[0]} in {ba[0]:.0f}-"
               f"{ba[1]:.0f} Hz, {rec.names[1]} in {bb[0]:.0f}-{bb[1]:.0f} Hz); now {c_new:.2f}")
-        candidates(path, rec, speed, worst)
+        candidates(path, rec, speed, worst, sorted(healthy_bands))
 
 
 def _shift(x: np.ndarray, tau: float, fs: float) -> np.ndarray:
@@ -241,23 +244,23 @@ def _shift(x: np.ndarray, tau: float, fs: float) -> np.ndarray:
     return np.fft.irfft(X * np.exp(2j * np.pi * np.fft.rfftfreq(2 * n, 1 / fs) * tau), 2 * n)[:n]
 
 
-def candidates(path, rec, speed, worst) -> None:
+def candidates(path, rec, speed, worst, healthy_bands) -> None:
     _, _, ba, bb, name, i0, i1, f_line = worst
     fs = rec.fs
     L, R, ang = rec.left[i0:i1], rec.right[i0:i1], speed.angle[i0:i1]
     print(f"\n3. the candidates, on that pair of bands ({name})")
-    best = (-1.0, 0.0)
+    best = {}
     row = []
-    for tau_ms in (-20, -10, -5, -2, -1, 0, 1, 2, 5, 10, 20):
+    for tau_ms in (-20, -10, -5, -2, 0, 2, 5, 10, 20, 30, 40):
         with angle_clock(ang, fs):
             t = co.timing(_shift(L, tau_ms * 1e-3, fs), R, fs, f_line, [ba], [bb], line="BPFO")
-        h5 = [h for h in t.pairs[0].harmonics if h.k == 5]
-        if h5:
-            c = stationary(h5[0], t.K)[0]
-            row.append(f"{tau_ms:+d} ms {c:.2f}")
-            best = max(best, (c, tau_ms))
-    print(f"   (a) the healthy side advanced by tau in time before the clock, 5th harmonic's fraction "
-          f"(stationary reference): {'; '.join(row)}: best {best[0]:.2f} at {best[1]:+d} ms")
+        cs = {h.k: stationary(h, t.K)[0] for h in t.pairs[0].harmonics}
+        row.append(f"{tau_ms:+d} ms " + " ".join(f"{cs[k]:.2f}" for k in sorted(cs)))
+        for k, c in cs.items():
+            best[k] = max(best.get(k, (-1.0, 0)), (c, tau_ms))
+    print("   (a) the healthy side advanced by tau in time before the clock, the fraction of k = 1.. "
+          "(stationary reference):\n      " + "; ".join(row) + "\n      best: " +
+          "; ".join(f"k{k} {c:.2f} at {tau:+d} ms" for k, (c, tau) in sorted(best.items())))
     with h5py.File(path, "r") as f:
         t = f["time"][()]
         n0 = t.size - rec.left.size                  # the reader cuts the fade-in off the start
@@ -290,23 +293,27 @@ def candidates(path, rec, speed, worst) -> None:
                    for k in range(1, 6)]
             print(f"      {sname} side, {lab}: " + " ".join(f"k{k + 1} {a:6.2f} ({b:5.2f})"
                                                             for k, (a, b) in enumerate(zip(amp, flo))))
-    rows = []
-    for idx in np.array_split(np.arange(m, n - m), 12):
-        e = env["healthy"][idx] - env["healthy"][idx].mean()
-        z1, z5 = (abs(np.mean(e * np.exp(-2j * np.pi * k * ph[idx]))) for k in (1, 5))
-        rows.append((np.mean(np.gradient(sh)[idx]) * fs, creep["L"][idx].mean() / 1e3,
-                     creep["R"][idx].mean() / 1e3, z5 / z1))
-    r = np.array(rows)
-
     def resid(y, x):
         return y - np.polyval(np.polyfit(x, y, 1), x)
     print("   (c) per twelfth of the record: shaft Hz, longitudinal creep force left/right kN, the "
-          "healthy side's 5th/1st harmonic:\n      " +
-          "; ".join(f"{a:.2f} Hz {b:+.1f}/{c:+.1f} kN {d:.3f}" for a, b, c, d in rows))
-    partial = np.corrcoef(resid(r[:, 3], r[:, 0]), resid(r[:, 1], r[:, 0]))[0, 1]
-    print(f"      correlation of 5th/1st with the speed {np.corrcoef(r[:, 3], r[:, 0])[0, 1]:+.2f}, with "
-          f"the left wheel's creep force {np.corrcoef(r[:, 3], r[:, 1])[0, 1]:+.2f}; with that force "
-          f"at a given speed (partial) {partial:+.2f}")
+          "healthy side's 5th/1st harmonic and its 5th's phase against the defect side's (rad), in "
+          "each of the healthy side's own bands")
+    for band in healthy_bands:
+        eh = envelope(rec.left, fs, band)
+        rows = []
+        for idx in np.array_split(np.arange(m, n - m), 12):
+            e = eh[idx] - eh[idx].mean()
+            z1, z5 = (np.mean(e * np.exp(-2j * np.pi * k * ph[idx])) for k in (1, 5))
+            d5 = np.mean((env["defect"][idx] - env["defect"][idx].mean()) * np.exp(-10j * np.pi * ph[idx]))
+            rows.append((np.mean(np.gradient(sh)[idx]) * fs, creep["L"][idx].mean() / 1e3,
+                         creep["R"][idx].mean() / 1e3, abs(z5) / abs(z1), np.angle(z5 / d5)))
+        r = np.array(rows)
+        partial = np.corrcoef(resid(r[:, 3], r[:, 0]), resid(r[:, 1], r[:, 0]))[0, 1]
+        print(f"      {band[0]:.0f}-{band[1]:.0f} Hz: " +
+              "; ".join(f"{a:.2f} Hz {b:+.1f}/{c:+.1f} kN {d:.3f} {g:+.2f}" for a, b, c, d, g in rows))
+        print(f"         5th/1st's correlation with the speed {np.corrcoef(r[:, 3], r[:, 0])[0, 1]:+.2f}, "
+              f"with the left wheel's creep force {np.corrcoef(r[:, 3], r[:, 1])[0, 1]:+.2f}; with that "
+              f"force at a given speed (partial) {partial:+.2f}")
     print("   (d) the mean envelope pulse about each impact (the defect row's roller passes), early "
           "and late: peak after the impact, width over half its height, 5th/1st harmonic")
     hits = np.searchsorted(ph, np.arange(np.ceil(ph[m]), np.floor(ph[n - m])))

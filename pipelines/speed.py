@@ -37,18 +37,19 @@ before).
 
 A second look (:func:`axlebox.pipelines.diagnose.analyse_record`): an order-tracked reading that
 calls both sides faulty (each side's own line, by the copy-or-source test) stands only where the
-record read in time says so too; else the reading in time is the verdict.  Why (measured,
-benchmarks/README.md "The copy under traction"; :mod:`axlebox.bearing.diagnostics.coherence`,
-"While the speed changes"): a copy reaches the other side a path's delay ``tau`` later in time,
-which on the shaft's clock is ``f(t) tau`` of a turn, so while the speed changes the copy's
-harmonic ``k`` of order ``O`` turns against its source by ``2 pi k O (f1 - f0) tau``; on one
-speed ramp that turn and two trains' drift grow alike, and the copy test cannot tell them apart.
-A source and its copy through a 5 ms path over 20-80 km/h read "faults on both sides" on the
-clock (tests/test_second_look.py), and a healthy side called faulty is the worst error the
-product can make.  The accelerating car no longer needs it: its copy's 5th harmonic fades as the
-car speeds up (the copy's strength, not its timing), which the copy test took for a second train
-(0.10 in the healthy side's 781-1094 Hz band) until its reference was taken segment by segment
-(issue 57).
+record read in time says so too; else the reading in time is the verdict.  Kept, for two
+measured causes (:mod:`axlebox.bearing.diagnostics.coherence`, "While the speed changes";
+benchmarks/README.md "The copy under traction"), each a copy whose lines turn against its
+source's while the speed changes, which on one speed ramp the copy test cannot tell from two
+trains drifting apart: the accelerating car's healthy side, whose copy's 5th BPFO harmonic turns
+by 3-4 rad as the drive's torque leaves its wheel and comes back (the 4 s run's window 1.18-3.07
+s, 781-1094 Hz: 0.10, the one window of four that still needs it); and a path's delay ``tau``,
+``f(t) tau`` of a turn on the shaft's clock, which turns harmonic ``k`` of order ``O`` by ``2 pi
+k O (f1 - f0) tau`` (a copy through a 5 ms path over 20-80 km/h reads "faults on both sides" on
+the clock: tests/test_second_look.py).  A healthy side called faulty is the worst error the
+product can make.  The car's other windows no longer need it: there its copy's strength changed
+with the speed, not its timing, which the test reads as one train since its reference is taken
+segment by segment (issue 57).
 """
 from __future__ import annotations
 

@@ -6,8 +6,9 @@ shaft's clock a fixed delay is a share of a turn that grows with the speed, so w
 changes the copy's lines turn against their source's by ``2 pi k BPFO_order (f1 - f0) tau``
 (tests/test_diagnostics_coherence.py, the closed form; benchmarks/README.md "The copy under
 traction"); on one speed ramp that turn and two trains' drift grow alike, so the copy test cannot
-tell them apart.  The accelerating car's case (the copy's strength changing over the record)
-is mended in the test itself and no longer needs it."""
+tell them apart.  So does the accelerating car's copy in one window of its 4 s run, its 5th
+harmonic turning as the drive's torque leaves the healthy side's wheel (bearing/diagnostics/
+coherence.py); its copy's strength changing with the speed no longer needs it."""
 import numpy as np
 
 from axlebox.bearing.catalogue import lookup

@@ -78,33 +78,46 @@ rho_b)``; the segments' reads copies the same or higher (the validation car at 4
 under a copy) and two faults the same (0.004, 0.008 at 80 km/h): benchmarks/copy_traction.py.
 
 While the speed changes (the envelopes on the shaft's clock, :mod:`.clock`), measured on the
-accelerating car (configs/accelerating_20_60kmh.toml, 20-29 km/h over 2.5 s) and the swept
-pair of :mod:`.synthetic` (benchmarks/README.md "The copy under traction"):
+accelerating car (configs/accelerating_20_60kmh.toml: a 3 s run, 20-29 km/h read, and a 4 s
+run, 20-33 km/h; the defect on wheelset 2's right side) and on the swept pair of
+:mod:`.synthetic` (benchmarks/README.md "The copy under traction"):
 
-* *The copy's strength changes with the speed* (mended here).  The healthy side carries the copy
-  in step with its source (its lines stay locked to the defect row's roller passes), but its
-  envelope's pulse grows later and broader as the car speeds up (peak 1.6 -> 3.3 ms after the
-  impact, width 5.4 -> 7.7 ms, in 312.5-625 Hz from 20-23 to 27-29 km/h; the defect side's holds),
-  so its 5th harmonic fades into the floor (locked to the defect row's roller passes, 117 ->
-  8 against a floor of 18 and 6 beside it) while the defect side's holds (62 -> 48).  The
-  fading follows the speed (correlation -0.96 over twelfths of the record), not the drive's
-  torque split between the wheels, the axle's torsion (partial correlation with the left
-  wheel's creep force at a given speed -0.13); it is no fixed filter of the harmonic's
-  frequency, the band's edge (at the same 99-102 Hz the sides' ratio reads 0.14-0.48 late and
-  1.5-2.1 early); and no delay (the healthy side shifted by -20 to +20 ms before the clock:
-  0.63 at best).  The stationary reference took that change for a second
-  train: 0.58 at the 5th harmonic over the 2.5 s, significantly under a copy (0.10 in a window
-  of the 4 s run, benchmarks/README.md, issue 51), which the segments' reads 0.90, no harmonic
-  significantly under a copy.
-* *A path's delay turns the copy's lines* (not mended: the second look, pipelines/speed.py).  A
-  delay ``tau`` in time is ``f(t) tau`` turns on the clock, so harmonic ``k`` of order ``O``
-  turns against its source by ``2 pi k O (f1 - f0) tau`` over the record
-  (tests/test_diagnostics_coherence.py, to 0.005 of the closed form): negligible for the car
-  (0.99 at the 5th harmonic for 1.2 ms), 0.70 for 1.2 ms over 20-80 km/h, and for 5 ms there
-  the copy reads independent.  On one speed ramp that turn and two trains' drift both grow with
-  ``k`` and nearly linearly in time, and the copy's lag read in time is not the delay that turns
-  its lines (the path's ringing adds 1.4-2.2 ms to it), so neither the test nor a lag taken out
-  beforehand can tell them apart.
+* *The copy's strength changes with the running state* (mended here).  The healthy side carries
+  the copy in step with its source (its lines locked to the defect row's roller passes), but its
+  envelope's pulse changes as the car speeds up (3 s run, 312.5-625 Hz, 20-23 -> 26-29 km/h:
+  peak 1.6 -> 3.3 ms after the impact, width 5.4 -> 7.7 ms; the defect side's holds), and its
+  5th harmonic fades into the floor (117 -> 8 against a floor of 18 and 6) while the defect
+  side's holds (62 -> 48); in the healthy side's other bands its 5th over 1st harmonic follows
+  the drive's torque split between the wheels (the left wheel's creep force, partial
+  correlations +0.44 to +0.66 at a given speed).  No fixed filter of the harmonic's frequency
+  does that, the band's edge (at one frequency, 99-102 Hz, the sides' ratio reads 0.14-0.48
+  late and 1.5-2.1 early), nor any fixed delay (the healthy side shifted by -20 to +20 ms before
+  the clock: 0.63 at best).  The stationary reference took the change for a second train (0.58 at the 5th
+  harmonic over the 3 s run's 2.5 s; 0.11 in the 4 s run's window 0.62-2.64 s); the segments'
+  reads 0.90 and 0.17, no harmonic significantly under a copy, and the order-tracked reading is
+  right there without the second look.
+* *The copy's timing against its source changes with the running state* (not mended: the
+  second look, pipelines/speed.py).  In the 4 s run's window 1.18-3.07 s the healthy side's 5th
+  harmonic in 781-1094 Hz turns against the defect side's by 3-4 rad from 2.2 to 2.9 Hz of
+  shaft speed and back where it nearly vanishes (its 5th over 1st harmonic 0.025 at 3.0 Hz),
+  while its lower harmonics turn less (0.95, 0.85, 0.61, 0.18 at k = 1-4, none significantly
+  under a copy; each harmonic's best fixed delay -5 to -10 ms for k = 1-4, +40 ms for k = 5: no
+  one delay).  It comes with the drive's torque split between the wheels,
+  the axle's torsion: there the left (healthy side's) wheel's longitudinal creep force falls
+  from 6-9 kN to 0.3-1.3 kN and back, and the healthy side's 5th over 1st harmonic follows that
+  force at a given speed (partial correlations over twelfths of the run +0.41 to +0.75 in 7 of
+  its 11 own bands; 469-781 Hz +0.24, the three from 1250 Hz -0.26 to +0.03); in 312.5-625 Hz
+  the speed leads (-0.85; in the 3 s run -0.96, the force's partial -0.13).  The copy is one
+  train, but its relation to its source is not fixed, and on one speed ramp its turn and two
+  trains' drift are not told apart: 0.10 there, significantly under a copy.
+* *A path's delay turns the copy's lines* (not mended: the second look).  A delay ``tau`` in
+  time is ``f(t) tau`` turns on the clock, so harmonic ``k`` of order ``O`` turns against its
+  source by ``2 pi k O (f1 - f0) tau`` over the record (tests/test_diagnostics_coherence.py, to
+  0.005 of the closed form): negligible for the car (0.99 at the 5th harmonic for 1.2 ms), 0.70
+  for 1.2 ms over 20-80 km/h, and for 5 ms there the copy reads independent.  On one speed ramp
+  that turn and two trains' drift both grow with ``k`` and nearly linearly in time, and the
+  copy's lag read in time is not the delay that turns its lines (the path's ringing adds 1.4-2.2
+  ms to it; taking it out took a copy with no delay from 1.06 to 0.56 at its 5th harmonic).
 
 Not told apart: two inner-ring defects on one axle in the car read coherent (4 s at 40 and
 80 km/h): the load zone's passage, once a turn of the shared axle, modulates both alike, and
