@@ -252,7 +252,10 @@ def analyse_record(rec: Record, speed, *, scale: float = 1.0, shaft=None, speed_
         in_time = pair(None)
         second = in_time.verdict.rule
         if BOTH not in in_time.verdict.words.values():
-            res = _sized(in_time, rec, (bl, br), None)
+            # a reading in time that finds no line at all is blind where the speed's change
+            # smears them, not evidence that both sides are healthy: undecided, not healthy
+            seen = any(in_time.verdict.evidence.shown(s) for s in ("left", "right"))
+            res = _sized(in_time, rec, (bl, br), None) if seen else sp.blind_in_time(res)
     if est is not None and est.status == "untrusted":
         res = sp.undecided(res, est)
     if speed is not None:

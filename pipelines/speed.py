@@ -37,7 +37,10 @@ before).
 
 A second look (:func:`axlebox.pipelines.diagnose.analyse_record`): an order-tracked reading that
 calls both sides faulty (each side's own line, by the copy-or-source test) stands only where the
-record read in time says so too; else the reading in time is the verdict.  Kept, for two
+record read in time says so too; else the reading in time is the verdict, unless it finds no
+line at all (the speed's change smears them in time; a window of the accelerating car read on the
+speed from its record lost them so at a mean speed 0.2 % off the stored one): then both sides are
+undecided (:func:`blind_in_time`), never healthy.  Kept, for two
 measured causes (:mod:`axlebox.bearing.diagnostics.coherence`, "While the speed changes";
 benchmarks/README.md "The copy under traction"), each a copy whose lines turn against its
 source's while the speed changes, which on one speed ramp the copy test cannot tell from two
@@ -200,6 +203,21 @@ def undecided(res, est):
     v = replace(res.verdict, words={s: "undecided" for s in SIDES}, rule="speed not read", real=None,
                 note=f"{est.reason}; {GIVE}", kinds=dict.fromkeys(SIDES))
     return replace(res, verdict=v)
+
+
+def blind_in_time(res):
+    """``res`` (an order-tracked :class:`axlebox.bearing.diagnostics.pair.PairResult` whose sides
+    each own a fault line) with both sides "undecided" where the second look in time finds no
+    line at all (module docstring): the clock's lines stand, a second fault and a copy are not
+    told apart."""
+    from dataclasses import replace
+
+    from axlebox.bearing.diagnostics.verdict import SIDES
+    note = ("on the shaft's clock each side carries a fault line of its own, but read in time (the "
+            "second look) neither shows a line, smeared by the speed's change: a second fault is "
+            "not told from a copy")
+    return replace(res, verdict=replace(res.verdict, words={s: "undecided" for s in SIDES},
+                                        real=None, note=note, kinds=dict.fromkeys(SIDES)))
 
 
 def wants_tracking(mode: str, speed: Speed | None, fs: float) -> bool:

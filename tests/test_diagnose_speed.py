@@ -1,6 +1,6 @@
 """`axlebox diagnose` with the speed over the record (pipelines/speed.py, windows.py): a source and
 its copy (bearing/diagnostics/synthetic.py) swept from 20 to 80 km/h, read with a speed channel, a
-tacho and a speed profile; without the speed; in windows of shaft turns (JSON Lines); a
+tacho and a speed profile; without the speed (read from the record); in windows of shaft turns (JSON Lines); a
 constant-speed record read with a constant speed channel as with --rpm (identical verdicts); and
 bad speed input, each one line and exit status 2."""
 
@@ -69,10 +69,17 @@ def test_a_swept_source_and_copy_read_with_the_speed(swept, how):
     assert words == {"left": "pseudo-fault", "right": "real fault"}
 
 
-def test_without_the_speed_the_healthy_side_is_never_called_faulty(swept):
+def test_without_the_speed_it_is_read_from_the_record(swept):
+    """Given only the mean speed (50 km/h), the speed over the record is read from the record
+    (bearing/diagnostics/ias.py, the BPFO ridge) and the record on that clock: the defect side
+    the real fault, the healthy side its pseudo-fault (before: both healthy, the fault smeared)."""
     path, _, d = swept
-    words, _ = _words(path, ["--speed-kmh", "50"], d)
-    assert words["left"] not in ("real fault", "faults on both sides")
+    words, info = _words(path, ["--speed-kmh", "50"], d)
+    assert info["speed"]["from"] == "estimated from the record (BPFO ridge)"
+    assert info["speed"]["order_tracked"] and info["speed"]["estimate"]["status"] == "changing"
+    assert info["speed"]["min_hz"] == pytest.approx(shaft_hz(20.0, R), rel=0.03)
+    assert info["speed"]["max_hz"] == pytest.approx(shaft_hz(80.0, R), rel=0.03)
+    assert words == {"left": "pseudo-fault", "right": "real fault"}
 
 
 def test_windows_of_shaft_turns_as_json_lines(swept, capsys):
