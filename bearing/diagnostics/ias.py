@@ -91,7 +91,7 @@ GRID = 400
 #: a bearing family's harmonics (the fault-line search's, :mod:`.faultlines`) and the wheel's orders
 BEARING_HARMONICS = 3
 WHEEL_ORDERS = 8
-#: the ridge's cost of changing: noise means (1/ln 2 of a whitened power) per unit of |d ln c|
+#: the ridge's cost of changing: noise means (1/ln 2 of a whitened power) per unit of ``|d ln c|``
 #: between frames: a ridge rising at 0.15 a frame (a train's most at 20 km/h, 3/4 turn apart)
 #: pays 3 noise means, less than a held ridge stands over noise (frame_threshold, 5-7)
 JUMP_COST = 20.0

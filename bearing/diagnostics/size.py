@@ -104,13 +104,13 @@ PEAK_FROM_SAMPLES = 2.0
 #: higher: else the strongest is unresolved, and what stands past the resolution is its
 #: companion (its lag plus one of the pulses' own lobes)
 UNRESOLVED = 1.25
-#: the echo's peak over the median of |R| over the lags searched (module docstring)
+#: the echo's peak over the median of ``|R|`` over the lags searched (module docstring)
 MIN_SNR = 15.0
 #: the prediction filter's length (s): AR order ar_order_s x fs (16 at 10 kHz)
 AR_ORDER_S = 1.6e-3
 #: the converter's pass band over fs: the whitened signal is band-limited to it
 PASSBAND = 0.45
-#: the fault's harmonics summed in |R|
+#: the fault's harmonics summed in ``|R|``
 N_HARMONICS = 4
 #: the bootstrap's resamples and the interval's percentiles
 N_BOOT = 200
