@@ -71,7 +71,7 @@ def vehicle_case(path, log=print) -> list[dict]:
     from axlebox._params import ParameterError
     from axlebox.bearing import models
     from axlebox.bearing.diagnostics import size
-    from axlebox.pipelines.diagnose import analyse_file
+    from axlebox.pipelines.diagnose import analyse_file, read_input
     from axlebox.pipelines.readers import read
     defects, kmh, cfg = truth(path)
     t0 = time.perf_counter()
@@ -80,13 +80,22 @@ def vehicle_case(path, log=print) -> list[dict]:
     except ParameterError as err:             # a short run: the estimator alone still reads it
         rec, pair = read(path), None
         log(f"{Path(path).name}: not diagnosed ({err})")
+    # a run along a speed profile: the estimator alone on the stored shaft angle too, the
+    # crossing at its mean speed
+    speed = read_input(path)[1]
+    angle = f_s = None
+    if speed is not None:
+        angle = speed.angle[-rec.left.size:]
+        f_s = (angle[-1] - angle[0]) * rec.fs / (angle.size - 1)
+        kmh = round(kmh * f_s / rec.shaft_hz, 1)        # the config's start speed -> the mean
+    f_s = rec.shaft_hz if f_s is None else f_s
     rows = []
     for kind, side, W in defects:
         i = ("left", "right").index(side)
         b = rec.bearing
         g = size.geometry_of(b, (rec.roller_loads or (None, None))[i])
-        alone = size.estimate((rec.left, rec.right)[i], rec.fs, rec.shaft_hz, b.orders, kind, g)
-        v = size.rolling_speed(b.orders, rec.shaft_hz, b.pitch)
+        alone = size.estimate((rec.left, rec.right)[i], rec.fs, f_s, b.orders, kind, g, angle=angle)
+        v = size.rolling_speed(b.orders, f_s, b.pitch)
         D = size.surface_diameter(kind, b.orders, b.pitch, b.roller)
         crossing = 2 * math.asin(W / D) * D / (2 * v) * rec.fs
         diag = pair.sizes.get(side) if pair is not None else None

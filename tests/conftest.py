@@ -99,3 +99,12 @@ def assert_windows_are_the_source(ds, folder) -> None:
                 sensor = f"ws{int(w.wheelset)}_{side[0].upper()}"
                 src = f[f"signals/{sensor}/acceleration"][i:i + n, 2]
                 assert np.array_equal(w[side].values, src), (k, side)
+
+
+def assert_sized(size, W, rel=0.25):
+    """A side's defect size (bearing/diagnostics/size.py SizeResult) against the model's true
+    width ``W`` (m), the issue-57 criterion for one case: sized, its interval holding ``W``, the
+    estimate within ``rel`` of it."""
+    assert size is not None and size.status == "sized", size
+    assert size.interval_m[0] <= W <= size.interval_m[1], (size.interval_m, W)
+    assert abs(size.width_m / W - 1.0) <= rel, (size.width_m, W)

@@ -13,7 +13,7 @@ from axlebox.pipelines import simulate as psim
 from axlebox.pipelines.cageslip import cage_slip
 from axlebox.pipelines.windows import analyse_windows
 
-from conftest import full_size
+from conftest import assert_sized, full_size
 
 pytestmark = pytest.mark.slow
 
@@ -107,3 +107,12 @@ def test_its_channels_as_a_csv_read_with_the_mean_speed_alone(accel, tmp_path):
     for r in w.read:
         assert r["words"]["right"] != "healthy" and "2BSF" not in r["lines"], r
         assert r["words"]["left"] not in ("real fault", "faults on both sides"), r
+        assert r["kind_right"] in ("outer ring", "none") and "roller" not in r["kinds_right"], r
+    # read whole: the outer ring named, not the roller whose 2BSF (0.868 BPFO) the speed's
+    # change of half its mean smears over BPFO's place (bearing/diagnostics/kind.py)
+    from axlebox.pipelines.diagnose import analyse_file
+    _, info, pair = analyse_file(csv, left=rec.names[0], right=rec.names[1], fs=rec.fs,
+                                 speed_kmh=kmh)
+    assert info["speed"]["estimate"]["status"] == "changing"
+    assert pair.verdict.words["right"] == "real fault" and pair.verdict.kinds["right"].kind == "outer ring"
+    assert_sized(pair.sizes["right"], 2e-3)           # the config's W, issue 57's criterion

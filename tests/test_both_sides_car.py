@@ -59,6 +59,8 @@ def test_defects_on_both_sides_are_faults_on_both_sides(runs, name):
         pair = _pair(runs, name, crit)
         assert pair.verdict.words == {"left": "faults on both sides", "right": "faults on both sides"}
         assert pair.verdict.rule == "each side owns a line"
+        assert {s: k.kind for s, k in pair.verdict.kinds.items()} == {"left": "outer ring",
+                                                                      "right": "outer ring"}
     ev = next(e for e in pair.evidence if e.line == "BPFO")
     assert ev.timing.decision == "independent" and ev.timing.c_min <= C_INDEPENDENT
     assert min(ev.best_snr_db.values()) >= REL.second_db
@@ -73,6 +75,7 @@ def test_a_defect_on_one_side_keeps_real_and_pseudo(runs):
     ev = next(e for e in pair.evidence if e.line == "BPFO")
     assert ev.timing.decision != "independent"
     assert pair.verdict.real == "right" and pair.verdict.rule in ("lag", "ringing")
+    assert pair.verdict.kinds["right"].kind == "outer ring" and pair.verdict.kinds["left"] is None
     assert ev.votes["right"] > ev.votes["left"]
 
 

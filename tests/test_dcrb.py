@@ -18,7 +18,7 @@ from axlebox.bearing.rig import RigConfig, simulate
 from axlebox.bearing.spectra import envelope_spectrum
 from axlebox.mbs import config as vconfig
 
-from conftest import full_size
+from conftest import assert_sized, full_size
 
 F_S = shaft_hz(48.0, 0.42)                        # 5.05 Hz
 BAND = (500.0, 4500.0)                            # the rig's outer ring on the rollers, ~0.8 kHz
@@ -157,6 +157,8 @@ def test_car_one_sided_outer_defect_is_real_on_its_side_and_pseudo_across(tmp_pa
     _, _, pair = analyse_file(out)
     print(pair.verdict.words, pair.verdict.rule, pair.verdict.sentence("right"))
     assert (pair.verdict.words["right"], pair.verdict.words["left"]) == ("real fault", "pseudo-fault")
+    assert pair.verdict.kinds["right"].kind == "outer ring"          # named and sized (issue 57)
+    assert_sized(pair.sizes["right"], 2e-3)
     assert cli.main(["report", str(out), "--out", str(tmp_path / "report")]) == 0
     page = (tmp_path / "report" / "index.html").read_text()
     assert "real fault" in page and "pseudo-fault" in page

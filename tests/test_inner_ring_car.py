@@ -18,7 +18,7 @@ from axlebox.pipelines import readers
 from axlebox.pipelines import simulate as psim
 from axlebox.pipelines.demo import DURATION
 
-from conftest import full_size
+from conftest import assert_sized, full_size
 
 BAND = (500.0, 4500.0)            # broadband: the axle carries the low band across (README)
 
@@ -30,7 +30,7 @@ def run(tmp_path_factory):
              log=lambda *_: None)
     rec = readers.read(out)                  # ws2_L, ws2_R; the track's fade-in left out
     sides = {"ws2_R": rec.right, "ws2_L": rec.left}
-    return sides, rec.fs, orders(BearingParams()).BPFI * shaft_hz(48.0, 0.42)
+    return sides, rec.fs, orders(BearingParams()).BPFI * shaft_hz(48.0, 0.42), out
 
 
 @pytest.mark.slow
@@ -40,7 +40,7 @@ def test_inner_ring_defect_shows_on_the_healthy_side_weaker_and_later(run):
     healthy side at least its fundamental; the healthy side's line under the defect side's; and
     the defect side leads the impulses by a positive lag under 10 ms, with most impulses agreeing
     (the outer ring's case: 1.5-5.6 ms)."""
-    sides, fs, bpfi = run
+    sides, fs, bpfi, _ = run
     res = {}
     for name, x in sides.items():
         f, A = envelope_spectrum(x, fs, band=BAND)
@@ -58,3 +58,16 @@ def test_inner_ring_defect_shows_on_the_healthy_side_weaker_and_later(run):
           f"{100 * lag.agreement:.0f} % agree")
     assert lag.leading == "a" and 0.0 < lag.lag_s < 0.01
     assert lag.agreement >= 0.7
+
+
+@pytest.mark.slow
+def test_the_diagnosis_names_the_inner_ring_and_its_size(run):
+    """The diagnosis of the two axle boxes (issue 57): the defect side a real fault of the inner
+    ring (its BPFI, not the outer ring's BPFO or a roller's 2BSF), the healthy side not called
+    faulty; the defect's width, 2 mm, read from the rollers' entry and exit on the turning cone
+    (the run's rolling speed of the inner raceway) within 25 % with its interval holding it."""
+    from axlebox.pipelines.diagnose import analyse_file
+    _, _, pair = analyse_file(run[3])
+    assert (pair.verdict.words["right"], pair.verdict.words["left"]) == ("real fault", "pseudo-fault")
+    assert pair.verdict.kinds["right"].kind == "inner ring"
+    assert_sized(pair.sizes["right"], 2e-3)

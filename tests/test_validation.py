@@ -23,7 +23,7 @@ from axlebox.pipelines import readers
 from axlebox.pipelines import simulate as psim
 from axlebox.pipelines.demo import DURATION, conclusion
 
-from conftest import full_size
+from conftest import assert_sized, full_size
 
 FADE = readers.TRACK_FADE_IN_S
 
@@ -124,6 +124,9 @@ def test_the_demo_concludes_as_the_paper(run):
     path, _, _, _ = run
     _, _, pair = analyse_file(path, criterion=Criterion(mode="relative"))
     assert (pair.verdict.words["right"], pair.verdict.words["left"]) == ("real fault", "pseudo-fault")
+    # the fault named and sized (issue 57): the config's outer-ring defect, W = 2 mm
+    assert pair.verdict.kinds["right"].kind == "outer ring" and pair.verdict.kinds["left"] is None
+    assert_sized(pair.sizes["right"], 2e-3)
     assert pair.lag.leading == "b" and 0.5e-3 < pair.lag.lag_s < 5e-3, pair.lag
     lines = conclusion(pair)
     assert lines[0].startswith("defect side ws2_R: real fault; healthy side ws2_L: pseudo-fault")

@@ -104,8 +104,16 @@ PEAK_FROM_SAMPLES = 2.0
 #: higher: else the strongest is unresolved, and what stands past the resolution is its
 #: companion (its lag plus one of the pulses' own lobes)
 UNRESOLVED = 1.25
-#: the echo's peak over the median of ``|R|`` over the lags searched (module docstring)
-MIN_SNR = 15.0
+#: the echo's peak over the median of ``|R|`` over the lags searched (module docstring).  Set
+#: from where no pair is, or none at the lag read: the highest recurrence past the resolution
+#: stands at most 3.5 times that median on the model's healthy runs (study, 20-80 km/h, both
+#: sides, at BPFO, BPFI and 2BSF: 30 readings); on spall_record (benchmarks/size.py
+#: --synthetic) a single impact a pass's highest stands at most 9 times and a wrong lag (half
+#: the true one, a three-mode path's ridden-over dip) at most 9; 10 is over both.  The model's
+#: pairs stand 11-68 times (the median rises with the speed: at 80 km/h the pulses' own lobes
+#: fill more of the 55 lags a period leaves), spall_record's 8-36 (benchmarks/README.md "How
+#: large"; 15 before, which left the study's 3 and 5 mm at 80 km/h, 11 and 14, unread)
+MIN_SNR = 10.0
 #: the prediction filter's length (s): AR order ar_order_s x fs (16 at 10 kHz)
 AR_ORDER_S = 1.6e-3
 #: the converter's pass band over fs: the whitened signal is band-limited to it

@@ -1,5 +1,7 @@
-"""Make ``size_excerpts.npz``: the defect side's axle-box signal of two quasi-dynamic car runs,
-the model's known answers for the defect's size (tests/test_size.py).
+"""Make ``size_excerpts.npz``: the defect side's axle-box signal of car runs, the model's known
+answers for the defect's size (tests/test_size.py).  The cases kept: v20_w1 and v40_w3 of the
+quasi-dynamic car (below), v80_w3 and v80_w5 of the full car (``axlebox sweep study --out DIR``,
+the dynamic DTRB, 2.8 s: DIR/v80_w3.h5, DIR/v80_w5.h5), added to the file as it was.
 
 Each run is configs/study_fast.toml (the quasi-dynamic DTRB in the car, the sensor model at
 10 kHz) without its [sweep] table, 1.5 s, at a speed and an outer-ring defect width W (row 2 of
@@ -13,6 +15,8 @@ the rounding's 5.6e-4 m/s^2 RMS is about 1e-4 of the signal's), with the run's s
 the most loaded roller's load as :mod:`axlebox.pipelines.readers` reads it::
 
     python3 tests/data/make_size_excerpts.py OUT.npz v20_w1=RUN1.h5 v40_w3=RUN2.h5
+
+An OUT that exists keeps its cases; those named again are replaced.
 """
 from __future__ import annotations
 
@@ -27,6 +31,11 @@ LSB = 2.0 ** -9
 
 def main(out, *cases):
     data = {}
+    try:
+        with np.load(out) as old:
+            data = {k: old[k] for k in old.files if k != "lsb"}
+    except FileNotFoundError:
+        pass
     for item in cases:
         name, path = item.split("=", 1)
         rec = read(path)
