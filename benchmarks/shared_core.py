@@ -83,7 +83,7 @@ def main():
                 b.wait()
             rows.append((name, alone, beside))
             print(f"{name}: alone {alone:.1f} s, beside a busy loop {beside:.1f} s", flush=True)
-    print(f"\n| policy | alone (s) | beside a busy loop (s) | ratio | wall s per simulated s alone |")
+    print("\n| policy | alone (s) | beside a busy loop (s) | ratio | wall s per simulated s alone |")
     print("| --- | --- | --- | --- | --- |")
     for name, alone, beside in rows:
         print(f"| {name} | {alone:.1f} | {beside:.1f} | {beside / alone:.2f} | {alone / a.duration:.1f} |")
