@@ -193,31 +193,32 @@ def from_record(left, right, fs: float, nominal_hz: float, orders, rotor: str):
     return Speed(est.angle, est.source, rotor, estimate=est), est
 
 
-def undecided(res, est):
-    """``res`` (a :class:`axlebox.bearing.diagnostics.pair.PairResult` read at the given speed)
-    with both sides "undecided": the speed changes and the record does not tell it with trust
-    (``est``, an untrusted :class:`axlebox.bearing.diagnostics.ias.SpeedEstimate`)."""
+def _both_undecided(res, note: str, **fields):
+    """``res`` (a :class:`axlebox.bearing.diagnostics.pair.PairResult`) with both sides
+    "undecided", no side named real and no kind, and ``note`` saying why (``fields``: more of
+    the verdict's, its rule)."""
     from dataclasses import replace
 
     from axlebox.bearing.diagnostics.verdict import SIDES
-    v = replace(res.verdict, words={s: "undecided" for s in SIDES}, rule="speed not read", real=None,
-                note=f"{est.reason}; {GIVE}", kinds=dict.fromkeys(SIDES))
+    v = replace(res.verdict, words=dict.fromkeys(SIDES, "undecided"), real=None, note=note,
+                kinds=dict.fromkeys(SIDES), **fields)
     return replace(res, verdict=v)
 
 
-def blind_in_time(res):
-    """``res`` (an order-tracked :class:`axlebox.bearing.diagnostics.pair.PairResult` whose sides
-    each own a fault line) with both sides "undecided" where the second look in time finds no
-    line at all (module docstring): the clock's lines stand, a second fault and a copy are not
-    told apart."""
-    from dataclasses import replace
+def undecided(res, est):
+    """``res`` read at the given speed with both sides "undecided": the speed changes and the
+    record does not tell it with trust (``est``, an untrusted
+    :class:`axlebox.bearing.diagnostics.ias.SpeedEstimate`)."""
+    return _both_undecided(res, f"{est.reason}; {GIVE}", rule="speed not read")
 
-    from axlebox.bearing.diagnostics.verdict import SIDES
-    note = ("on the shaft's clock each side carries a fault line of its own, but read in time (the "
-            "second look) neither shows a line, smeared by the speed's change: a second fault is "
-            "not told from a copy")
-    return replace(res, verdict=replace(res.verdict, words={s: "undecided" for s in SIDES},
-                                        real=None, note=note, kinds=dict.fromkeys(SIDES)))
+
+def blind_in_time(res):
+    """``res`` (order-tracked, each side owning a fault line) with both sides "undecided" where
+    the second look in time finds no line at all (module docstring): the clock's lines stand, a
+    second fault and a copy are not told apart."""
+    return _both_undecided(res, "on the shaft's clock each side carries a fault line of its own, "
+                                "but read in time (the second look) neither shows a line, smeared "
+                                "by the speed's change: a second fault is not told from a copy")
 
 
 def wants_tracking(mode: str, speed: Speed | None, fs: float) -> bool:
