@@ -71,24 +71,21 @@ def vehicle_case(path, log=print) -> list[dict]:
     from axlebox._params import ParameterError
     from axlebox.bearing import models
     from axlebox.bearing.diagnostics import size
-    from axlebox.pipelines.diagnose import analyse_file, read_input
-    from axlebox.pipelines.readers import read
+    from axlebox.pipelines.diagnose import MAX_SAMPLES, analyse_record, read_input
     defects, kmh, cfg = truth(path)
     t0 = time.perf_counter()
+    rec, speed = read_input(path, max_samples=MAX_SAMPLES)      # as analyse_file reads it
     try:
-        rec, info, pair = analyse_file(path)
+        _, pair = analyse_record(rec, speed)
     except ParameterError as err:             # a short run: the estimator alone still reads it
-        rec, pair = read(path), None
+        pair = None
         log(f"{Path(path).name}: not diagnosed ({err})")
     # a run along a speed profile: the estimator alone on the stored shaft angle too, the
     # crossing at its mean speed
-    speed = read_input(path)[1]
-    angle = f_s = None
+    angle, f_s = None, rec.shaft_hz
     if speed is not None:
-        angle = speed.angle[-rec.left.size:]
-        f_s = (angle[-1] - angle[0]) * rec.fs / (angle.size - 1)
+        angle, f_s = speed.angle, speed.stats(rec.fs)["mean_hz"]
         kmh = round(kmh * f_s / rec.shaft_hz, 1)        # the config's start speed -> the mean
-    f_s = rec.shaft_hz if f_s is None else f_s
     rows = []
     for kind, side, W in defects:
         i = ("left", "right").index(side)
