@@ -113,7 +113,7 @@ def kernel(fn=None, **options):
 
     * cached;
     * IEEE arithmetic, no ``fastmath``: a kernel compiled in this process and the same one
-      loaded from the cache must give the same bits (bearing/evaluate.py);
+      loaded from the cache must give the same bits (bearing/kernel/evaluate.py);
     * numpy's error model: a division by zero gives inf or NaN, which the integrators' finite
       checks catch, instead of a branch to raise at every division;
     * no reference counting (numba's ``_nrt=False``) unless the kernel allocates

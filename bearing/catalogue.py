@@ -56,9 +56,9 @@ _CWRU = ("CWRU Bearing Data Center, 'Bearing information' (Smith and Randall, MS
 
 
 def of(p, source: str = "") -> Bearing:
-    """The :class:`Bearing` of a bearing model's parameters ``p`` (bearing/models.py): its fault
+    """The :class:`Bearing` of a bearing model's parameters ``p`` (bearing/models/__init__.py): its fault
     orders from its geometry and its bore."""
-    from .stiffness import e_prime, k_line, series
+    from .statics.stiffness import e_prime, k_line, series
     name = models.name(p)
     k = k_line(e_prime(p.E_r, p.nu_r, p.E_r, p.nu_r), p.L_e)       # Eq. (10), steel on steel
     return Bearing(name, models.orders(p), models.bore(p),
@@ -68,7 +68,7 @@ def of(p, source: str = "") -> Bearing:
 
 @cache
 def catalogue() -> dict[str, Bearing]:
-    """``{name: Bearing}`` of every bearing known by name: each model of bearing/models.py with
+    """``{name: Bearing}`` of every bearing known by name: each model of bearing/models/__init__.py with
     its default parameters, and the test rig's bearings."""
     return {
         **{name: of(m.Params(), f"axlebox's {name.upper()} ({m.SUMMARY}; {m.DEFAULTS}), orders "

@@ -56,7 +56,7 @@ import numpy as np
 from axlebox._numba import kernel
 from axlebox._params import ParameterError, check_ranges, param, require
 
-from .layout import (D_DEPTH, D_EDGE, D_KIND, D_RADIUS, D_RHO, D_ROLLER, D_ROW, D_S1, D_S2,
+from .kernel.layout import (D_DEPTH, D_EDGE, D_KIND, D_RADIUS, D_RHO, D_ROLLER, D_ROW, D_S1, D_S2,
                      D_START, D_TAU, D_WIDTH, KINDS, ROLLER_SURFACE)
 
 WIDTH = D_WIDTH                            # columns of the kernel's defect table

@@ -16,7 +16,7 @@ from math import cos, pi
 
 from axlebox._params import ParameterError
 
-from .params import BearingParams
+from .models.params import BearingParams
 
 
 @dataclass(frozen=True)

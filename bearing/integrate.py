@@ -10,11 +10,11 @@ quasi-static solution), so that at rest the bearing alone carries ``F_ext``.
 * :func:`run_leapfrog`: the vehicle's kick-drift leapfrog (mbs/kernel_integrate.py), one
   evaluation a step, velocities half a step behind the positions; with ``mode`` 1 ("imex") the
   rollers' and cages' contact damping in the kick implicitly, with 2 ("imex2") their contact
-  stiffness and friction too (bearing/implicit.py); the quasi-dynamic bearing takes its own
+  stiffness and friction too (bearing/kernel/implicit.py); the quasi-dynamic bearing takes its own
   step whatever the mode.  The outer ring stays explicit and exchanges with the bearing as the
   car's bodies do (:func:`.advance.advance`), here every step.
 
-Both take the bearing by its tag (bearing/models.py) and are compiled for it alone.
+Both take the bearing by its tag (bearing/models/__init__.py) and are compiled for it alone.
 """
 from __future__ import annotations
 
@@ -22,9 +22,9 @@ import numpy as np
 
 from axlebox._numba import kernel
 
-from .advance import advance
-from .evaluate import evaluate
-from .layout import (CAGE_ANGLE, CAGE_RATE, CAGES, CPHI, F_X, INNER, LOAD, N_CAGE, OUTER, RING, ROWS,
+from .kernel.advance import advance
+from .kernel.evaluate import evaluate
+from .kernel.layout import (CAGE_ANGLE, CAGE_RATE, CAGES, CPHI, F_X, INNER, LOAD, N_CAGE, OUTER, RING, ROWS,
                      TH_Y, U_X, V_X, W_Y)
 
 # rig vector slots: the outer ring's mass, its springs and dampers to ground, the load on it,
@@ -69,7 +69,7 @@ def _rig_rhs(tag, t, Y, P, D, rig, ring, dY, F, Qc, w):
 @kernel(allocates=True)
 def run_rk4(tag, Y, t0, dt, n_steps, every, P, D, rig, w, acc, Fout, Qout, cage):
     """Advance ``Y`` in place by ``n_steps`` steps of ``dt`` from ``t0`` (the bearing of tag
-    ``tag``, its scratch ``w``, bearing/evaluate.py ``Work``).
+    ``tag``, its scratch ``w``, bearing/kernel/evaluate.py ``Work``).
 
     Written as it goes: ``acc (n_steps, 3)`` outer-ring acceleration at every step start;
     every ``every`` steps ``Fout (., 2, LOAD)`` ring loads, ``Qout (., 2, Z, N_Q)`` contact
@@ -129,7 +129,7 @@ def run_leapfrog(tag, Y, t0, dt, n_steps, every, P, D, rig, w, K, acc, Fout, Qou
     """:func:`run_rk4`'s contract by the leapfrog (module docstring): the outer ring and the
     bearing exchange every step (:func:`.advance.advance` with one sub-step, ``mode`` 0
     explicit, 1 contact damping implicit, 2 contact stiffness and friction too; ``K`` the
-    kick's scratch, bearing/implicit.py); ``start``: ``Y`` holds the initial velocities (the
+    kick's scratch, bearing/kernel/implicit.py); ``start``: ``Y`` holds the initial velocities (the
     first kick is half a step), else the half-step velocities an earlier call left.  Returns
     False if the state stops being finite."""
     n = Y.shape[0]

@@ -30,18 +30,19 @@ from scipy.signal import resample_poly
 from axlebox._params import ParameterError, check_ranges, from_table, param, require
 
 from . import defects as _defects
+from .kernel import dispatch
 from . import models, resultfile
-from .equilibrium import static_state
-from .evaluate import work
+from .statics.equilibrium import static_state
+from .kernel.evaluate import work
 from .frequencies import shaft_hz
-from .implicit import scratch
+from .kernel.implicit import scratch
 from .integrate import (ANGLE, CAGE_OUT, R_CX, R_FX, R_KX, R_MASS, R_N, R_OMEGA, R_UX, RIG, RIG_U,
                         run_leapfrog, run_rk4)
-from .layout import F_X, F_Z, LOAD, N_Q, OUTER, Q_A, Q_NAMES, Q_O, ROWS
-from .params import BearingParams
-from .quasidynamic import QD_WIDTH
-from .step import MODES
-from .vec import AZ
+from .kernel.layout import F_X, F_Z, LOAD, N_Q, OUTER, Q_A, Q_NAMES, Q_O, ROWS
+from .models.params import BearingParams
+from .kernel.quasidynamic import QD_WIDTH
+from .kernel.step import MODES
+from .kernel.vec import AZ
 
 SENSOR = "outer_ring"
 RIG_METHODS = ("rk4", "leapfrog", "imex", "imex2")
@@ -80,7 +81,7 @@ class RigConfig:
     fs_out: float = param(10e3, 100.0, 1e6, unit="Hz", doc="output rate")
     seed: int = 0
     bearing: object = field(default_factory=BearingParams,
-                            metadata={"doc": "the bearing: any model's parameters (bearing/models.py)"})
+                            metadata={"doc": "the bearing: any model's parameters (bearing/models/)"})
     defects: tuple = ()
 
     def __post_init__(self):
@@ -250,7 +251,7 @@ def stepper(c: RigConfig, P, D, rig):
     its bearing's tag and scratch), advancing ``Y`` in place and writing ``outs`` (acceleration,
     ring loads, contact forces, cages: :func:`axlebox.bearing.integrate.run_rk4`)."""
     p = c.bearing
-    tag = models.tag(p)
+    tag = dispatch.tag(p)
     n = models.n_state(p)
     w = work(p.Z, n, QD_WIDTH)
     every = c.fs_out_every

@@ -18,13 +18,17 @@ import time
 
 import numpy as np
 
-from axlebox.bearing import equilibrium, layout, models, stiffness
+from axlebox.bearing.statics import equilibrium, stiffness
+
+from axlebox.bearing.kernel import layout
+
+from axlebox.bearing.kernel import dispatch
 from axlebox.bearing.defects import Defect
-from axlebox.bearing.evaluate import evaluate, work
-from axlebox.bearing.implicit import scratch
+from axlebox.bearing.kernel.evaluate import evaluate, work
+from axlebox.bearing.kernel.implicit import scratch
 from axlebox.bearing.integrate import run_leapfrog, run_rk4
-from axlebox.bearing.kernel_numpy import dtrb_rhs_numpy
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.kernel.numpy_twin import dtrb_rhs_numpy
+from axlebox.bearing.models.params import BearingParams
 from axlebox.bearing.rig import RigConfig, initial_state, simulate
 
 
@@ -46,7 +50,7 @@ def rig_states():
     Yr = Y.copy()
     every = cfg.fs_out_every
     m = 10000 // every
-    run_rk4(models.tag(p), Yr, 0.0, cfg.dt, 10000, every, P, D, rig, work(p.Z, Y.size),
+    run_rk4(dispatch.tag(p), Yr, 0.0, cfg.dt, 10000, every, P, D, rig, work(p.Z, Y.size),
             np.zeros((10000, 3)), np.zeros((m, 2, 6)), np.zeros((m, 2, p.Z, 6)), np.zeros((m, 2, 2)))
     states = []
     for name, Ys in (("quasi-static start", Y), ("running rig, t = 0.1 s", Yr)):
@@ -59,7 +63,7 @@ def rig_states():
 def rhs_timings():
     P, D, states = rig_states()
     Z = int(P[layout.Z])
-    tag = models.tag(BearingParams())
+    tag = dispatch.tag(BearingParams())
     rows = []
     for name, y, ring in states:
         yd, F, Q, w = np.zeros(y.size), np.zeros((2, 6)), np.zeros((2, Z, 6)), work(Z, y.size)
@@ -106,7 +110,7 @@ def rig_speed(duration=1.0):
 
 def implicit_order(duration=0.3):
     """The implicit kick's order on the calibrated bearing (damping 1e-4 s x stiffness): the rig
-    by ``imex`` at several steps and weights theta (bearing/implicit.py) against the explicit
+    by ``imex`` at several steps and weights theta (bearing/kernel/implicit.py) against the explicit
     leapfrog at 2.5e-7 s, its stable step there."""
     from scipy.signal import resample_poly
     cfg = RigConfig(duration=duration, defects=(Defect(W=2e-3),),
@@ -121,7 +125,7 @@ def implicit_order(duration=0.3):
         acc = np.zeros((n, 3))
         m = n // every
         t = time.perf_counter()
-        ok = run_leapfrog(models.tag(cfg.bearing), Y, 0.0, dt, n, every, P, D, rig, work(Z, Y.size),
+        ok = run_leapfrog(dispatch.tag(cfg.bearing), Y, 0.0, dt, n, every, P, D, rig, work(Z, Y.size),
                           scratch(Z), acc, np.zeros((m, 2, 6)), np.zeros((m, 2, Z, 6)),
                           np.zeros((m, 2, 2)), mode, True, theta)
         wall = time.perf_counter() - t

@@ -53,7 +53,7 @@ from axlebox.bearing.diagnostics.envelope import envelope
 from axlebox.bearing.diagnostics.lag import impulse_lag, time_lag
 from axlebox.bearing.diagnostics.synthetic import swept_coaxial_pair
 from axlebox.bearing.frequencies import shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 
 FS = 10_000.0
 

@@ -34,26 +34,28 @@ import time
 SUBSTEP = r"""
 import json, time
 import numpy as np
-from axlebox.bearing import defects, equilibrium
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing import defects
+from axlebox.bearing.statics import equilibrium
+from axlebox.bearing.models.params import BearingParams
 OMEGA = 48 / 3.6 / 0.42
 p = BearingParams(damping="stiffness", beta=1e-4)
 D = defects.table((defects.Defect(W=2e-3),), p)
 try:                                               # the bearing core of issue 49
+    from axlebox.bearing.kernel import dispatch
     from axlebox.bearing import models
-    from axlebox.bearing.advance import MODES, advance
-    from axlebox.bearing.evaluate import work
-    from axlebox.bearing.implicit import scratch
-    from axlebox.bearing.quasidynamic import QD_WIDTH
+    from axlebox.bearing.kernel.advance import MODES, advance
+    from axlebox.bearing.kernel.evaluate import work
+    from axlebox.bearing.kernel.implicit import scratch
+    from axlebox.bearing.kernel.quasidynamic import QD_WIDTH
     P = models.pack(p)
-    tag = models.tag(p)
+    tag = dispatch.tag(p)
     def step(mode):
         sc = (work(p.Z, len(y), QD_WIDTH), scratch(p.Z))
         out = (np.zeros((2, 6)), np.zeros((2, p.Z, 6)), np.zeros(4))
         return lambda: advance(tag, y, ring, ring, P, D, *sc, 0.0, 5e-6, 4, False, mode, 1.0, *out)
 except ImportError:                                # before it (b70473e)
-    from axlebox.bearing import layout
-    from axlebox.bearing.advance import MODES, advance, scratch
+    from axlebox.bearing.kernel import layout
+    from axlebox.bearing.kernel.advance import MODES, advance, scratch
     P = layout.pack(p)
     def step(mode):
         sc = scratch(P, len(y), mode)

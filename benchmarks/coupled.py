@@ -28,7 +28,7 @@ from numba import njit
 from axlebox import configs
 from axlebox.bearing.diagnostics.envelope import envelope_spectrum
 from axlebox.bearing.frequencies import orders, shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 from axlebox.mbs import integrate
 from axlebox.mbs.kernel_bearings import bearing_forces
 from axlebox.mbs.kernel_body import BI_N, frame_kinematics, gravity_load, position_rates

@@ -2,7 +2,7 @@
 
     python3 benchmarks/exchange.py [--duration 0.3] [--exchange 2e-5]
 
-* One bearing's sub-step (bearing/advance.py ``advance``; the validation case's bearing at its
+* One bearing's sub-step (bearing/kernel/advance.py ``advance``; the validation case's bearing at its
   static state under the car's 54 kN, 48 km/h) by each mode: microseconds a sub-step, best of 5.
 * The validation case (front bogie flexible, coarse bodies) with the bodies at ``--exchange``
   and the bearings at 5e-6 s ("imex"), on one thread and on two: wall seconds per simulated
@@ -17,12 +17,15 @@ import time
 import numba
 import numpy as np
 
-from axlebox.bearing import defects, equilibrium, models
-from axlebox.bearing.advance import MODES, advance
-from axlebox.bearing.evaluate import work
-from axlebox.bearing.implicit import scratch
-from axlebox.bearing.quasidynamic import QD_WIDTH
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.kernel import dispatch
+from axlebox.bearing import defects, models
+
+from axlebox.bearing.statics import equilibrium
+from axlebox.bearing.kernel.advance import MODES, advance
+from axlebox.bearing.kernel.evaluate import work
+from axlebox.bearing.kernel.implicit import scratch
+from axlebox.bearing.kernel.quasidynamic import QD_WIDTH
+from axlebox.bearing.models.params import BearingParams
 from axlebox.mbs import integrate
 
 from coupled import FRONT, variant
@@ -32,7 +35,7 @@ OMEGA = 48 / 3.6 / 0.42
 
 def substep_us(mode: int, n: int = 4, calls: int = 500, repeats: int = 5) -> float:
     p = BearingParams(damping="stiffness", beta=1e-4)
-    P, tag = models.pack(p), models.tag(p)
+    P, tag = models.pack(p), dispatch.tag(p)
     D = defects.table((defects.Defect(W=2e-3),), p)
     y, uo = equilibrium.static_state(p, P, D, (0.0, 0.0, -54e3), OMEGA)
     ring = equilibrium.ring_motion(OMEGA, uo)

@@ -41,7 +41,7 @@ def one(case: str, duration: float, bodies: str) -> dict:
     t0 = time.perf_counter()
     if case in (CASES[0], CASES[4], CASES[6]):
         from axlebox.bearing.defects import Defect
-        from axlebox.bearing.params import BearingParams
+        from axlebox.bearing.models.params import BearingParams
         from axlebox.bearing.rig import RigConfig, simulate
         quasi = {"bearing": BearingParams(model="quasi-dynamic"), "dt": 5e-5} if case == CASES[6] else {}
         c = RigConfig(duration=duration, defects=(Defect(W=2e-3),),

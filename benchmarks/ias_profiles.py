@@ -27,7 +27,7 @@ from axlebox.bearing.diagnostics.ordertrack import angle_from_speed
 from axlebox.bearing.diagnostics.synthetic import (angle_coaxial_pair, coaxial_pair, impulse_train,
                                                    resonance)
 from axlebox.bearing.frequencies import shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 
 FS = 10_000.0
 O = models.orders(BearingParams())

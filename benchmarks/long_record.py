@@ -27,7 +27,7 @@ import numpy as np
 
 from axlebox.bearing.diagnostics.synthetic import coaxial_pair
 from axlebox.bearing.frequencies import orders, shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 from axlebox.pipelines.readers import MAX_SAMPLES
 
 FS = 25_600.0

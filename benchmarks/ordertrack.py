@@ -26,7 +26,7 @@ from axlebox.bearing.diagnostics import ordertrack as ot
 from axlebox.bearing.diagnostics.envelope import envelope_spectrum
 from axlebox.bearing.diagnostics.synthetic import resonance
 from axlebox.bearing.frequencies import shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 
 FS = 10_000.0
 BAND = (2000.0, 3000.0)

@@ -20,7 +20,7 @@ import numpy as np
 from axlebox.bearing.diagnostics.envelope import envelope_spectrum
 from axlebox.bearing.diagnostics.lag import impulse_lag
 from axlebox.bearing.frequencies import orders, shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 from axlebox.bearing.resultfile import open_result
 from axlebox.pipelines.readers import TRACK_FADE_IN_S
 

@@ -31,7 +31,7 @@ from axlebox.bearing.diagnostics.criterion import Criterion
 from axlebox.bearing.diagnostics.pair import analyse_pair
 from axlebox.bearing.diagnostics.synthetic import swept_coaxial_pair
 from axlebox.bearing.frequencies import shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 from axlebox.pipelines import speed as sp
 from axlebox.pipelines.diagnose import analyse_record
 from axlebox.pipelines.readers import Record

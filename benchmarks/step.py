@@ -11,7 +11,7 @@ largest |a|, the healthy side's lag behind it (impulse by impulse, broadband: wh
 diagnosis' lag reads first) and both sides' FC and VF (paper Eq. 17-18, 0-5 kHz; and VF over the
 paper's band, 0-1 kHz, bearing/diagnostics/criterion.py), each against
 the first run's, and the defect bearing's cage slip (its row 2 against the rolling speed of Eq. 2).
-``qd:dt``: the quasi-dynamic bearing (bearing/quasidynamic.py) stepped by the leapfrog at dt.
+``qd:dt``: the quasi-dynamic bearing (bearing/kernel/quasidynamic.py) stepped by the leapfrog at dt.
 ``--perturb EPS``: each run again with +-EPS added to one roller's first
 state (the rollers' chaos: what any change of the scheme moves by itself).
 """
@@ -25,7 +25,7 @@ from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.diagnostics.lag import impulse_lag
 from axlebox.bearing.diagnostics.criterion import VF_BAND_PAPER
 from axlebox.bearing.diagnostics.spectral import fc_vf
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 from axlebox.mbs import integrate
 from axlebox.pipelines.readers import TRACK_FADE_IN_S
 
@@ -61,7 +61,7 @@ def main():
         return models[quasi]
     model, y0 = model_for(False)
     bp, f_s = BearingParams(), shaft_hz(48.0, 0.42)
-    f_cage = 0.5 * (1 - bp.gamma) * f_s                  # paper Eq. 2 (bearing/layout.py RATIO), Hz
+    f_cage = 0.5 * (1 - bp.gamma) * f_s                  # paper Eq. 2 (bearing/kernel/layout.py RATIO), Hz
     i_defect = model.bearing_names.index("bearing2R")
     fs = 1e4
     skip = int(TRACK_FADE_IN_S * fs)

@@ -11,7 +11,7 @@
   traction torques at its wheelsets (beyond the paper)
 * ``study``: the paper's study matrix (speeds x defect widths) of the car, for ``axlebox sweep``
 * ``study_rig``: the same matrix on the standalone bearing rig
-* ``study_fast``: the same matrix on the quasi-dynamic bearing (bearing/quasidynamic.py), for
+* ``study_fast``: the same matrix on the quasi-dynamic bearing (bearing/kernel/quasidynamic.py), for
   datasets and quick studies
 * ``study_both``: defect kinds (outer, inner, roller) and sides (one, both) x speeds, beyond the paper
 """

@@ -6,7 +6,7 @@ from one (y, r) profile; the bottom sector of the wheels (where the rails act)
 is split off so each tread has a contact patch of its own.
 
 Default dimensions follow Chinese B-type metro practice (typical values, not from one
-published source; the seats fit the assumed 130 mm bore bearing of :mod:`axlebox.bearing.params`):
+published source; the seats fit the assumed 130 mm bore bearing of :mod:`axlebox.bearing.models.params`):
 130 mm bearing seats centred at +-1.0 m, 840 mm wheels with 1353 mm back-to-back
 and a 135 mm rim, 1:20 cone tread with a 27 mm flange (the LM profile replaces
 the cone in the wheel-rail work).  Axle body, seat and gear sizes are typical

@@ -1,18 +1,18 @@
-"""The car's axle-box bearings, any model of bearing/models.py (``[bearing] type``): their
+"""The car's axle-box bearings, any model of bearing/models/__init__.py (``[bearing] type``): their
 kernel parameters, defect tables and a start in equilibrium, for
 :func:`axlebox.mbs.vehicle.build` (``joint.model = "bearing"``).
 
 The start: the car is first put in equilibrium with stiff row bushings in place of the bearings
 (:mod:`axlebox.mbs.statics`; the bearings' roller states would make that Newton solve forty times
 larger); each bushing pair's load is then the load its bearing carries, and the bearing's own
-quasi-static solution (:func:`axlebox.bearing.equilibrium.static_state`, of the healthy bearing, with
+quasi-static solution (:func:`axlebox.bearing.statics.equilibrium.static_state`, of the healthy bearing, with
 the roller set turned half a pitch when a roller would sit in a defect) gives its roller and
 cage states and the outer ring's displacement, which the axle-box is moved to (micrometres).
 The row bushings leave the rings free to tilt against each other; the bearings do not, so the
 front (flexible) wheelsets start with the axle's bending tilt and a load transient of about
 15 % in the first milliseconds.
 
-Rows: the kernel's row 1 lies at -y of the bearing centre, row 2 at +y (bearing/roller.py),
+Rows: the kernel's row 1 lies at -y of the bearing centre, row 2 at +y (bearing/kernel/roller.py),
 and the bearing frame here is the track frame.  A defect's ``row`` counts from the inboard row
 (1) to the outboard row (2) (bearing/defects.py): on the left (+y) bearings that is the
 kernel's numbering, on the right ones it is mirrored.
@@ -26,10 +26,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from axlebox.bearing import defects as bdefects
+from axlebox.bearing.kernel import dispatch
 from axlebox.bearing import models
-from axlebox.bearing.equilibrium import static_state
-from axlebox.bearing.layout import F_X, F_Z
-from axlebox.bearing.vec import AZ
+from axlebox.bearing.statics.equilibrium import static_state
+from axlebox.bearing.kernel.layout import F_X, F_Z
+from axlebox.bearing.kernel.vec import AZ
 
 from .kernel_bearings import BR_MIN, BR_MOUT
 from .kernel_markers import MK_BODY
@@ -77,7 +78,7 @@ def start(cfg: CarConfig, loads: dict, omega_w: float, log=print) -> dict:
     centre."""
     p = params(cfg)
     P = models.pack(p)
-    tag = models.tag(p)
+    tag = dispatch.tag(p)
     out = {}
     for key, F in loads.items():
         D = defect_table(cfg, *key, p)

@@ -71,7 +71,7 @@ class Integrator:
     method: str = like(Settings, "method", doc="'leapfrog' (explicit central differences), 'imex' / "
                        "'imex2' (the leapfrog with the bearings' contact damping / stiffness implicit), "
                        "'rk4' or 'galpha' (generalized-alpha); with bearings (joint.model) one their "
-                       "model accepts (bearing/models.py methods; the config reference lists them)")
+                       "model accepts (bearing/models/__init__.py methods; the config reference lists them)")
     dt: float = like(Settings, "dt", doc="fixed step, dividing 1/output_rate_hz; with bearings and a "
                      "leapfrog method their sub-step; with bearings (joint.model) at most their model's "
                      "step for the method (s, as under method)")
@@ -467,7 +467,7 @@ def _default_bearing():
 @dataclass(frozen=True)
 class CarConfig:
     """The car's whole run configuration: its sections (one attribute each, named as the TOML
-    tables), ``bearing`` (the bearing model's parameters, bearing/models.py), ``defects`` and
+    tables), ``bearing`` (the bearing model's parameters, bearing/models/__init__.py), ``defects`` and
     ``wheel_defects``.  Built, it has passed every check; :meth:`replace` makes another one
     (the sweep's cases), :meth:`to_toml` is its file."""
 

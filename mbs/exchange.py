@@ -1,6 +1,6 @@
 """The exchange between the car's bodies and its bearings in a leapfrog run: the bodies step at
 the exchange step ``H``, each bearing in ``n`` sub-steps of ``h = H / n`` between two exchanges
-(:func:`axlebox.bearing.advance.advance`, :func:`.kernel_bearings.bearing_exchange`).
+(:func:`axlebox.bearing.kernel.advance.advance`, :func:`.kernel_bearings.bearing_exchange`).
 
 Why: the rollers' contact modes (21-23 kHz) hold the bearings' step near 5e-6 s, while the car
 without bearings is accurate at 5e-5 s; stepping everything at the rollers' step spends a third
@@ -13,7 +13,7 @@ the bodies get its ring loads averaged over the window, held for the step.  The 
 the window's impulse whole (momentum is exchanged without loss), and for loads linear in the
 ring motion it is the load at the exchange: the coupling is then the single-rate leapfrog's,
 with no lag to feed energy into the stiff bearing modes (a window of the step just past did:
-bearing/advance.py).  What the exchange step changes is how the impulses of the nonlinear
+bearing/kernel/advance.py).  What the exchange step changes is how the impulses of the nonlinear
 contacts (the defect) are spread over the step, and the ring motion's curvature within it;
 both are measured against the single-rate run (tests/test_coupled.py, benchmarks/README.md
 "Multirate").
@@ -38,7 +38,7 @@ damping ratio near ``w H / 4`` (11 % for the axle box on its bearing, 700 Hz, at
 ``held`` (2, n_bearings, 2, 6: this exchange's and the last one's ring loads in the track
 frame, inner and outer ring, force and moment) holds an exchange, ``m`` and ``hold`` the
 co-simulation's body steps and hold, ``h`` and ``n`` the bearings' sub-step and sub-steps an
-exchange, ``mode`` (bearing/step.py ``MODES``), ``K`` and ``r0`` the "jacobian" hold's
+exchange, ``mode`` (bearing/kernel/step.py ``MODES``), ``K`` and ``r0`` the "jacobian" hold's
 stiffness and outer-ring places.  The bearings' own scratch is theirs
 (mbs/kernel_bearings.py ``Bearings``).
 """
@@ -48,8 +48,8 @@ from collections import namedtuple
 
 import numpy as np
 
-from axlebox.bearing.layout import LOAD, RING, ROWS
-from axlebox.bearing.step import MODES
+from axlebox.bearing.kernel.layout import LOAD, RING, ROWS
+from axlebox.bearing.kernel.step import MODES
 
 Exchange = namedtuple("Exchange", ["ring", "flags", "h", "n", "mode", "held", "m", "hold", "K", "r0"])
 ZOH, LINEAR, JACOBIAN = 0, 1, 2

@@ -1,6 +1,6 @@
 """The car's bearings as force elements with their own states (numba): each between the journal
 marker of a wheelset (inner ring) and the bore marker of an axle-box (outer ring), any bearing
-model (bearing/models.py).
+model (bearing/models/__init__.py).
 
 :class:`Bearings` holds them all (:func:`axlebox.mbs.system.System.assemble` packs it): the
 kernels' ``tag`` of their model (one model for the car), a row of indices each (``idx``:
@@ -23,7 +23,7 @@ moments) go back to the two markers as inertial forces and moments.
 Two ways in: :func:`bearing_forces` evaluates every bearing's rates at the state (the
 right-hand side of RK4, of statics and of a plain evaluation); :func:`bearing_exchange` is the
 exchange of a leapfrog run, where each bearing advances its own states over the interval since
-the last exchange (:func:`axlebox.bearing.advance.advance`) and the bodies get its mean ring
+the last exchange (:func:`axlebox.bearing.kernel.advance.advance`) and the bodies get its mean ring
 loads.
 """
 from __future__ import annotations
@@ -34,13 +34,13 @@ from numba import prange
 from numba.extending import overload
 
 from axlebox._numba import kernel
-from axlebox.bearing import evaluate as bev
-from axlebox.bearing import implicit
-from axlebox.bearing.advance import advance
-from axlebox.bearing.layout import (CAGES, F_X, INNER, LOAD, M_X, OUTER, Q_O, TH_X,
+from axlebox.bearing.kernel import evaluate as bev
+from axlebox.bearing.kernel import implicit
+from axlebox.bearing.kernel.advance import advance
+from axlebox.bearing.kernel.layout import (CAGES, F_X, INNER, LOAD, M_X, OUTER, Q_O, TH_X,
                                     TH_Y, TH_Z, U_X, U_Y, U_Z, V_X, W_X, W_Y)
-from axlebox.bearing.step import cage_outputs
-from axlebox.bearing.vec import AX, AY, AZ, copy3
+from axlebox.bearing.kernel.step import cage_outputs
+from axlebox.bearing.kernel.vec import AX, AY, AZ, copy3
 
 from .exchange import FIRST, HELD, JACOBIAN, LAST, THIS
 from .kernel_body import BI_POS, BI_VEL, SPIN_ANGLE, SPIN_RATE
@@ -70,7 +70,7 @@ def bearing_forces(B, t, y, dy, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout):
 def bearing_exchange(B, X, t, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout):
     """The exchange at ``t`` of a leapfrog run (module docstring): every bearing's states
     advanced over the exchange's window (``X``: :class:`axlebox.mbs.exchange.Exchange`;
-    :func:`axlebox.bearing.advance.advance`), the ring motion on the line through the last
+    :func:`axlebox.bearing.kernel.advance.advance`), the ring motion on the line through the last
     exchange's (``X.ring``) and this one's, which then becomes the last; the mean ring loads go
     onto the markers and into the outputs as in :func:`bearing_forces`.  The bearings' rows of
     ``dy`` are not written: their states are already advanced."""
@@ -183,7 +183,7 @@ def _all_loads_back(B, mkF, mkM, elout):
 # empty tag and flat named tuples of arrays, not tuples of tuples)
 @kernel(parallel=True, allocates=True)
 def _all_rates(tag, idx, P, D, ring, F, Qc, cages, work, t, y, dy):
-    """Every bearing's rates (bearing/evaluate.py), in parallel (numba threads): each writes only
+    """Every bearing's rates (bearing/kernel/evaluate.py), in parallel (numba threads): each writes only
     its own states and scratch, so the result does not depend on the number of threads."""
     for k in prange(idx.shape[0]):
         off, n = idx[k, BR_OFF], idx[k, BR_N]
@@ -195,7 +195,7 @@ def _all_rates(tag, idx, P, D, ring, F, Qc, cages, work, t, y, dy):
 
 @kernel(parallel=True, allocates=True)
 def _all_advances(tag, idx, P, D, ring_last, ring, F, Qc, cages, work, kick, t, y, h, n, first, mode):
-    """:func:`axlebox.bearing.advance.advance` of every bearing, in parallel with no
+    """:func:`axlebox.bearing.kernel.advance.advance` of every bearing, in parallel with no
     synchronisation inside an exchange: each works on its own states and scratch alone."""
     for k in prange(idx.shape[0]):
         off, ns = idx[k, BR_OFF], idx[k, BR_N]
@@ -214,7 +214,7 @@ def _small_angles(R, out, o):
 
 @kernel
 def _ring_motion(k, y, bi, idx, mkp, mkv, mkR, mkw, ring, th):
-    """Bearing k's ring motion (bearing/layout.py) from its two markers, and the small angles
+    """Bearing k's ring motion (bearing/kernel/layout.py) from its two markers, and the small angles
     ``th`` of the markers' orientations."""
     mi, mo, b = idx[k, BR_MIN], idx[k, BR_MOUT], idx[k, BR_BODY]
     _small_angles(mkR[mi], th, TH_IN)
@@ -243,7 +243,7 @@ def _ring_motion(k, y, bi, idx, mkp, mkv, mkR, mkw, ring, th):
 @kernel
 def _loads_back(k, idx, mkF, mkM, elout, F, Qc, th, cages):
     """Bearing k's ring loads ``F`` turned back to the track frame onto its markers, and its
-    output rows (``cages``: :func:`axlebox.bearing.step.cage_outputs`)."""
+    output rows (``cages``: :func:`axlebox.bearing.kernel.step.cage_outputs`)."""
     nbr = idx.shape[0]
     mi, mo = idx[k, BR_MIN], idx[k, BR_MOUT]
     tx, ty, tz = th[TH_IN + AX], th[TH_IN + AY], th[TH_IN + AZ]

@@ -45,7 +45,7 @@ import math
 import numpy as np
 from numba import njit
 
-from axlebox.bearing.vec import copy1, copy2, copy3
+from axlebox.bearing.kernel.vec import copy1, copy2, copy3
 
 from .exchange import FIRST, LINEAR
 from .kernel_body import BI_N, BI_POS, BI_SPIN, BI_VEL, frame_kinematics, position_rates

@@ -128,8 +128,8 @@ class System:
     def bearing(self, name: str, inner: int, outer: int, tag, P: np.ndarray, D: np.ndarray,
                 y0: np.ndarray) -> None:
         """A bearing between the journal marker ``inner`` (on a spinning body) and the bore marker
-        ``outer``: its model's kernel tag (bearing/models.py ``tag``; one model for all of a
-        system's bearings), parameter vector ``P`` and defect table ``D`` (bearing/layout.py,
+        ``outer``: its model's kernel tag (bearing/models/__init__.py ``tag``; one model for all of a
+        system's bearings), parameter vector ``P`` and defect table ``D`` (bearing/kernel/layout.py,
         bearing/defects.py), its roller and cage states starting at ``y0``."""
         b = self.markers[inner][0]
         if b < 0 or not self.bodies[b].spin:
@@ -262,10 +262,10 @@ class System:
     def _pack_bearings(self, y0):
         """The bearings (mbs/kernel_bearings.py ``Bearings``, with every array their kernels
         write) and their states appended to ``y0``."""
-        from axlebox.bearing import implicit
-        from axlebox.bearing.evaluate import work
-        from axlebox.bearing.layout import CAGES, LOAD, N_Q, RING, ROWS, Z
-        from axlebox.bearing.quasidynamic import QD_WIDTH
+        from axlebox.bearing.kernel import implicit
+        from axlebox.bearing.kernel.evaluate import work
+        from axlebox.bearing.kernel.layout import CAGES, LOAD, N_Q, RING, ROWS, Z
+        from axlebox.bearing.kernel.quasidynamic import QD_WIDTH
 
         from .kernel_bearings import BR_WIDTH, TH, Bearings, NoBearings
         if not self.bearings:
@@ -381,7 +381,7 @@ class Model:
                 j = i - iv
                 what = ("vx", "vy", "vz", "wx", "wy", "wz")[j] if j < 6 else f"qd{j - 5}"
                 return f"body {b.name!r} ({what})"
-        from axlebox.bearing.layout import N_CAGE, N_ROLLER, ROWS
+        from axlebox.bearing.kernel.layout import N_CAGE, N_ROLLER, ROWS
 
         from .kernel_bearings import BR_N, BR_OFF
         for k, name in enumerate(self.bearing_names):

@@ -99,7 +99,7 @@ def _cmd_bearing_simulate(a) -> None:
     from math import radians
 
     from axlebox.bearing.defects import Defect
-    from axlebox.bearing.params import BearingParams
+    from axlebox.bearing.models.params import BearingParams
     from axlebox.bearing.rig import RigConfig, simulate
     if a.defect_width < 0:
         raise ParameterError(f"--defect-width = {a.defect_width} is not allowed: expected a width >= 0 mm "

@@ -20,7 +20,7 @@ import math
 
 from axlebox.bearing import models as _models
 from axlebox.bearing.defects import PROFILES, Defect
-from axlebox.bearing.layout import KINDS
+from axlebox.bearing.kernel.layout import KINDS
 
 from axlebox.bearing.rig import RIG_METHODS, RIG_SECTIONS, RigConfig
 from axlebox.mbs import config as vconfig
@@ -73,7 +73,7 @@ def _default(v, unit: str = "") -> str:
 
 
 def _steps(scheme: str) -> str:
-    """Each model's methods and largest steps under ``scheme`` (bearing/models.py ``methods``)."""
+    """Each model's methods and largest steps under ``scheme`` (bearing/models/__init__.py ``methods``)."""
     out = []
     for name, m in _models.MODELS.items():
         p = dataclasses.replace(m.Params(), model=scheme)
@@ -186,7 +186,7 @@ def bearing_rows(model: str = _models.DEFAULT) -> list[tuple]:
     m = _models.MODELS[model]
     rows = _dataclass_rows(m.Params, {})
     kind = ("type", "str", _default(_models.DEFAULT), "", _choices(tuple(_models.MODELS)),
-            "the bearing model (bearing/models.py): " + "; ".join(
+            "the bearing model (bearing/models/__init__.py): " + "; ".join(
                 f"'{n}' {mm.SUMMARY}" for n, mm in _models.MODELS.items()))
     return [kind] + [r for r in rows if r[0] != "type"]
 

@@ -23,7 +23,7 @@ from .readers import MAX_SAMPLES, Record, read
 
 BOTH = "faults on both sides"
 
-DTRB_BORE = lookup("dtrb").bore   # m: the DTRB's (bearing/dtrb.py BORE, catalogue "dtrb")
+DTRB_BORE = lookup("dtrb").bore   # m: the DTRB's (bearing/models/dtrb.py BORE, catalogue "dtrb")
 
 
 def parse_orders(text: str, option: str = "--orders") -> FaultOrders:
@@ -85,7 +85,7 @@ def side_bearings(rec: Record, *, orders_text=None, bore=None, bearing=None, ord
             if D is not None:
                 b = replace(b, bore=float(D))
         else:
-            b, src = lookup("dtrb"), "the DTRB (bearing/params.py)"
+            b, src = lookup("dtrb"), "the DTRB (bearing/models/params.py)"
         if D is not None and opt is not None and not opt.startswith("--orders"):
             b = replace(b, bore=float(D))
         out[side] = (b, src)

@@ -154,7 +154,7 @@ def matrix(kind: str, cfg: dict, speeds=None, widths=None, duration=None, kinds=
     """The cases of ``cfg`` (parsed TOML, its ``[sweep]`` read here): speeds (km/h) x widths
     (mm) x defect kinds x sides x wheel defects (names of ``[[wheel_defects]]`` entries,
     ``none``: without); options over ``[sweep]``."""
-    from axlebox.bearing.layout import KINDS
+    from axlebox.bearing.kernel.layout import KINDS
     sw = cfg.get("sweep", {})
     if not isinstance(sw, dict):
         raise ParameterError(f"sweep = {sw!r} is not allowed: expected a [sweep] table")

@@ -1,17 +1,22 @@
-"""The bearing behind its seam (bearing/advance.py): one sub-step an exchange is the single-rate
+"""The bearing behind its seam (bearing/kernel/advance.py): one sub-step an exchange is the single-rate
 leapfrog step bit for bit, sub-steps between still rings are repeated single steps, the ring
 motion over the window is the line through the two exchanges', and the loads are the samples'
 mean."""
 import numpy as np
 import pytest
 
-from axlebox.bearing import defects, equilibrium, layout, models
-from axlebox.bearing.advance import EXPLICIT, IMEX, IMEX2, advance
-from axlebox.bearing.evaluate import evaluate, work
-from axlebox.bearing.implicit import NEWMARK_K, damped_kick, scratch
-from axlebox.bearing.params import BearingParams
-from axlebox.bearing.quasidynamic import QD_WIDTH
-from axlebox.bearing.step import cage_outputs, kick_drift
+from axlebox.bearing.kernel import dispatch
+from axlebox.bearing import defects, models
+
+from axlebox.bearing.statics import equilibrium
+
+from axlebox.bearing.kernel import layout
+from axlebox.bearing.kernel.advance import EXPLICIT, IMEX, IMEX2, advance
+from axlebox.bearing.kernel.evaluate import evaluate, work
+from axlebox.bearing.kernel.implicit import NEWMARK_K, damped_kick, scratch
+from axlebox.bearing.models.params import BearingParams
+from axlebox.bearing.kernel.quasidynamic import QD_WIDTH
+from axlebox.bearing.kernel.step import cage_outputs, kick_drift
 
 LOAD, OMEGA, H = (0.0, 0.0, -54e3), 48 / 3.6 / 0.42, 5e-6     # N (the car's bearing), rad/s (48 km/h), s
 
@@ -27,12 +32,12 @@ def bearing():
     return p, P, D, y, equilibrium.ring_motion(OMEGA, uo)
 
 
-TAG = models.tag(BearingParams())
+TAG = dispatch.tag(BearingParams())
 
 
 def _single_rate_step(x, ring, P, D, t, h, mode, first):
     """The leapfrog step the car and the rig took before the seam: evaluate, (implicit) kick,
-    drift (bearing/implicit.py, bearing/step.py kick_drift)."""
+    drift (bearing/kernel/implicit.py, bearing/kernel/step.py kick_drift)."""
     Z = int(P[layout.Z])
     w = work(Z, x.size)
     dx, F, Qc = np.empty(x.size), np.zeros((layout.ROWS, layout.LOAD)), np.zeros((layout.ROWS, Z, layout.N_Q))

@@ -6,11 +6,14 @@ from scipy.ndimage import uniform_filter1d
 from scipy.signal import find_peaks
 
 from axlebox._params import ParameterError
-from axlebox.bearing import contact, defects, equilibrium, layout, models, stiffness
-from axlebox.bearing.evaluate import rates
+from axlebox.bearing.kernel import contact, layout
+from axlebox.bearing.kernel import dispatch
+from axlebox.bearing import defects, models
+from axlebox.bearing.statics import equilibrium, stiffness
+from axlebox.bearing.kernel.evaluate import rates
 from axlebox.bearing.defects import Defect
 from axlebox.bearing.frequencies import orders, shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 from axlebox.bearing.rig import RigConfig, load, simulate
 from axlebox.bearing.spectra import envelope, envelope_spectrum
 
@@ -55,7 +58,7 @@ def test_static_start_balances_the_load_and_matches_stribeck():
     P, D = models.pack(p, gravity=(0.0, 0.0, 0.0)), np.zeros((0, defects.WIDTH))
     Fr = 60e3
     y, uo = equilibrium.static_state(p, P, D, (0.0, 0.0, -Fr), 1e-9)
-    yd, F, Q, _ = rates(models.tag(p), 0.0, y, equilibrium.ring_motion(1e-9, uo), P, D)
+    yd, F, Q, _ = rates(dispatch.tag(p), 0.0, y, equilibrium.ring_motion(1e-9, uo), P, D)
     assert np.abs(F[1, :3] - (0.0, 0.0, Fr)).max() < 1e-6 * Fr
     ratio = Q[:, :, 0].max() * p.Z * np.cos(p.alpha_o) / (Fr / 2)
     assert ratio == pytest.approx(4.08, rel=0.03)

@@ -1,4 +1,5 @@
-"""The DTRB's contact damping taken implicitly (bearing/implicit.py, the blocks of bearing/blocks.py).
+"""The DTRB's contact damping taken implicitly (bearing/kernel/implicit.py, the blocks of
+bearing/kernel/blocks.py).
 
 * The damping blocks the kernel leaves are the damping forces: with friction off, the generalised
   forces of a damped and an undamped contact law at the same state differ by exactly ``-C u``.
@@ -12,12 +13,17 @@
 import numpy as np
 import pytest
 
-from axlebox.bearing import defects, equilibrium, layout, models
-from axlebox.bearing.blocks import dense
-from axlebox.bearing.evaluate import rates
-from axlebox.bearing.implicit import NEWMARK_K, damped_kick, scratch
-from axlebox.bearing.layout import N_CAGE, N_ROLLER
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.kernel import dispatch
+from axlebox.bearing import defects, models
+
+from axlebox.bearing.statics import equilibrium
+
+from axlebox.bearing.kernel import layout
+from axlebox.bearing.kernel.blocks import dense
+from axlebox.bearing.kernel.evaluate import rates
+from axlebox.bearing.kernel.implicit import NEWMARK_K, damped_kick, scratch
+from axlebox.bearing.kernel.layout import N_CAGE, N_ROLLER
+from axlebox.bearing.models.params import BearingParams
 
 OMEGA = 48 / 3.6 / 0.42                     # rad/s, the wheelset at 48 km/h
 LOAD = (0.0, 0.0, -54e3)
@@ -30,11 +36,11 @@ def start(p):
     return P, D, y, equilibrium.ring_motion(OMEGA, uo)
 
 
-TAG = models.tag(BearingParams())
+TAG = dispatch.tag(BearingParams())
 
 
 def rhs(y, ring, P, D, damped: bool, h_k: float = 0.0, with_work: bool = False):
-    """``(y', F, G)``, G the blocks as one array (bearing/blocks.py ``dense``; with
+    """``(y', F, G)``, G the blocks as one array (bearing/kernel/blocks.py ``dense``; with
     ``with_work`` the evaluation's scratch, for the kick)."""
     yd, F, _, w = rates(TAG, 0.0, y, ring, P, D, damped, h_k)
     G = dense(w, int(P[layout.Z])) if damped else None
@@ -42,7 +48,7 @@ def rhs(y, ring, P, D, damped: bool, h_k: float = 0.0, with_work: bool = False):
 
 
 def masses(p, y):
-    """The rates' masses of bearing/implicit.py, and the rows' index into the state."""
+    """The rates' masses of bearing/kernel/implicit.py, and the rows' index into the state."""
     rol, _ = layout.views(y, p.Z)
     Ja, Jd = p.J_r
     Jcp, Jcd = p.J_c

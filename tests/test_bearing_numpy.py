@@ -1,15 +1,20 @@
-"""The plain-numpy twin of the DTRB kernel (axlebox.bearing.kernel_numpy) against the numba kernel, and
+"""The plain-numpy twin of the DTRB kernel (axlebox.bearing.kernel.numpy_twin) against the numba kernel, and
 both closed-form line integrals against quadrature."""
 import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from axlebox.bearing import defects, equilibrium, layout, models
-from axlebox.bearing.contact import line_integrals
-from axlebox.bearing.evaluate import rates
-from axlebox.bearing.kernel_numpy import dtrb_rhs_numpy, line_integrals_numpy
-from axlebox.bearing.layout import CPHI, CTX, CTZ, CX, CY, CZ, ETA, PHI, PSI, RHO, TH_S, TH_T
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.kernel import dispatch
+from axlebox.bearing import defects, models
+
+from axlebox.bearing.statics import equilibrium
+
+from axlebox.bearing.kernel import layout
+from axlebox.bearing.kernel.contact import line_integrals
+from axlebox.bearing.kernel.evaluate import rates
+from axlebox.bearing.kernel.numpy_twin import dtrb_rhs_numpy, line_integrals_numpy
+from axlebox.bearing.kernel.layout import CPHI, CTX, CTZ, CX, CY, CZ, ETA, PHI, PSI, RHO, TH_S, TH_T
+from axlebox.bearing.models.params import BearingParams
 
 OMEGA = 2 * np.pi * 5.05
 RTOL = 1e-9
@@ -49,7 +54,7 @@ def perturbed(p, y, ring, seed=1):
     return y, ring
 
 
-TAG = models.tag(BearingParams())
+TAG = dispatch.tag(BearingParams())
 
 
 def both(y, ring, P, D):
@@ -123,7 +128,7 @@ def test_a_defect_with_edges_is_the_rollers_centre_path_over_them(start, r_e):
     edges, rounded to r_e, drops by rho - sqrt(rho^2 - (d - r_e)^2), rho = r_b + r_e, at arc
     distance d from the nearer edge; with sharp edges its middle is Eq. (14)'s depth A, and the
     path breaks there by the closed-form slope (W/2 - r_e) / sqrt(rho^2 - (W/2 - r_e)^2)."""
-    from axlebox.bearing import kernel_numpy
+    from axlebox.bearing.kernel import numpy_twin
     p, P, _, y, ring = start
     d = defects.Defect(W=2e-3, profile="edges", edge_radius=r_e)
     D = defects.table((d,), p)
@@ -137,7 +142,7 @@ def test_a_defect_with_edges_is_the_rollers_centre_path_over_them(start, r_e):
     np.testing.assert_allclose(got, ref, rtol=1e-12, atol=1e-18)
     phi = np.zeros((2, x.size))
     phi[1] = D[0, 2] + x
-    np.testing.assert_allclose(kernel_numpy._defect(D, 0.0, phi, 0.0)[0][1], got, rtol=1e-12, atol=1e-18)
+    np.testing.assert_allclose(numpy_twin._defect(D, 0.0, phi, 0.0)[0][1], got, rtol=1e-12, atol=1e-18)
     if r_e == 0.0:
         assert got.max() == pytest.approx(defects.Defect(W=2e-3).depth(p), rel=1e-3)
     half = 0.5 * tau * R - r_e
@@ -206,7 +211,7 @@ def test_a_diverged_compression_passes_nan_on_instead_of_raising():
     """A NaN compression (a state that diverged) with no tilt used to reach the closed form's
     division by ``kap`` and stop the run with numba's ZeroDivisionError; it must come back as
     NaN, so that the integrators' finite check ends the run with its own message."""
-    from axlebox.bearing.contact import line_stiffness
+    from axlebox.bearing.kernel.contact import line_stiffness
     for kap in (0.0, 1e-3):
         assert all(np.isnan(line_integrals(np.nan, kap, -H, H, N)))
         assert all(np.isnan(line_stiffness(np.nan, kap, -H, H, N)))

@@ -3,8 +3,9 @@ import numpy as np
 import pytest
 
 from axlebox._params import ParameterError
-from axlebox.bearing import frequencies, loaddist, quasistatic, stiffness
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing import frequencies
+from axlebox.bearing.statics import loaddist, quasistatic, stiffness
+from axlebox.bearing.models.params import BearingParams
 
 
 def test_fault_orders_match_reference_table():

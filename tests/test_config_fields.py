@@ -13,8 +13,8 @@ import pytest
 
 from axlebox._params import ParameterError
 from axlebox.bearing.defects import Defect
-from axlebox.bearing.dcrb import DcrbParams
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.dcrb import DcrbParams
+from axlebox.bearing.models.params import BearingParams
 from axlebox.bearing.rig import RIG_SECTIONS, RigConfig
 from axlebox.mbs import config
 from axlebox.pipelines import config_reference

@@ -13,7 +13,7 @@ from axlebox import configs
 from axlebox._params import ParameterError
 from axlebox.bearing.diagnostics.channel import analyse
 from axlebox.bearing.frequencies import orders, shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 from axlebox.mbs import config as vconfig
 from axlebox.mbs import exchange, integrate
 from axlebox.mbs.kernel_bearings import BR_ROWS
@@ -158,7 +158,7 @@ def test_one_substep_an_exchange_is_the_cars_single_rate_leapfrog(car):
     evaluation of every state's rate (bodies and bearings), the bodies' kick-drift, each
     bearing's kick-drift.  100 steps of 1e-5 s, an output every step: sensors, wheel-rail and
     element outputs (the bearings' rows among them) and the end state equal to the bit."""
-    from axlebox.bearing.step import kick_drift
+    from axlebox.bearing.kernel.step import kick_drift
     from axlebox.mbs import kernel_integrate as ki
     from axlebox.mbs.kernel_bearings import BR_N, BR_OFF
     cfg, model, y0 = car

@@ -13,7 +13,7 @@ import xarray as xr
 from axlebox.bearing import resultfile
 from axlebox.bearing.diagnostics.synthetic import both_sides_pair, coaxial_pair
 from axlebox.bearing.frequencies import orders, shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 from axlebox.pipelines import cli
 from axlebox.pipelines.diagnose import analyse_file
 

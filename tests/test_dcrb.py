@@ -1,4 +1,4 @@
-"""The double-row cylindrical roller bearing (bearing/dcrb.py, issue 49) against closed forms:
+"""The double-row cylindrical roller bearing (bearing/models/dcrb.py, issue 49) against closed forms:
 its assumed rollers against the published load rating (ISO 281), its static load distribution
 with clearance against Harris's, the fault lines of rig runs against the kinematic orders, and
 the paper's kind of result in the car: a one-sided outer-ring defect called real on its side and
@@ -8,14 +8,16 @@ import pytest
 
 from axlebox import configs
 from axlebox._params import ParameterError
-from axlebox.bearing import catalogue, equilibrium, loaddist, models, stiffness
-from axlebox.bearing.dcrb import DT_MAX, DcrbParams
-from axlebox.bearing.defects import Defect, WIDTH
-from axlebox.bearing.evaluate import rates
+from axlebox.bearing import catalogue, models
+from axlebox.bearing.defects import WIDTH, Defect
 from axlebox.bearing.frequencies import shaft_hz
-from axlebox.bearing.layout import Q_O
+from axlebox.bearing.kernel import dispatch
+from axlebox.bearing.kernel.evaluate import rates
+from axlebox.bearing.kernel.layout import Q_O
+from axlebox.bearing.models.dcrb import DT_MAX, DcrbParams
 from axlebox.bearing.rig import RigConfig, simulate
 from axlebox.bearing.spectra import envelope_spectrum
+from axlebox.bearing.statics import equilibrium, loaddist, stiffness
 from axlebox.mbs import config as vconfig
 
 from conftest import assert_sized, full_size
@@ -29,7 +31,7 @@ def test_the_assumed_rollers_give_the_published_load_rating():
     """ISO 281:2007 eq. (7) for a radial roller bearing, ``C_r = b_m f_c (i L_we cos a)^(7/9)
     Z^(3/4) D_we^(29/27)`` (mm, N), b_m = 1.1 (cylindrical rollers, its Table 8), f_c from its
     Table 7 at ``D_we / D_pw`` = 0.151 (0.14: 87.7, 0.16: 88.5, interpolated as the standard
-    says): within 2.5 % of the 540 kN FAG publishes for the WJ/WJP 130 x 240 (bearing/dcrb.py),
+    says): within 2.5 % of the 540 kN FAG publishes for the WJ/WJP 130 x 240 (bearing/models/dcrb.py),
     as near as whole millimetres of roller come (one millimetre of D_we moves it by 3.8 %)."""
     p = DcrbParams()
     gamma = p.D_b / p.D_m
@@ -44,7 +46,7 @@ def static():
     p = DcrbParams(crown_drop=0.0)
     P = models.pack(p)
     y, uo = equilibrium.static_state(p, P, NO_DEFECTS, (0.0, 0.0, -54e3), 1e-3)
-    _, F, Qc, _ = rates(models.tag(p), 0.0, y, equilibrium.ring_motion(1e-3, uo), P, NO_DEFECTS)
+    _, F, Qc, _ = rates(dispatch.tag(p), 0.0, y, equilibrium.ring_motion(1e-3, uo), P, NO_DEFECTS)
     return p, uo, Qc[:, :, Q_O]
 
 
@@ -112,7 +114,7 @@ def test_rig_inner_ring_defect_rings_at_bpfi_with_shaft_sidebands():
 
 
 def test_rig_quasi_dynamic_dcrb_rings_at_bpfo(outer):
-    """The quasi-dynamic scheme (bearing/quasidynamic.py) on the DCRB, "imex" at its 1e-5 s: the
+    """The quasi-dynamic scheme (bearing/kernel/quasidynamic.py) on the DCRB, "imex" at its 1e-5 s: the
     BPFO line within one bin, and the outer ring's RMS within 15 % of the dynamic model's (they
     differ in the rollers' own inertia along the contact normals)."""
     p = DcrbParams(model="quasi-dynamic")
@@ -128,9 +130,9 @@ def test_rig_quasi_dynamic_dcrb_rings_at_bpfo(outer):
 
 def test_the_dcrb_declares_its_methods_and_steps():
     """Its own step limits, refused by name above them; the type key in both configs."""
-    assert set(DT_MAX) == set(models.methods(DcrbParams()))
+    assert set(DT_MAX["dynamic"]) == set(models.methods(DcrbParams()))
     with pytest.raises(ParameterError, match=r"RigConfig\.dt"):
-        RigConfig(bearing=DcrbParams(), method="leapfrog", dt=2 * DT_MAX["leapfrog"])
+        RigConfig(bearing=DcrbParams(), method="leapfrog", dt=2 * DT_MAX["dynamic"]["leapfrog"])
     assert isinstance(models.from_table({"type": "dcrb", "Z": 16}), DcrbParams)
     with pytest.raises(ParameterError,
                        match=r"bearing\.type = 'crb' is not allowed: expected one of dtrb, dcrb"):

@@ -19,7 +19,7 @@ from axlebox.bearing.diagnostics.channel import jsonable
 from axlebox.bearing.diagnostics.criterion import VF_METRO, VF_RANGE_PAPER, Criterion
 from axlebox.bearing.diagnostics.pair import analyse_pair
 from axlebox.bearing.frequencies import FaultOrders, orders, shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 from axlebox.pipelines import diagnose, readers
 from axlebox.pipelines.cli import main
 

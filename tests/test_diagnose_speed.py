@@ -18,7 +18,7 @@ from conftest import reference_dir
 
 FS = 10_000.0
 R = 0.42
-DTRB_BPFO = 8.7246          # the DTRB's outer-ring order (bearing/params.py defaults)
+DTRB_BPFO = 8.7246          # the DTRB's outer-ring order (bearing/models/params.py defaults)
 T = 20.0
 
 

@@ -15,7 +15,7 @@ from axlebox.bearing.diagnostics.envelope import envelope, envelope_spectrum, se
 from axlebox.bearing.diagnostics.indicators import time_indicators
 from axlebox.bearing.diagnostics.spectral import default_nperseg, fc_vf
 from axlebox.bearing.frequencies import orders
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 
 FS = 10e3
 SHAFT = 5.1                       # Hz: the paper's wheelset at 48 km/h

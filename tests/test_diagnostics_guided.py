@@ -18,7 +18,7 @@ from axlebox.bearing.diagnostics.guided import band_grid, guided_band
 from axlebox.bearing.diagnostics.pair import analyse_pair
 from axlebox.bearing.diagnostics.synthetic import impulse_train, resonance, wheel_rail_noise
 from axlebox.bearing.frequencies import orders, shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 
 FS = 10_000.0
 SHAFT = shaft_hz(48.0)

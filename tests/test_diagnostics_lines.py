@@ -12,7 +12,7 @@ from axlebox.bearing.diagnostics import faultlines
 from axlebox.bearing.diagnostics.channel import analyse, distinct, line_frequencies
 from axlebox.bearing.diagnostics.synthetic import resonance, wheel_rail_noise
 from axlebox.bearing.frequencies import orders
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 
 
 def test_the_catalogue_holds_the_published_orders():

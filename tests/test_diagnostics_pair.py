@@ -26,7 +26,7 @@ from axlebox.bearing.diagnostics.synthetic import impulse_train, resonance, whee
 from axlebox.bearing.diagnostics.verdict import (RULES, SIDES, Evidence, LagReading, LineEvidence,
                                                  LineReading, ShaftOrders, VFReading)
 from axlebox.bearing.frequencies import orders, shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 
 FS = 10_000.0                               # the paper's field system samples at 10 kHz
 SHAFT = shaft_hz(48.0)                      # the paper's validation speed, 0.42 m wheels

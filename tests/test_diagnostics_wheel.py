@@ -13,7 +13,7 @@ from axlebox.bearing.diagnostics.criterion import Criterion
 from axlebox.bearing.diagnostics.pair import analyse_pair
 from axlebox.bearing.diagnostics.verdict import ShaftOrders
 from axlebox.bearing.frequencies import orders, shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 
 FS = 10000.0
 T = 8.0

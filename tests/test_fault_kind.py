@@ -11,7 +11,7 @@ from axlebox.bearing.diagnostics.families import kind_case
 from axlebox.bearing.diagnostics.kind import UNDECIDED, name_kind
 from axlebox.bearing.diagnostics.pair import analyse_pair
 from axlebox.bearing.diagnostics.verdict import LineEvidence, LineReading
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 
 B = lookup("6205")
 DTRB = models.orders(BearingParams())

@@ -107,7 +107,7 @@ def mutate(base: dict, data, sections: dict) -> tuple[dict, tuple[str, ...]]:
 def test_vehicle_config(data):
     import dataclasses
 
-    from axlebox.bearing.params import BearingParams
+    from axlebox.bearing.models.params import BearingParams
     from axlebox.mbs.config import SECTIONS, validate
     base = {"defects": {"wheelset": 2, "side": "R", "W": 2e-3}, "joint": {"model": "dtrb"},
             "integrator": {"method": "imex", "dt": 5e-6}}
@@ -166,7 +166,7 @@ def test_rig_config_unknown_key_in_every_section(sec):
 def test_rig_config(data):
     import dataclasses
 
-    from axlebox.bearing.params import BearingParams
+    from axlebox.bearing.models.params import BearingParams
     from axlebox.bearing.rig import RigConfig, config_from_dict
     rig = {f.name: 0 for f in dataclasses.fields(RigConfig) if f.name not in ("defects", "bearing")}
     sections = {"rig": rig, "bearing": {f.name: 0 for f in dataclasses.fields(BearingParams)},
@@ -252,7 +252,7 @@ def test_truncated_or_corrupted_files(kind, data):
 def record(tmp_path_factory):
     from axlebox.bearing.diagnostics.synthetic import coaxial_pair
     from axlebox.bearing.frequencies import orders, shaft_hz
-    from axlebox.bearing.params import BearingParams
+    from axlebox.bearing.models.params import BearingParams
     a, b = coaxial_pair(1.0, 1e4, orders(BearingParams()).BPFO * shaft_hz(48.0),
                         np.random.default_rng(0))
     p = tmp_path_factory.mktemp("rec") / "rec.csv"
@@ -539,7 +539,7 @@ def bases():
     """(left, right, defect side or None) for seeds 0-1: a healthy wheelset, a defect on the left."""
     from axlebox.bearing.diagnostics.synthetic import coaxial_pair
     from axlebox.bearing.frequencies import orders, shaft_hz
-    from axlebox.bearing.params import BearingParams
+    from axlebox.bearing.models.params import BearingParams
     f = orders(BearingParams()).BPFO * shaft_hz(KMH)
     out = []
     for seed in range(2):

@@ -22,7 +22,7 @@ from axlebox.bearing.diagnostics.ordertrack import angle_from_speed
 from axlebox.bearing.diagnostics.pair import analyse_pair
 from axlebox.bearing.diagnostics.synthetic import angle_coaxial_pair, impulse_train, resonance
 from axlebox.bearing.frequencies import shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 from axlebox.pipelines import speed as sp
 from axlebox.pipelines.cli import main
 from axlebox.pipelines.diagnose import analyse_record

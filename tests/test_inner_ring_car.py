@@ -13,7 +13,7 @@ from axlebox.bearing.diagnostics.envelope import envelope_spectrum
 from axlebox.bearing.diagnostics.faultlines import detect
 from axlebox.bearing.diagnostics.lag import impulse_lag
 from axlebox.bearing.frequencies import orders, shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 from axlebox.pipelines import readers
 from axlebox.pipelines import simulate as psim
 from axlebox.pipelines.demo import DURATION

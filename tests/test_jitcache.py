@@ -47,7 +47,7 @@ def _edit(path: Path, old: str, new: str) -> None:
 
 def test_the_kernel_key_covers_every_module_numba_reads(tmp_path):
     """Every ``*.py`` of bearing/ and mbs/ and the axlebox modules they import (issue 56: an edit
-    to a slot number in bearing/layout.py, a file without a kernel, left the key as it was)."""
+    to a slot number in bearing/kernel/layout.py, a file without a kernel, left the key as it was)."""
     top = _installed_copy(tmp_path)
     names = _numba.kernel_sources(top)
     for pkg in _numba.KERNEL_PACKAGES:
@@ -60,7 +60,7 @@ def test_the_kernel_key_covers_every_module_numba_reads(tmp_path):
     assert not any(n.startswith(("axlebox.pipelines", "axlebox.geometry")) for n in names)
     h0 = _numba.kernel_hash(top)
     assert h0 == _numba.kernel_hash()                   # a copy hashes as the installation
-    edits = [("bearing/layout.py", "REC_SPIN, REC = REC_ORBIT + 1, REC_ORBIT + 2",
+    edits = [("bearing/kernel/layout.py", "REC_SPIN, REC = REC_ORBIT + 1, REC_ORBIT + 2",
               "REC_SPIN, REC = REC_ORBIT + 1, REC_ORBIT + 3"),          # the issue's edit
              ("mbs/exchange.py", "THIS, LAST = 0, 1", "THIS, LAST = 1, 0"),
              ("_params.py", "class ParameterError", "# read by the kernels' modules\nclass ParameterError"),
@@ -75,11 +75,11 @@ def test_the_kernel_key_covers_every_module_numba_reads(tmp_path):
         assert _numba.kernel_hash(top) == h0, rel
 
 
-# a kernel of bearing/blocks.py that writes a constant of bearing/layout.py: ``_touch`` marks a
+# a kernel of bearing/kernel/blocks.py that writes a constant of bearing/kernel/layout.py: ``_touch`` marks a
 # roller's block ``BLK_OWN`` when it first writes it
 _TOUCH = """
 import numpy as np, numba
-from axlebox.bearing import blocks, layout
+from axlebox.bearing.kernel import blocks, layout
 flag = np.full(1, layout.BLK_NONE, np.int64)
 blocks._touch(np.ones((1, 6, layout.BLK)), flag, 0, False)
 print(int(flag[0]), len(blocks._touch.stats.cache_hits), numba.config.CACHE_DIR)
@@ -87,7 +87,7 @@ print(int(flag[0]), len(blocks._touch.stats.cache_hits), numba.config.CACHE_DIR)
 
 
 def test_a_kernel_loaded_after_an_edit_to_a_constant_it_reads_runs_the_new_constant(tmp_path):
-    """A fresh process loads ``blocks._touch`` from the cache; bearing/layout.py's ``BLK_OWN`` is
+    """A fresh process loads ``blocks._touch`` from the cache; bearing/kernel/layout.py's ``BLK_OWN`` is
     changed (blocks.py is not); the next fresh process runs the new value.  Under numba's own
     check alone (the old folder, given as the user's NUMBA_CACHE_DIR) the old machine code runs:
     the hazard this key is for."""
@@ -105,7 +105,7 @@ def test_a_kernel_loaded_after_an_edit_to_a_constant_it_reads_runs_the_new_const
     own, hits, folder = touch()
     assert own == 1 and hits == 0 and str(tmp_path / "cache") in folder     # compiled, in the copy's cache
     assert touch() == (1, 1, folder)                                          # loaded from it
-    _edit(tmp_path / "src/axlebox/bearing/layout.py", "BLK_NONE, BLK_OWN, BLK_COUPLED = 0, 1, 2",
+    _edit(tmp_path / "src/axlebox/bearing/kernel/layout.py", "BLK_NONE, BLK_OWN, BLK_COUPLED = 0, 1, 2",
           "BLK_NONE, BLK_OWN, BLK_COUPLED = 0, 5, 2")
     own, hits, new_folder = touch()
     assert (own, hits) == (5, 0) and new_folder != folder
@@ -139,7 +139,7 @@ def test_a_kernel_compiled_here_and_one_loaded_from_the_cache_give_the_same_bits
     bearing kernels (and writes them), the second loads them.  Their accelerations and contact
     forces agree to the bit.  With ``fastmath`` they did not (a last-bit difference in some
     roller accelerations, grown by the quasi-static start's 1e-12 m Newton steps into a rig
-    RMS 5 % apart): bearing/evaluate.py's docstring."""
+    RMS 5 % apart): bearing/kernel/evaluate.py's docstring."""
     import subprocess
     import sys
     env = {**os.environ, "AXLEBOX_CACHE": str(tmp_path / "cache")}

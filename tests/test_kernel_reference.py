@@ -17,7 +17,9 @@ import tomllib
 import numpy as np
 import pytest
 
-from axlebox.bearing import layout, rig
+from axlebox.bearing.kernel import layout
+
+from axlebox.bearing import rig
 from axlebox.bearing.integrate import CAGE_OUT, RIG, RIG_U
 
 REFERENCE = Path(__file__).parent / "data" / "kernel_reference.npz"

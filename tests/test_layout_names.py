@@ -1,6 +1,6 @@
 """The bearing core reads its plain arrays by name (issue 49): every slot of the parameter vector,
 the state, the ring motion, the contact outputs and the defect table is declared once
-(bearing/layout.py, a model's own module) and no code of the bearing package or of the car's
+(bearing/kernel/layout.py, a model's own module) and no code of the bearing package or of the car's
 bearing code indexes one by a number; its kernels are in parts of at most about 80 lines, and
 one module knows the list of models."""
 import ast
@@ -14,8 +14,13 @@ DECLARATIONS = {"layout.py", "vec.py"}        # the layout itself, and 3-vector 
 CAR_BEARING_CODE = ("kernel_bearings.py", "bearings.py", "exchange.py")
 
 
+def _bearing_modules():
+    """Every module of the bearing package but the diagnosis (which reads records, not slots)."""
+    return [p for p in sorted(BEARING.rglob("*.py")) if "diagnostics" not in p.relative_to(BEARING).parts]
+
+
 def _modules():
-    mods = [p for p in sorted(BEARING.glob("*.py")) if p.name not in DECLARATIONS]
+    mods = [p for p in _bearing_modules() if p.name not in DECLARATIONS]
     return mods + [MBS / n for n in CAR_BEARING_CODE]
 
 
@@ -63,17 +68,18 @@ def test_each_kernel_part_reads_on_one_screen(path):
 
 
 def test_one_module_knows_the_list_of_models():
-    """bearing/models.py imports the models; the shared parts do not (a model's numpy twin,
-    bearing/kernel_numpy.py, is the DTRB's own)."""
+    """bearing/models/__init__.py imports the models; the shared parts do not (the dispatch reads
+    the registry, not the models; a model's numpy twin, bearing/kernel/numpy_twin.py, is the
+    DTRB's own)."""
     from axlebox.bearing import models
     names = set(models.MODELS)
     importers = {}
-    for path in BEARING.glob("*.py"):
+    for path in _bearing_modules():
         for node in ast.walk(ast.parse(path.read_text())):
             if isinstance(node, ast.ImportFrom) and node.level:
                 got = {(node.module or "").split(".")[-1]} | {a.name for a in node.names}
                 if node.level and got & names:
-                    importers.setdefault(path.name, set()).update(got & names)
-    allowed = {"models.py"} | {f"{n}.py" for n in names} | {"kernel_numpy.py"}
+                    importers.setdefault(path.relative_to(BEARING).as_posix(), set()).update(got & names)
+    allowed = {"models/__init__.py", "kernel/numpy_twin.py"} | {f"models/{n}.py" for n in names}
     assert set(importers) <= allowed, importers
-    assert "models.py" in importers
+    assert "models/__init__.py" in importers

@@ -86,7 +86,7 @@ def test_a_bearing_fault_through_a_speed_sweep_is_its_order_in_the_tracked_envel
     from axlebox.bearing import models
     from axlebox.bearing.diagnostics.envelope import envelope_spectrum
     from axlebox.bearing.diagnostics.synthetic import resonance
-    from axlebox.bearing.params import BearingParams
+    from axlebox.bearing.models.params import BearingParams
     bpfo = models.orders(BearingParams()).BPFO
     t = np.arange(int(T * FS)) / FS
     f, theta = sweep_angle(t)
@@ -148,7 +148,7 @@ def test_a_source_and_its_copy_through_a_sweep_on_the_clock_are_real_and_pseudo(
     from axlebox.bearing.diagnostics.criterion import Criterion
     from axlebox.bearing.diagnostics.pair import analyse_pair
     from axlebox.bearing.diagnostics.synthetic import swept_coaxial_pair
-    from axlebox.bearing.params import BearingParams
+    from axlebox.bearing.models.params import BearingParams
     o = models.orders(BearingParams())
     right, left, angle = swept_coaxial_pair(T, FS, o.BPFO, shaft_hz(20.0), shaft_hz(80.0),
                                             np.random.default_rng(seed))

@@ -1,21 +1,22 @@
-"""The quasi-dynamic bearing (bearing/quasidynamic.py, ``[bearing] model = "quasi-dynamic"``) on
+"""The quasi-dynamic bearing (bearing/kernel/quasidynamic.py, ``[bearing] model = "quasi-dynamic"``) on
 the rig: its contact equilibrium, its cage speed against the paper's Eq. (2), the defect's line,
 its convergence in the step, and what it refuses."""
 import numpy as np
 import pytest
 
 from axlebox._params import ParameterError
-from axlebox.bearing import layout, models
-from axlebox.bearing import quasidynamic as qd
-from axlebox.bearing.blocks import dense
+from axlebox.bearing.kernel import layout
+from axlebox.bearing.kernel import dispatch
+from axlebox.bearing.kernel import quasidynamic as qd
+from axlebox.bearing.kernel.blocks import dense
 from axlebox.bearing.defects import Defect, count
 from axlebox.bearing.diagnostics.channel import analyse
-from axlebox.bearing.evaluate import rates, ring_loads, roller, work
+from axlebox.bearing.kernel.evaluate import rates, ring_loads, roller, work
 from axlebox.bearing.frequencies import orders, shaft_hz
-from axlebox.bearing.layout import J_RA, N_ROLLER, PSI, RHO
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.kernel.layout import J_RA, N_ROLLER, PSI, RHO
+from axlebox.bearing.models.params import BearingParams
 from axlebox.bearing.rig import RigConfig, initial_state, simulate
-from axlebox.bearing.roller import cage_frame, orbital_inertia, ring_frame
+from axlebox.bearing.kernel.roller import cage_frame, orbital_inertia, ring_frame
 
 QD = BearingParams(model="quasi-dynamic")
 
@@ -37,7 +38,7 @@ def _at_start():
     x = Y[:nb].copy()
     ring = layout.ring_motion(c.omega_w, Y[nb:nb + 3])
     w = work(Z, nb, qd.QD_WIDTH)
-    evals = qd.equilibrium(models.tag(QD), 0.0, x, ring, P, D, 5e-5, w)
+    evals = qd.equilibrium(dispatch.tag(QD), 0.0, x, ring, P, D, 5e-5, w)
     return c, x, ring, P, D, w.dx, w.F, w.Qs, w, evals
 
 
@@ -62,7 +63,7 @@ def test_a_roller_evaluated_alone_gives_the_whole_bearings_loads():
     bit (each record holds its roller's own loads: nothing is a difference of running sums)."""
     c, x, ring, P, D, dx, F, Qc, w, evals = _at_start()
     Z, h = c.bearing.Z, 5e-5
-    tag = models.tag(QD)
+    tag = dispatch.tag(QD)
     k = int(np.argmax(Qc[0, :, 0]))                       # the most loaded roller of row 1
     x[k * N_ROLLER + RHO] += 1e-6
     rings = ring_frame(ring)
@@ -91,7 +92,7 @@ def test_spin_step_jacobian_is_the_kernels_friction_derivative():
     xp = x.copy()
     idx = np.arange(2 * Z) * N_ROLLER + 6 + PSI
     xp[idx] += eps
-    ap = rates(models.tag(QD), 0.0, xp, ring, P, D)[0]
+    ap = rates(dispatch.tag(QD), 0.0, xp, ring, P, D)[0]
     d_fd = (ap[idx] - dx[idx]) / eps
     d_blocks = -dense(w, Z)[:, :Z, PSI, PSI].reshape(-1) / P[J_RA]
     loaded = Qc[:, :, 0].reshape(-1) > 1e3

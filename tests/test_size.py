@@ -16,7 +16,7 @@ from axlebox.bearing.diagnostics import size
 from axlebox.bearing.diagnostics.synthetic import spall_record
 from axlebox.bearing.frequencies import orders as fault_orders
 from axlebox.bearing.frequencies import shaft_hz
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 
 FS = 10_000.0
 F_FAULT = 36.7                    # the DTRB's BPFO at 40 km/h
@@ -34,7 +34,7 @@ def test_rolling_speed_is_each_surfaces_speed_in_the_model():
     """``pi f_s D_m (1 - g^2) / 2`` equals the cage's speed over the cup (omega_c D_o / 2), the
     shaft's over the cage on the cone ((omega_s - omega_c) D_i / 2) and the roller's spin over
     its own surface (omega_b D_b / 2), the model's kinematics (bearing/frequencies.py) with
-    its raceway diameters (bearing/params.py): to rounding."""
+    its raceway diameters (bearing/models/params.py): to rounding."""
     p = BearingParams()
     o = fault_orders(p)
     f_s = shaft_hz(40.0)

@@ -135,7 +135,7 @@ def test_the_criterion_names_the_flats_lines_and_calls_no_bearing_fault(car_run)
     and none is read as a bearing's."""
     from axlebox.bearing.diagnostics.pair import analyse_pair
     from axlebox.bearing.frequencies import orders, shaft_hz
-    from axlebox.bearing.params import BearingParams
+    from axlebox.bearing.models.params import BearingParams
     cfg, model, run = car_run
     fs = 1.0 / np.median(np.diff(run.time))       # the run's output, the field system's 10 kHz
     x = {s: run.sensors[f"ws2_{s}"][:, 2] for s in "LR"}

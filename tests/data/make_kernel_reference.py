@@ -28,7 +28,7 @@ import numpy as np
 
 from axlebox.bearing import rig
 from axlebox.bearing.defects import Defect
-from axlebox.bearing.params import BearingParams
+from axlebox.bearing.models.params import BearingParams
 
 DURATION = 0.01
 OUTER = Defect(W=2e-3, L=50.4e-3, H=2e-3, row=2)

@@ -22,14 +22,46 @@ import numpy as np
 
 from axlebox._numba import kernel
 
-from .defects import count
-from .layout import (BLK, BLK_NONE, C_LOAD, F_X, G_X, G_Y, G_Z, INNER, INNER_RING, INNER_SLOTS, LOAD,
-                     M_R, N_CAGE, N_Q, N_ROLLER, OUTER, OUTER_SLOTS, PSI, REC, REC_F, REC_LOAD,
-                     REC_ORBIT, RING, ROLLER_SURFACE, ROWS, Z)
-from .models import contacts
+from ..defects import count
+from .dispatch import contacts
+from .layout import (
+    BLK,
+    BLK_NONE,
+    C_LOAD,
+    F_X,
+    G_X,
+    G_Y,
+    G_Z,
+    INNER,
+    INNER_RING,
+    INNER_SLOTS,
+    LOAD,
+    M_R,
+    N_CAGE,
+    N_Q,
+    N_ROLLER,
+    OUTER,
+    OUTER_SLOTS,
+    PSI,
+    REC,
+    REC_F,
+    REC_LOAD,
+    REC_ORBIT,
+    RING,
+    ROLLER_SURFACE,
+    ROWS,
+    Z,
+)
 from .pocket import pockets
-from .roller import (cage_frame, cage_rates, orbital_inertia, pocket_angles, ring_frame, roller_frame,
-                     roller_rates)
+from .roller import (
+    cage_frame,
+    cage_rates,
+    orbital_inertia,
+    pocket_angles,
+    ring_frame,
+    roller_frame,
+    roller_rates,
+)
 from .vec import mul, put
 
 TWO_PI = 2.0 * pi
@@ -37,9 +69,9 @@ TWO_PI = 2.0 * pi
 #: one bearing's scratch (:func:`work`): the rollers' records ``rec`` (2 Z, REC), their block
 #: rows ``blk`` (2 Z, 6, BLK) and flags ``flag`` (2 Z), each row's cage block ``cblk`` (2, 6,
 #: 6), the pockets' azimuths' sines and cosines (2, Z), and what a step needs besides
-#: (bearing/advance.py): the state's derivative ``dx``, the ring motion ``ring`` and loads ``F``
+#: (bearing/kernel/advance.py): the state's derivative ``dx``, the ring motion ``ring`` and loads ``F``
 #: of a sub-step, its contact forces ``Qs`` and the quasi-dynamic Newton's per-roller scratch
-#: ``qd`` (bearing/quasidynamic.py)
+#: ``qd`` (bearing/kernel/quasidynamic.py)
 Work = namedtuple("Work", ["rec", "blk", "flag", "cblk", "sin_p", "cos_p", "dx", "ring", "F", "Qs",
                            "qd"])
 
@@ -105,7 +137,7 @@ def roller(model, x, dx, j, k, rings, cage, P, D, n_inner, n_roller, Qc, w, want
 @kernel
 def ring_loads(rec, F):
     """The rings' loads ``F`` (2, LOAD): every roller's record summed (paper Eq. 16), roller by
-    roller and contact slot by slot (bearing/layout.py)."""
+    roller and contact slot by slot (bearing/kernel/layout.py)."""
     F[:, :] = 0.0
     for jk in range(rec.shape[0]):
         for c in INNER_SLOTS:
@@ -118,7 +150,7 @@ def ring_loads(rec, F):
 
 def rates(model, t, y, ring, P, D, want: bool = False, h_k: float = 0.0):
     """:func:`evaluate` from Python, allocating: ``(dx, F, Qc, w)`` of the bearing of tag
-    ``model`` (bearing/models.py ``tag(p).model``) at state ``y`` and ring motion ``ring``;
+    ``model`` (bearing/models/__init__.py ``tag(p).model``) at state ``y`` and ring motion ``ring``;
     ``w`` (:class:`Work`) holds the records and, with ``want``, the blocks."""
     nz = int(P[Z])
     y = np.ascontiguousarray(y, float)

@@ -12,7 +12,7 @@ The step: the leapfrog's velocity kick ``u+ = u- + h a(q, u-)`` becomes, for the
 with ``M`` the rates' masses (roller: ``M_r``, ``M_r (R + rho)^2``, ``M_r``, ``J_d``, ``J_d``,
 ``J_a``; cage: ``M_c`` three times, ``J_cd``, ``J_cd``, ``J_cp``) and ``C = sum c J^T J`` over
 the contacts in action, ``J`` the gradient of a contact's approach rate with respect to the
-rates (bearing/blocks.py).  This is the linearly implicit Euler
+rates (bearing/kernel/blocks.py).  This is the linearly implicit Euler
 step on the damping forces (``-c J u``, with ``u+`` in place of ``u-``): unconditionally stable for
 them, first order like the leapfrog's own velocity forces.  The rings' rates stay explicit (they
 are bodies of the vehicle).  A row's 20 rollers couple only through its cage, so ``M + h C`` is

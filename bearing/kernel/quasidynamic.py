@@ -23,7 +23,7 @@ A step of ``h`` (:func:`equilibrium`, then :func:`spin_step`):
    then sees the roller follow the rings: implicit Euler on a massless, damped roller), so that
    the centrifugal and gyroscopic loads stay and the inertia of those DOFs goes.  Newton's
    method, each roller's 3 x 3 block the kernel's exact contact stiffness and damping,
-   ``K + C / h`` (the rows bearing/blocks.py makes for the "imex2" kick, at ``h_k = h``), so an
+   ``K + C / h`` (the rows bearing/kernel/blocks.py makes for the "imex2" kick, at ``h_k = h``), so an
    evaluation gives the residual and the next Jacobian at once; a roller touches only the
    rings and its own pocket, so the blocks do not couple and each roller iterates on its own:
    an evaluation takes only the rollers that moved (:func:`.evaluate.roller`, the same part the
@@ -35,7 +35,7 @@ A step of ``h`` (:func:`equilibrium`, then :func:`spin_step`):
 2. **Spins and cage.**  The rollers sit centred in their pockets (roller k at the cage's
    ``phi_c + 2 pi k / Z``) and the cage's rotation carries their orbital inertia,
    ``(J_cp + Z M_r R^2) phi_c'' = sum_k F_t,k (R + rho_k)`` plus the pockets' and side beams'
-   moment (bearing/layout.py ``POCKET_CAGE``).  The traction drives the spins ``omega_s`` and
+   moment (bearing/kernel/layout.py ``POCKET_CAGE``).  The traction drives the spins ``omega_s`` and
    the cage rate stiffly (the friction's secant damping ``mu Q / v_s`` on a roller's axial
    inertia is a rate of about 4e4 /s), so they take a linearly implicit Euler step, their
    Jacobian the friction's secant damping from the same blocks (:func:`spin_step`).  A row's
@@ -47,7 +47,7 @@ quarter of them that Newton moved; measured on the rig with a 1 um, 600 Hz ring 
 5e-5 s: 1.24 on average, and 1.2-1.35 on the validation car's eight bearings); solved as one
 system, the rollers took 2.05 evaluations a step on the rig and 3-5 on the car, where a roller
 at a contact's kink held the whole bearing's iterations (benchmarks/README.md).  No roller mode
-limits the step, only accuracy (:data:`DT_MAX`).
+limits the step, only accuracy (bearing/models/params.py ``QD_DT_MAX``).
 """
 from __future__ import annotations
 
@@ -55,17 +55,41 @@ from math import pi
 
 from axlebox._numba import kernel
 
+from ..defects import count
 from .blocks import BLK_NONE
-from .defects import count
 from .evaluate import ring_loads, roller
-from .layout import (BLK_CAGE, BLK_CAGE_CAGE, BLK_COUPLED, BLK_ROLLER, CPHI, CTZ, ETA,
-                     INNER_RING, J_RA, J_RD, KINEMATIC, L_B, M_R, N_CAGE, N_ROLLER, PHI,
-                     POCKET_CAGE, PSI, RATE, REC_ORBIT, RHO, ROLLER_SURFACE, ROWS, TH_S, TH_T, Z)
+from .layout import (
+    BLK_CAGE,
+    BLK_CAGE_CAGE,
+    BLK_COUPLED,
+    BLK_ROLLER,
+    CPHI,
+    CTZ,
+    ETA,
+    INNER_RING,
+    J_RA,
+    J_RD,
+    KINEMATIC,
+    L_B,
+    M_R,
+    N_CAGE,
+    N_ROLLER,
+    PHI,
+    POCKET_CAGE,
+    PSI,
+    RATE,
+    REC_ORBIT,
+    RHO,
+    ROLLER_SURFACE,
+    ROWS,
+    TH_S,
+    TH_T,
+    Z,
+)
 from .roller import cage_frame, cage_rates, orbital_inertia, pocket_angles, ring_frame
 from .step import cage_outputs
 from .vec import copy3
 
-DT_MAX = 1e-4           # s: the step is held by accuracy (the defect's passage), not stability
 MAX_IT = 8              # Newton iterations at most a step
 MAX_HALVE = 12          # halvings of a roller's Newton step at most
 SLOTS = (RHO, ETA, TH_T)                 # the positions solved, and their accelerations' slots
@@ -270,7 +294,7 @@ def spin_step(x, P, h, w):
     the spin angles and cage azimuths.
 
     The step's Jacobian is the friction's secant damping the kernel put in the blocks (the rows
-    of the implicit kick, bearing/blocks.py: a contact's ``c J^T J`` over a roller's rates
+    of the implicit kick, bearing/kernel/blocks.py: a contact's ``c J^T J`` over a roller's rates
     ``(rho', phi', eta', theta_t', theta_s', omega_s)`` and the cage's ``(..., phi_c')``; the
     normal contacts add nothing to the spin and orbit rows, whose rates do not move a raceway
     contact's approach).  With the roller's orbit rate the cage's, a row's unknowns are its
@@ -328,7 +352,7 @@ def spin_step(x, P, h, w):
 
 @kernel
 def substep(model, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages):
-    """One step of ``h`` of the quasi-dynamic bearing ``model`` (bearing/step.py's contract;
+    """One step of ``h`` of the quasi-dynamic bearing ``model`` (bearing/kernel/step.py's contract;
     ``hk``, ``mode``, ``theta`` and ``K`` are the dynamic step's and unused here): the contact
     equilibrium at the step's end, its loads to ``w.F`` (and with ``out`` its contact forces
     and cages), then the spins and cage."""

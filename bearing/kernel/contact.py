@@ -112,7 +112,7 @@ def normal(q_el, K, n, ddot, m, P, dmax, k_imp, h_k):
     (0 out of contact or where the force is clipped) plus ``h_k`` times the contact's tangent
     stiffness (``k_imp`` where given, a line contact's exact one, :func:`line_stiffness`; else
     ``k``), for the implicit step's blocks (``h_k`` is 0 but under ``"imex2"``,
-    bearing/implicit.py).
+    bearing/kernel/implicit.py).
     """
     if q_el <= 0.0:
         return 0.0, 0.0

@@ -31,7 +31,7 @@ import numpy as np
 
 from axlebox._params import ParameterError
 
-from .params import BearingParams
+from ..models.params import BearingParams
 from .stiffness import roller_raceways
 
 N_EXP = 10 / 9

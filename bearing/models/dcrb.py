@@ -29,7 +29,7 @@ contact line of effective length L is cut into n slices of width w = L / n; slic
 (the approach at the middle, the tilt, the roller's crown, a defect's depth) and carries
 ``q_k = (K / n) delta_k^(10/9)``, K the pair's line stiffness of Palmgren's law
 ``delta = 3.84e-5 Q^0.9 / l^0.8`` (mm, N; Palmgren, Ball and Roller Bearing Engineering, 1959) in
-the paper's Eq. (10) form (bearing/stiffness.py): the whole roller's coefficient shared evenly,
+the paper's Eq. (10) form (bearing/statics/stiffness.py): the whole roller's coefficient shared evenly,
 so that an uncrowned roller pressed uniformly carries exactly Palmgren's load (applying the
 whole-roller law to each slice's own length instead would overstate it by ``n^(1/9)``, 29 % at
 10 slices).  Why slices: the crown.  The rollers are crowned to Johns and Gohar's logarithmic
@@ -53,25 +53,26 @@ import numpy as np
 from axlebox._numba import kernel
 from axlebox._params import ParameterError, param, require
 
-from . import layout as lo
-from .contact import N_LINE
-from .defects import depth_under, roller_depths
-from .layout import (C_INNER, C_INNER_RIB, C_OUTER, C_OUTER_RIB, INNER_RING, L_B, N_COMMON,
+from ..kernel import layout as lo
+from ..kernel.contact import N_LINE
+from ..defects import depth_under, roller_depths
+from ..kernel.layout import (C_INNER, C_INNER_RIB, C_OUTER, C_OUTER_RIB, INNER_RING, L_B, N_COMMON,
                      OUTER_RING, Q_A, Q_I, Q_O)
-from .params import RollerBearing
-from .rings import raceway_approach, raceway_load, rib
-from .stiffness import e_prime, k_line, k_point_sphere
-from .vec import EY, lin, mul
+from .params import RollerBearing, quasi_dynamic_steps
+from ..kernel.rings import raceway_approach, raceway_load, rib
+from ..statics.stiffness import e_prime, k_line, k_point_sphere
+from ..kernel.vec import EY, lin, mul
 
 NAME = "dcrb"
 BORE = 0.130            # m: the journal's, as the DTRB's (module docstring)
 SUMMARY = ("the double-row cylindrical roller bearing of a metro axle box (an NJ + NJP pair, "
            "130 x 240 x 80 mm each), line contacts by slices, ribs that take the axial load")
 DEFAULTS = ("Defaults: the boundary dimensions and load rating of FAG's WJ/WJP 130 x 240 axle-box "
-            "pair, the rollers assumed to match that rating; each field's source in bearing/dcrb.py.")
+            "pair, the rollers assumed to match that rating; each field's source in bearing/models/dcrb.py.")
 # s: the explicit steps' limits on the rollers' contact modes, measured on the rig as the DTRB's
 # were (tests/test_dcrb.py; benchmarks/README.md "The DCRB")
-DT_MAX = {"rk4": 2.8e-5, "leapfrog": 1.2e-5, "imex": 1.2e-5, "imex2": 1.2e-5}
+DT_MAX = {"dynamic": {"rk4": 2.8e-5, "leapfrog": 1.2e-5, "imex": 1.2e-5, "imex2": 1.2e-5},
+          "quasi-dynamic": quasi_dynamic_steps()}
 RHO_STEEL = 7850.0      # kg/m^3
 
 # --- the DCRB's own parameter slots: the contact line's length, the outer raceway's clearance,
@@ -173,15 +174,15 @@ nominal_state = lo.nominal_state
 
 def orders(p: DcrbParams):
     """Fault orders, radial contacts (bearing/frequencies.py)."""
-    from .frequencies import orders as at_angle
+    from ..frequencies import orders as at_angle
     return at_angle(p, 0.0)
 
 
 def guess(p: DcrbParams, F_outer):
     """A first guess of the static state under ``F_outer`` on the outer ring: the radial
-    series-spring solution (bearing/quasistatic.py, contact angle 0) under its radial part, the
+    series-spring solution (bearing/statics/quasistatic.py, contact angle 0) under its radial part, the
     ring put against its ribs on the axial part's side; the rollers halfway between."""
-    from . import quasistatic
+    from ..statics import quasistatic
     F = np.asarray(F_outer, float)
     radial = F.copy()
     radial[lo.F_Y] = 0.0
@@ -194,10 +195,10 @@ def guess(p: DcrbParams, F_outer):
 
 def ring_stiffness(p: DcrbParams, F):
     """Tangent stiffness (3,) along x, y (axial), z (N/m) at the load ``F`` on the outer ring:
-    radially the quasi-static model's (bearing/quasistatic.py, the load moved by 1 % of its
+    radially the quasi-static model's (bearing/statics/quasistatic.py, the load moved by 1 % of its
     size over the displacement that follows), axially the ribs' in series with the rollers
     (each row's Z rollers on one rib of each ring)."""
-    from . import quasistatic
+    from ..statics import quasistatic
     F = np.asarray(F, float)[lo.F_X:lo.F_Z + 1].copy()
     F[lo.F_Y] = 0.0
     q0 = quasistatic.solve(p, F).q
@@ -264,7 +265,7 @@ def _ribs(rec, blk, cblk, flag, jk, fr, side, u, th, v_r, w_r, slot, P, want, h_
 @kernel
 def slices(d0, kap, h, s1, s2, P, stiff):
     """A raceway line contact's integrals by slices (module docstring): ``(i0, i1, kdd, kdk,
-    kkk)`` in the closed form's units (bearing/rings.py ``raceway_load``), ``i0 = w sum
+    kkk)`` in the closed form's units (bearing/kernel/rings.py ``raceway_load``), ``i0 = w sum
     delta_k^n``, ``i1 = w sum s_k delta_k^n`` and, when ``stiff``, ``n w sum delta_k^(n-1)``
     times 1, ``s_k``, ``s_k^2``; a defect of depth h over ``[s1, s2]`` of the line."""
     L = P[L_E]

@@ -18,16 +18,26 @@ from math import cos, pi, radians, sin
 
 from axlebox._params import ParameterError, check_ranges, choice, param, require
 
-from .layout import DAMPING_LAWS
-MODELS = ("dynamic", "quasi-dynamic")            # the schemes a model runs by (bearing/models.py)
+from ..kernel.layout import DAMPING_LAWS
+
+MODELS = ("dynamic", "quasi-dynamic")            # the schemes a model runs by (bearing/models/__init__.py)
 CAGE_MODES = ("dynamic", "kinematic")
+# s: the quasi-dynamic scheme's largest step whatever its method and model: held by accuracy
+# (the defect's passage), not stability (bearing/kernel/quasidynamic.py)
+QD_DT_MAX = 1e-4
+QD_METHODS = ("leapfrog", "imex", "imex2")       # its step is the same whatever the method
+
+
+def quasi_dynamic_steps() -> dict:
+    """A model's ``DT_MAX["quasi-dynamic"]``: :data:`QD_DT_MAX` by each method's name."""
+    return dict.fromkeys(QD_METHODS, QD_DT_MAX)
 
 
 @dataclass(frozen=True)
 class RollerBearing:
     """The fields every roller-bearing model shares (its rollers, pitch, cage and pockets,
     masses, materials, friction, damping, scheme); each model's class gives them its own
-    defaults and adds its own (:class:`BearingParams`, bearing/dcrb.py)."""
+    defaults and adds its own (:class:`BearingParams`, bearing/models/dcrb.py)."""
 
     Z: int = param(20, 3, 80, unit="", doc="rollers a row")
     D_m: float = param(0.180, 0.02, 1.0, doc="pitch diameter")
@@ -65,7 +75,7 @@ class RollerBearing:
                        "paper's Eq. 2)")
     model: str = choice("dynamic", MODELS, "'dynamic': the paper's model, every roller and cage "
                         "with its six DOF; 'quasi-dynamic': the rollers' contact equilibrium solved "
-                        "each step, spins and cage rotation as states (bearing/quasidynamic.py; for "
+                        "each step, spins and cage rotation as states (bearing/kernel/quasidynamic.py; for "
                         "studies, not for the defect's mechanism)")
 
     def __post_init__(self):

@@ -1,4 +1,5 @@
-"""Plain-numpy twin of the DTRB's numba right-hand side (bearing/evaluate.py with bearing/dtrb.py:
+"""Plain-numpy twin of the DTRB's numba right-hand side (bearing/kernel/evaluate.py with
+bearing/models/dtrb.py:
 the same equations, vectorised over rollers): the baseline for benchmarks/bearing.py and a
 cross-check of the numba kernels.
 
@@ -10,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .dtrb import C_O, CAF, CAI, CAO, H_R, K_A, K_I, K_O, L_E, MU_A, MU_R, SAF, SAI, SAO
+from ..models.dtrb import C_O, CAF, CAI, CAO, H_R, K_A, K_I, K_O, L_E, MU_A, MU_R, SAF, SAI, SAO
 from .layout import (BETA, CAC, CAM, CPHI, CTX, CTZ, CX, C_RULE, D_DEPTH, D_EDGE, D_KIND, D_RADIUS, D_RHO,
                      D_ROLLER, D_ROW, D_S1, D_S2, D_START, D_TAU, EQ2_CAGE, ETA, FREE_CAGE, G_X, G_Y, G_Z,
                      INNER, INNER_RING, J_CD, J_CP, J_RA, J_RD, KINEMATIC, K_CR, LAW, LOAD, L_B, MU_C, M_C,
@@ -41,7 +42,7 @@ def _vec(x, y, z):
 
 
 def line_integrals_numpy(d0, kap, a, b, n):
-    """Vectorised :func:`axlebox.bearing.contact.line_integrals`: ``(int u^n ds, int s u^n ds)`` over
+    """Vectorised :func:`axlebox.bearing.kernel.contact.line_integrals`: ``(int u^n ds, int s u^n ds)`` over
     ``[a, b]``, ``u = max(d0 + kap s, 0)``, with the same Taylor / closed-form branches."""
     d0, kap, a, b = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (d0, kap, a, b)))
     h = b - a
@@ -159,7 +160,7 @@ def _raceway(d0, kap, h, s1, s2, Le):
 
 
 def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``(ydot, F (2, LOAD), Qc (2, Z, N_Q))`` as bearing/evaluate.py's ``evaluate`` writes them."""
+    """``(ydot, F (2, LOAD), Qc (2, Z, N_Q))`` as bearing/kernel/evaluate.py's ``evaluate`` writes them."""
     nz = int(P[Z])
     R, rb, Le, Lb = P[R_M], P[R_B], P[L_E], P[L_B]
     cao, sao, cai, sai = P[CAO], P[SAO], P[CAI], P[SAI]

@@ -15,9 +15,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import models
-from .evaluate import rates
-from .layout import CPHI, ETA, F_X, F_Z, OUTER, PHI, Q_I, Q_O, RATE, RHO, TH_T, ring_motion, views
+from ..kernel import dispatch
+from .. import models
+from ..kernel.evaluate import rates
+from ..kernel.layout import CPHI, ETA, F_X, F_Z, OUTER, PHI, Q_I, Q_O, RATE, RHO, TH_T, ring_motion, views
 
 __all__ = ["ring_motion", "static_state"]
 FLOOR = 1e-6            # a direction with no stiffness: this fraction of the block's stiffest
@@ -55,7 +56,7 @@ def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol
     rol, cag = views(y, p.Z)
     rol[:, :, PHI] += phase
     cag[:, CPHI] += phase
-    model = models.tag(p)
+    model = dispatch.tag(p)
 
     # start: the model's guess
     uo0, rol[:, :, RHO], rol[:, :, ETA] = models.module(p).guess(p, F_outer)

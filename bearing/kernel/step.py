@@ -4,7 +4,7 @@ cage with its six degrees of freedom.
 One evaluation (:func:`.evaluate.evaluate`), then the kick of the rates and the drift of the
 positions (:func:`kick_drift`): ``mode`` :data:`EXPLICIT` the explicit leapfrog, :data:`IMEX`
 the contact damping in the kick implicitly, :data:`IMEX2` the contacts' stiffness (Newmark's
-average acceleration) and friction too (bearing/implicit.py).
+average acceleration) and friction too (bearing/kernel/implicit.py).
 """
 from __future__ import annotations
 
@@ -50,7 +50,7 @@ def kick_drift(y, a, P, hk, h, kick):
 
 @kernel
 def substep(model, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages):
-    """One sub-step of ``h`` of the dynamic bearing ``model`` (a tag of bearing/models.py) at
+    """One sub-step of ``h`` of the dynamic bearing ``model`` (a tag of bearing/models/__init__.py) at
     ring motion ``ring``: its ring loads there to ``w.F``, and with ``out`` its contact forces to
     ``Qc`` and cages to ``cages``, before the step; the kick by ``hk`` (h, or h / 2 from initial
     rates), weighted by ``theta`` where implicit.  ``w``, ``K``: its scratch."""

@@ -56,7 +56,7 @@ roller's flag says it filled.
 
 **Parameter vector**: the slots every model fills, ``Z .. N_COMMON - 1`` (the parts a model
 shares: roller and cage dynamics, pockets, contact laws, :mod:`.roller`, :mod:`.pocket`,
-:mod:`axlebox.bearing.contact`); a model's own slots follow from ``N_COMMON`` (its module).
+:mod:`axlebox.bearing.kernel.contact`); a model's own slots follow from ``N_COMMON`` (its module).
 """
 from __future__ import annotations
 
@@ -124,7 +124,7 @@ def pack_common(v, p, gravity) -> None:
     """Fill the shared slots of ``v`` from ``p`` (any model's parameters with the shared fields:
     rollers, pitch, the roller axis's angle ``alpha_m`` from the bearing axis, cage, pockets,
     masses, damping, friction)."""
-    from .stiffness import e_prime, k_line
+    from ..statics.stiffness import e_prime, k_line
     J_ra, J_rd = p.J_r
     J_cp, J_cd = p.J_c
     v[[Z, R_M, R_B, L_B, CAM, SAM, ROW]] = (p.Z, 0.5 * p.D_m, p.r_b, p.L_b, cos(p.alpha_m),

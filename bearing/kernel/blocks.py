@@ -1,5 +1,5 @@
-"""The rows a contact puts into the implicit step's blocks (numba; bearing/implicit.py solves
-them, bearing/quasidynamic.py reads them): its damping ``c J^T J`` in the rates, and under
+"""The rows a contact puts into the implicit step's blocks (numba; bearing/kernel/implicit.py solves
+them, bearing/kernel/quasidynamic.py reads them): its damping ``c J^T J`` in the rates, and under
 ``"imex2"`` its tangent stiffness in approach and tilt and its friction's secant damping.
 
 ``J`` is the gradient of the contact's approach rate in the roller's rates ``(rho', phi',
@@ -21,7 +21,7 @@ from .vec import EY, ZERO6, cross, dot
 @kernel
 def roller_grad(n, r, fr):
     """Gradient of the approach rate ``(v_roller(r) - ...) . n`` of a contact at ``r`` from the
-    centre of roller ``fr`` (bearing/roller.py ``roller_frame``) in its six rates."""
+    centre of roller ``fr`` (bearing/kernel/roller.py ``roller_frame``) in its six rates."""
     return (dot(fr.er, n), fr.Rr * dot(fr.et, n) + dot(cross(EY, r), n), dot(EY, n),
             dot(cross(fr.et, r), n), dot(cross(fr.bx, r), n), dot(cross(fr.ax, r), n))
 
@@ -91,7 +91,7 @@ def tilt_rows(blk, cblk, flag, jk, kdk, kkk, Jd, Jk, Jdc, Jkc, cage):
 
 @kernel
 def friction_rows(blk, cblk, flag, jk, cf, t1, n, r, fr, rel, cage):
-    """The friction's secant damping ``cf`` (:func:`axlebox.bearing.contact.slip_damping`) in the
+    """The friction's secant damping ``cf`` (:func:`axlebox.bearing.kernel.contact.slip_damping`) in the
     contact plane spanned by the unit ``t1`` and ``t1 x n``, for the implicit kick: the
     regularised friction is stiff in the slip (the roller spin's eigenvalue near -1.3e5 1/s holds
     an explicit step under 1.5e-5 s)."""
@@ -108,7 +108,7 @@ def tilt_grad(sign):
 
 
 def dense(w, Z_: int):
-    """The blocks of an evaluation (bearing/evaluate.py ``Work``) as one array ``(2, Z + 1, 6,
+    """The blocks of an evaluation (bearing/kernel/evaluate.py ``Work``) as one array ``(2, Z + 1, 6,
     12)``: ``[j, k, :, :6]`` roller k's own, ``[j, k, :, 6:]`` its coupling to the cage of row
     j, ``[j, Z, :, :6]`` that cage's own (zero where an evaluation wrote nothing), for tests and
     analysis (the kernels read the blocks where they lie)."""

@@ -19,7 +19,7 @@ from .vec import ZERO, ZERO6, add, cross, dot, lin, mul, sub
 
 @kernel(inline="always")
 def raceway_approach(fr, n, sigma, clearance, u, th, P):
-    """A raceway's line contact along roller ``fr`` (bearing/roller.py ``Frame``), normal ``n``
+    """A raceway's line contact along roller ``fr`` (bearing/kernel/roller.py ``Frame``), normal ``n``
     from the roller to the ring (``sigma`` +1 the outer raceway, -1 the inner, whose tilts
     enter ``kap`` with opposite signs), the ring's displacement ``u`` and small rotation ``th``:
     ``(d0, kap, r, rel)``, the approach at the line's middle less ``clearance``, its tilt along
@@ -35,7 +35,7 @@ def raceway_load(rec, blk, cblk, flag, jk, fr, n, sigma, r, rel, v_r, w_r, d0, k
                  slot, P, want, h_k):
     """The raceway contact of :func:`raceway_approach` under its line law's ``law = (i0, i1,
     kdd, kdk, kkk)`` (``int delta^n``, ``int s delta^n`` over the line of length L and, for the
-    "imex2" blocks, their derivatives; :func:`axlebox.bearing.contact.line_load`): the normal
+    "imex2" blocks, their derivatives; :func:`axlebox.bearing.kernel.contact.line_load`): the normal
     force, the tilted line's couple, friction ``mu Q`` against the slip, into the roller's record
     slot ``slot`` and, with ``want``, its block.  Returns the normal load."""
     i0, i1, kdd, kdk, kkk = law

@@ -20,7 +20,7 @@ What the paper's equations become here (one vector form for both rows and both r
   roller, and the tilt restoring moment the paper's Eq. (12d) lacks (slicing, done exactly).
 * Eq. (4b), (8): rib point contact ``K_a delta^(3/2)`` at height h_r on the large end.
 * Friction (the paper's "conventional friction model", f = mu Q): regularised Coulomb
-  (:func:`axlebox.bearing.contact.friction`); damping by :func:`axlebox.bearing.contact.normal`.
+  (:func:`axlebox.bearing.kernel.contact.friction`); damping by :func:`axlebox.bearing.kernel.contact.normal`.
 
 Parameter vector: the shared slots (:mod:`.layout`, ``Z .. N_COMMON - 1``), then ``L_E`` the
 effective contact length (Eq. 6), the cosines and sines of the cup, cone and rib angles,
@@ -35,15 +35,15 @@ import numpy as np
 
 from axlebox._numba import kernel
 
-from . import layout as lo
-from .contact import (N_LINE, line_integrals, line_stiffness)
-from .defects import depth_under, roller_depths
-from .layout import (C_INNER, C_INNER_RIB, C_OUTER, INNER_RING, L_B, N_COMMON, OUTER_RING, Q_A,
+from ..kernel import layout as lo
+from ..kernel.contact import (N_LINE, line_integrals, line_stiffness)
+from ..defects import depth_under, roller_depths
+from ..kernel.layout import (C_INNER, C_INNER_RIB, C_OUTER, INNER_RING, L_B, N_COMMON, OUTER_RING, Q_A,
                      Q_I, Q_O)
-from .params import BearingParams
-from .rings import raceway_approach, raceway_load, rib
-from .stiffness import contacts as stiffnesses
-from .vec import AX, AZ, EY, lin
+from .params import BearingParams, quasi_dynamic_steps
+from ..kernel.rings import raceway_approach, raceway_load, rib
+from ..statics.stiffness import contacts as stiffnesses
+from ..kernel.vec import AX, AZ, EY, lin
 
 NAME = "dtrb"
 nominal_state = lo.nominal_state
@@ -51,15 +51,16 @@ Params = BearingParams
 SUMMARY = ("the double-row tapered roller bearing of the paper (Zhao et al., Sci. Rep. 2025), "
            "rollers and cages with six degrees of freedom")
 DEFAULTS = ("Defaults: the paper's Z = 20 rollers a row and an assumed 130 x 230 x 160 mm unit; "
-            "each field's source in bearing/params.py.")
-BORE = 0.130            # m: the assumed 130 x 230 x 160 mm unit (bearing/params.py)
+            "each field's source in bearing/models/params.py.")
+BORE = 0.130            # m: the assumed 130 x 230 x 160 mm unit (bearing/models/params.py)
 # s: the explicit steps' limits on the rollers' tilt mode between the raceways (22.6 kHz,
 # damping ratio 0.12): RK4's w h <= 2.8; the leapfrog's 2 (sqrt(1 + z^2) - z) = 1.77 less a
 # margin for the loads; "imex" (contact damping implicit) keeps the undamped limit of the
 # leapfrog on the tilt mode (benchmarks/README.md); "imex2" (stiffness and friction implicit too)
 # runs the bearing alone at 2.5e-5 s, but the car's defect side is not yet right there: held to
 # imex's limit until it is (benchmarks/README.md, "imex2")
-DT_MAX = {"rk4": 2.8e-5, "leapfrog": 1.2e-5, "imex": 1.2e-5, "imex2": 1.2e-5}
+DT_MAX = {"dynamic": {"rk4": 2.8e-5, "leapfrog": 1.2e-5, "imex": 1.2e-5, "imex2": 1.2e-5},
+          "quasi-dynamic": quasi_dynamic_steps()}
 
 # --- the DTRB's own parameter slots -------------------------------------------------------------
 (L_E, CAO, SAO, CAI, SAI, CAF, SAF, C_O, H_R, K_O, K_I, K_A, MU_R, MU_A, N_P) = range(N_COMMON,
@@ -81,15 +82,15 @@ def pack(p, gravity=(0.0, 0.0, -9.81)) -> np.ndarray:
 
 def orders(p):
     """Fault orders at the cup's contact angle (bearing/frequencies.py)."""
-    from .frequencies import orders as at_angle
+    from ..frequencies import orders as at_angle
     return at_angle(p, p.alpha_o)
 
 
 def guess(p, F_outer):
     """A first guess of the static state under the load ``F_outer`` on the outer ring: the
-    series-spring solution (bearing/quasistatic.py): the outer ring's displacement (3) and each
+    series-spring solution (bearing/statics/quasistatic.py): the outer ring's displacement (3) and each
     roller's radial and axial displacement (2, Z) x 2, half the cup normal's approach each."""
-    from . import quasistatic
+    from ..statics import quasistatic
     e = quasistatic.solve(p, -np.asarray(F_outer, float), (0.0, 0.0))
     d = np.clip(e.delta, 0.0, None)
     s = np.array([1.0, -1.0])[:, None]
@@ -98,9 +99,9 @@ def guess(p, F_outer):
 
 def ring_stiffness(p, F):
     """Tangent stiffness (3,) along x, y (axial), z (N/m) at the load ``F`` on the outer ring,
-    from the quasi-static model (bearing/quasistatic.py): the load moved by 1 % of its size
+    from the quasi-static model (bearing/statics/quasistatic.py): the load moved by 1 % of its size
     along each axis over the displacement that follows."""
-    from . import quasistatic
+    from ..statics import quasistatic
     F = np.asarray(F, float)[AX:AZ + 1]
     q0 = quasistatic.solve(p, F).q
     dF = 0.01 * np.linalg.norm(F)
@@ -118,7 +119,7 @@ def contacts(rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n
     """Roller k of row j (:class:`.roller.Frame` ``fr``; ``psi`` its spin angle) against the
     cup, the cone and the cone's rib (``rings``: :class:`.roller.Rings`): their loads into the
     roller's record ``rec``, their normal loads into its outputs ``Q`` and, with ``want``, their
-    rows into its block (bearing/blocks.py).  ``n_inner``, ``n_roller``: the defect table's
+    rows into its block (bearing/kernel/blocks.py).  ``n_inner``, ``n_roller``: the defect table's
     inner-ring and roller defects (none: not looked up)."""
     s = fr.s
     stiff = want and h_k > 0.0
@@ -148,7 +149,8 @@ def contacts(rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n
 @kernel
 def line_with_defect(d0, kap, h, s1, s2, Le, stiff):
     """A raceway line contact's integrals (and, when ``stiff``, its tangent stiffness over
-    ``K / L``, :func:`axlebox.bearing.contact.line_stiffness`), with a defect of depth h over ``[s1, s2]`` of
+    ``K / L``, :func:`axlebox.bearing.kernel.contact.line_stiffness`), with a defect of depth h
+    over ``[s1, s2]`` of
     the line where ``h > 0`` (Eq. 14)."""
     kdd, kdk, kkk = 0.0, 0.0, 0.0
     if not h > 0.0:

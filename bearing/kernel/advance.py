@@ -4,11 +4,11 @@ sub-steps over the window of an exchange, returning its ring loads averaged over
 
 Whatever carries the rings (the car's journal and axle-box markers, mbs/kernel_bearings.py;
 the rig's outer-ring mass, bearing/integrate.py) steps at its own step ``H = n h`` and calls
-:func:`advance` once a step, at its exchange ``t_b``, with the ring motion (bearing/layout.py:
+:func:`advance` once a step, at its exchange ``t_b``, with the ring motion (bearing/kernel/layout.py:
 ``ring[0]`` the inner ring's, ``ring[1]`` the outer ring's, each displacement, tilt, velocity
 and rate) there and at the exchange before.  The rollers and cages step by the leapfrog
 (:func:`kick_drift`; ``mode`` 0 explicit, 1 "imex": contact damping implicit, 2 "imex2":
-contact stiffness and friction too, bearing/implicit.py).
+contact stiffness and friction too, bearing/kernel/implicit.py).
 
 The window is centred on the exchange: ``n`` samples at ``t_b + (j - (n + 1) / 2) h``,
 ``j = 1 .. n``, one a sub-step, the ring motion on the straight line (in position and in
@@ -35,16 +35,16 @@ from numba.extending import overload
 from axlebox._numba import kernel
 
 from . import quasidynamic, step
+from .dispatch import scheme_of
 from .layout import LOAD, RING, ROWS
-from .models import scheme_of
 from .step import EXPLICIT, IMEX, IMEX2, MODES  # noqa: F401  (the modes, by name, for callers)
 
 _SCHEMES = {"dynamic": step.substep, "quasi-dynamic": quasidynamic.substep}
 
 
 def substep(tag, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages):
-    """One sub-step of the bearing of tag ``tag`` (bearing/models.py; numba only) by its
-    scheme: bearing/step.py's or bearing/quasidynamic.py's ``substep``."""
+    """One sub-step of the bearing of tag ``tag`` (bearing/models/__init__.py; numba only) by its
+    scheme: bearing/kernel/step.py's or bearing/kernel/quasidynamic.py's ``substep``."""
     raise NotImplementedError("bearing.advance.substep runs in numba only")
 
 
@@ -59,16 +59,16 @@ def _substep(tag, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages):
 
 @kernel
 def advance(tag, x, ring_a, ring_b, P, D, w, K, t_b, h, n, first, mode, theta, F_mean, Qc, cages):
-    """Advance one bearing's states ``x`` (tag ``tag``, bearing/models.py) by the ``n`` sub-steps
+    """Advance one bearing's states ``x`` (tag ``tag``, bearing/models/__init__.py) by the ``n`` sub-steps
     of ``h`` of the window of the exchange at ``t_b`` (module docstring).  ``ring_a`` /
     ``ring_b``: the ring motion (2, RING) at the exchange before (``t_b - n h``) and at this
     one; ``P``, ``D``: the bearing's parameter vector and defect rows; ``w``, ``K``: its scratch
-    (bearing/evaluate.py ``Work``, bearing/implicit.py ``Kick``).
+    (bearing/kernel/evaluate.py ``Work``, bearing/kernel/implicit.py ``Kick``).
 
     Out: ``F_mean`` (2, LOAD) the ring loads averaged over the samples; ``Qc`` (2, Z, N_Q) the
-    contact forces and ``cages`` (bearing/layout.py) at the sample at the exchange (half a
+    contact forces and ``cages`` (bearing/kernel/layout.py) at the sample at the exchange (half a
     sub-step after it where ``n`` is even), before its step.  ``theta``: the implicit kick's
-    weight (bearing/implicit.py; 1 as shipped)."""
+    weight (bearing/kernel/implicit.py; 1 as shipped)."""
     F_mean[:, :] = 0.0
     c0 = 0.5 * (n + 1)                       # the window's centre, in samples
     j_out = n // 2 + 1                       # the sample at (or just after) the exchange

@@ -18,10 +18,10 @@ from .vec import EY, ZERO, add, cross, dot, lin, mul, sub
 
 @kernel(inline="always")
 def pockets(rec, Q, blk, cblk, flag, jk, fr, cage, sp, cp, P, want, h_k):
-    """The pocket of roller ``fr`` (bearing/roller.py ``Frame``) in ``cage`` (its ``Cage``),
+    """The pocket of roller ``fr`` (bearing/kernel/roller.py ``Frame``) in ``cage`` (its ``Cage``),
     the pocket's azimuth of sine ``sp`` and cosine ``cp``: both walls and the side beams into
     the roller's record ``rec``, their normal loads into its contact outputs ``Q``, and with
-    ``want`` their rows into its block and its cage's ``cblk`` (bearing/blocks.py; ``h_k``:
+    ``want`` their rows into its block and its cage's ``cblk`` (bearing/kernel/blocks.py; ``h_k``:
     bearing/contact.normal)."""
     erp = (sp, 0.0, cp)
     etp = (cp, 0.0, -sp)

@@ -13,7 +13,7 @@ Eq. (2): with a kinematic cage (:data:`.layout.EQ2_CAGE`) the cage turns at
 ``omega_c = (1 - D_b/D_m) omega_w / 2`` and each roller sits at its pocket centre
 ``2 pi (k - 1) / Z + phi_c``; the quasi-dynamic bearing's cage (:data:`.layout.POCKET_CAGE`)
 holds the rollers at their pockets too, its rotation a state carrying their orbital inertia
-(bearing/quasidynamic.py); otherwise every roller's azimuth and the cage's angle are dynamic
+(bearing/kernel/quasidynamic.py); otherwise every roller's azimuth and the cage's angle are dynamic
 states and the cage's slip follows from the contacts.
 """
 from __future__ import annotations
@@ -188,5 +188,5 @@ def cage_rates(x, dx, cb, P, rec_row, nz, cage, orbit, J_orb):
 @kernel
 def orbital_inertia(P):
     """The quasi-dynamic cage's rotational inertia with its rollers' orbits,
-    ``J_cp + Z M_r R^2`` (bearing/quasidynamic.py)."""
+    ``J_cp + Z M_r R^2`` (bearing/kernel/quasidynamic.py)."""
     return P[J_CP] + P[Z] * P[M_R] * P[R_M] * P[R_M]
