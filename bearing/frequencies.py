@@ -16,7 +16,7 @@ from math import cos, pi
 
 from axlebox._params import ParameterError
 
-from .models.params import BearingParams
+from .models.params import RollerBearing
 
 
 @dataclass(frozen=True)
@@ -36,7 +36,7 @@ class FaultOrders:
         return out
 
 
-def orders(p: BearingParams, alpha: float | None = None) -> FaultOrders:
+def orders(p: RollerBearing, alpha: float | None = None) -> FaultOrders:
     """Fault orders at contact angle ``alpha`` (default: the cup angle ``alpha_o``)."""
     a = p.alpha_o if alpha is None else alpha
     g = p.gamma * cos(a)

@@ -10,23 +10,117 @@ rings (``contacts``, numba); its first guess of the static state (``guess``); it
 and bore (``orders``, ``BORE``); the largest step of each scheme by method (``DT_MAX``, keyed
 by :data:`SCHEMES`); and its rings' tangent stiffness (``ring_stiffness``).  Everything else is
 shared: the pockets, the rollers' and cages' dynamics, the implicit kick, the quasi-dynamic
-scheme, the exchange window, the static start, the rig and the car.  tests/test_bearing_models.py
-checks every model against this contract.
+scheme, the exchange window, the static start, the rig and the car.
+
+The module's part is :data:`CONTRACT` (each name with its kind and a line on what it is), checked
+for every model when this registry is imported (:func:`check`: a model that lacks a name, or
+gives it of the wrong kind, is refused naming both); the parameters' part is
+:class:`.params.RollerBearing`'s fields and the properties it declares for each model to give
+(:data:`.params.GIVEN_BY_MODEL`).  tests/test_bearing_models.py checks that what the shared
+parts read from a model or its parameters is declared in one of the two.
 """
 from __future__ import annotations
 
 import dataclasses
+import math
+from typing import NamedTuple
 
 from axlebox._params import ParameterError
 from axlebox._params import from_table as _table
 
 from ..kernel import layout
 from . import dcrb, dtrb
+from .params import GIVEN_BY_MODEL, RollerBearing
 
-#: the models by the name ``[bearing] type`` gives them
-MODELS = {"dtrb": dtrb, "dcrb": dcrb}
 DEFAULT = "dtrb"
 SCHEMES = ("dynamic", "quasi-dynamic")      # a model's ``model`` field, and its DT_MAX's keys
+
+
+class Part(NamedTuple):
+    """One name a model module declares: its ``kind`` (``"str"``, ``"number"``, ``"dict"``,
+    ``"class"``, ``"callable"``) and what it is."""
+
+    name: str
+    kind: str
+    doc: str
+
+
+#: what a model module declares, each once (:func:`check`)
+CONTRACT = (
+    Part("NAME", "str", "the model's name, the [bearing] type that picks it (its key in MODELS)"),
+    Part("SUMMARY", "str", "one line on what the model is (the config reference, the catalogue)"),
+    Part("DEFAULTS", "str", "one line on where its parameters' defaults come from"),
+    Part("BORE", "number", "its bore in m (the SPM level, Eq. 17; the catalogue)"),
+    Part("DT_MAX", "dict", "the largest step in s of each method, a dict for each scheme of SCHEMES"),
+    Part("Params", "class", "its parameters: a frozen dataclass on params.RollerBearing"),
+    Part("pack", "callable", "pack(p, gravity): the kernels' parameter vector of p (1-D floats)"),
+    Part("nominal_state", "callable", "nominal_state(p, omega_w): the rollers and cages rolling "
+                                      "without slip (kernel/layout.py's state)"),
+    Part("contacts", "callable", "a roller's contacts with the rings (numba; kernel/dispatch.py)"),
+    Part("guess", "callable", "guess(p, F_outer): the static start's first guess "
+                              "(statics/equilibrium.py)"),
+    Part("orders", "callable", "orders(p): its fault orders (frequencies.FaultOrders)"),
+    Part("ring_stiffness", "callable", "ring_stiffness(p, F): the rings' tangent stiffness (3,) in "
+                                       "N/m at the load F (mbs/exchange.py)"),
+)
+
+
+class ModelError(TypeError):
+    """A model module that does not keep :data:`CONTRACT`."""
+
+
+def _kind_ok(kind: str, v) -> bool:
+    if kind == "str":
+        return isinstance(v, str) and bool(v.strip())
+    if kind == "number":
+        return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v > 0
+    if kind == "dict":
+        return isinstance(v, dict)
+    if kind == "class":
+        return isinstance(v, type) and issubclass(v, RollerBearing) and dataclasses.is_dataclass(v)
+    return callable(v)
+
+
+_EXPECTED = {"str": "a non-empty string", "number": "a number > 0", "dict": "a dict",
+             "class": "a dataclass on params.RollerBearing", "callable": "a function"}
+
+
+def check(m, key: str | None = None):
+    """``m`` if the model module keeps :data:`CONTRACT` (under the name ``key`` in
+    :data:`MODELS`, when given), else a :class:`ModelError` naming the model and what it lacks."""
+    who = f"bearing model {key or getattr(m, 'NAME', '?')!r} ({getattr(m, '__name__', m)!r})"
+    for part in CONTRACT:
+        if not hasattr(m, part.name):
+            raise ModelError(f"{who} does not declare {part.name}: {part.doc}")
+        v = getattr(m, part.name)
+        if not _kind_ok(part.kind, v):
+            raise ModelError(f"{who}: {part.name} = {v!r} is not allowed: expected "
+                             f"{_EXPECTED[part.kind]} ({part.doc})")
+    if key is not None and m.NAME != key:
+        raise ModelError(f"{who}: NAME = {m.NAME!r} is not allowed: expected {key!r}, its name in "
+                         "MODELS")
+    if set(m.DT_MAX) != set(SCHEMES):
+        raise ModelError(f"{who}: DT_MAX's keys {tuple(m.DT_MAX)!r} are not allowed: expected "
+                         f"{', '.join(SCHEMES)}, the schemes")
+    for scheme, steps in m.DT_MAX.items():
+        if not isinstance(steps, dict) or not steps or not all(
+                isinstance(k, str) and _kind_ok("number", v) for k, v in steps.items()):
+            raise ModelError(f"{who}: DT_MAX[{scheme!r}] = {steps!r} is not allowed: expected a "
+                             "dict of each method's name and its largest step (s, > 0)")
+    p = m.Params()
+    for name in GIVEN_BY_MODEL:
+        try:
+            v = getattr(p, name)
+        except NotImplementedError as err:
+            raise ModelError(f"{who}: {err}") from None
+        if not (isinstance(v, (int, float)) and math.isfinite(v)):
+            raise ModelError(f"{who}: {m.Params.__name__}().{name} = {v!r} is not allowed: "
+                             "expected a number")
+    return m
+
+
+#: the models by the name ``[bearing] type`` gives them, each checked against :data:`CONTRACT`
+MODELS = {name: check(m, name) for name, m in (("dtrb", dtrb), ("dcrb", dcrb))}
 
 
 def module(p):

@@ -33,11 +33,21 @@ def quasi_dynamic_steps() -> dict:
     return dict.fromkeys(QD_METHODS, QD_DT_MAX)
 
 
+#: what each model's parameters give (a field or a property of its own): the shared parts read
+#: them (the quasi-static model, the fault orders, the defects, the nominal state, the catalogue);
+#: :class:`RollerBearing` declares each as a property that refuses, naming the model's class,
+#: until the model gives it (tests/test_bearing_models.py reads the readers)
+GIVEN_BY_MODEL = ("alpha_o", "alpha_i", "alpha_m", "clearance_n", "L_e", "D_o", "D_i")
+
+
 @dataclass(frozen=True)
 class RollerBearing:
     """The fields every roller-bearing model shares (its rollers, pitch, cage and pockets,
     masses, materials, friction, damping, scheme); each model's class gives them its own
-    defaults and adds its own (:class:`BearingParams`, bearing/models/dcrb.py)."""
+    defaults and adds its own (:class:`BearingParams`, bearing/models/dcrb.py).  What the shared
+    parts read beyond these fields and each model gives its own way (:data:`GIVEN_BY_MODEL`: the
+    contact angles, the clearance, the contact length, the raceway diameters) is declared here
+    too, as properties that refuse until a model's class replaces them."""
 
     Z: int = param(20, 3, 80, unit="", doc="rollers a row")
     D_m: float = param(0.180, 0.02, 1.0, doc="pitch diameter")
@@ -111,6 +121,51 @@ class RollerBearing:
         """Cage moments of inertia (polar, diametral) as a thin ring on the pitch circle (kg m^2)."""
         R, L = 0.5 * self.D_m, self.L_b
         return self.M_c * R * R, self.M_c * (0.5 * R * R + L * L / 12)
+
+    # --- what each model gives (:data:`GIVEN_BY_MODEL`): its own field or property replaces each
+    def _not_given(self, name: str, what: str):
+        raise NotImplementedError(f"{type(self).__name__} does not give {name} ({what}): a bearing "
+                                  "model's parameters declare it, as a field or a property "
+                                  "(bearing/models/params.py, RollerBearing)")
+
+    @property
+    def alpha_o(self) -> float:
+        """The outer raceway's contact angle (rad): its contact normal from the radial plane
+        (0 for radial contacts); the fault orders' and the quasi-static model's angle."""
+        return self._not_given("alpha_o", "the outer raceway's contact angle, rad")
+
+    @property
+    def alpha_i(self) -> float:
+        """The inner raceway's contact angle (rad), as :attr:`alpha_o`."""
+        return self._not_given("alpha_i", "the inner raceway's contact angle, rad")
+
+    @property
+    def alpha_m(self) -> float:
+        """The roller axis's angle from the bearing axis (rad; 0 for a cylindrical roller)."""
+        return self._not_given("alpha_m", "the roller axis's angle from the bearing axis, rad")
+
+    @property
+    def clearance_n(self) -> float:
+        """The clearance of one roller along the outer raceway's contact normal, rings
+        concentric (m)."""
+        return self._not_given("clearance_n", "one roller's clearance along the outer contact "
+                               "normal, m")
+
+    @property
+    def L_e(self) -> float:
+        """The raceway contact line's effective length (m): the contact stiffness's and the
+        defects' (a defect lies on it)."""
+        return self._not_given("L_e", "the raceway contact line's effective length, m")
+
+    @property
+    def D_o(self) -> float:
+        """The outer raceway's diameter at the contact (m): an outer-ring defect's angle."""
+        return self._not_given("D_o", "the outer raceway's diameter at the contact, m")
+
+    @property
+    def D_i(self) -> float:
+        """The inner raceway's diameter at the contact (m): an inner-ring defect's angle."""
+        return self._not_given("D_i", "the inner raceway's diameter at the contact, m")
 
 
 @dataclass(frozen=True)

@@ -1,4 +1,5 @@
-"""Quasi-static equilibrium of the DTRB under ring loads (Newton's method).
+"""Quasi-static equilibrium of a double-row roller bearing under ring loads (Newton's method): any
+model's, by its contact angle ``alpha_o`` and clearance ``clearance_n`` (the DCRB's radial: 0).
 
 Unknowns: the inner ring's displacement relative to the outer ring,
 ``q = (x, y, z, theta_x, theta_z)`` (the spin rotation theta_y is free).  For
@@ -9,7 +10,7 @@ roller, and Eqs. (1) and (3) give the normal approach along the contact
 normal ``n = cos(alpha) e_r + s_j sin(alpha) e_y`` (``s_j = (-1)^(j-1)``):
 
 ``delta_n = d . n - c_n``, ``c_n = max(u_r cos(alpha), u_a sin(alpha)) / 2``
-(:attr:`BearingParams.clearance_n`).
+(:attr:`RollerBearing.clearance_n`, each model's own).
 
 The clearance is taken about the concentric position (Harris's form).  The
 paper's ``h = u_r (1 - cos psi) / 2`` (below Eq. 1) is the same law with the
@@ -31,7 +32,7 @@ import numpy as np
 
 from axlebox._params import ParameterError
 
-from ..models.params import BearingParams
+from ..models.params import RollerBearing
 from .stiffness import roller_raceways
 
 N_EXP = 10 / 9
@@ -55,7 +56,7 @@ class Equilibrium:
         return float(np.abs(psi[loaded]).max()) if loaded.any() else 0.0
 
 
-def _geometry(p: BearingParams, psi: np.ndarray):
+def _geometry(p: RollerBearing, psi: np.ndarray):
     """Per roller: generalised normal ``g = [n; r x n]`` restricted to q (2, Z, 5) and clearance."""
     R = 0.5 * p.D_m
     s = np.array([1.0, -1.0])
@@ -73,7 +74,7 @@ def _geometry(p: BearingParams, psi: np.ndarray):
     return G, p.clearance_n
 
 
-def solve(p: BearingParams, F, M=(0.0, 0.0), *, tol: float = 1e-10, max_iter: int = 100,
+def solve(p: RollerBearing, F, M=(0.0, 0.0), *, tol: float = 1e-10, max_iter: int = 100,
           psi0: float = 0.0) -> Equilibrium:
     """Equilibrium under the external load ``F = (Fx, Fy, Fz)`` (N) and moments
     ``M = (Mx, Mz)`` (N m) on the inner ring; Newton with backtracking."""
