@@ -14,7 +14,9 @@ import numpy as np
 import pytest
 
 from axlebox._cache import package_dir
-from axlebox.bearing import models
+from axlebox._params import ParameterError
+from axlebox.bearing import catalogue, models
+from axlebox.bearing.rig import RIG_METHODS, RigConfig
 from axlebox.bearing.models.params import GIVEN_BY_MODEL, RollerBearing
 
 #: the modules that read a model or its parameters without knowing which model it is
@@ -176,6 +178,22 @@ def test_each_model_keeps_the_contract(name):
     for scheme in models.SCHEMES:      # the registry's methods are the model's steps, by scheme
         assert models.methods(dataclasses.replace(p, model=scheme)) == m.DT_MAX[scheme]
     assert models.from_table(models.to_table(p)) == p
+
+
+@pytest.mark.parametrize("name", list(models.MODELS))
+def test_each_model_is_taken_by_name_and_its_steps_held(name):
+    """``[bearing] type`` picks it; the rig refuses each method above the model's step, naming
+    the field; the catalogue has it under its name (any case) with its orders and bore."""
+    m = models.MODELS[name]
+    assert type(models.from_table({"type": name})) is m.Params
+    for scheme, steps in m.DT_MAX.items():
+        p = m.Params(model=scheme)
+        for method, dt in steps.items():
+            if method in RIG_METHODS and 2 * dt <= 1e-4:          # RigConfig's own range of dt
+                with pytest.raises(ParameterError, match=rf"RigConfig\.dt = {2 * dt:g} is not allowed"):
+                    RigConfig(bearing=p, method=method, dt=2 * dt, fs_out=1 / (2 * dt))
+    entry = catalogue.lookup(f" {name.upper()} ")
+    assert entry.name == name and entry.bore == m.BORE and entry.orders == models.orders(m.Params())
 
 
 def test_the_schemes_are_the_model_field_choices():

@@ -12,9 +12,8 @@ import tomllib
 import pytest
 
 from axlebox._params import ParameterError
+from axlebox.bearing import models
 from axlebox.bearing.defects import Defect
-from axlebox.bearing.models.dcrb import DcrbParams
-from axlebox.bearing.models.params import BearingParams
 from axlebox.bearing.rig import RIG_SECTIONS, RigConfig
 from axlebox.mbs import config
 from axlebox.pipelines import config_reference
@@ -51,6 +50,11 @@ def tables(md: str) -> dict[str, dict[str, list[str]]]:
             assert name not in out[heading], f"{heading}: {name} twice"
             out[heading][name] = row
     return out
+
+
+def bearing_heading(name: str) -> str:
+    """The reference's heading of model ``name``'s ``[bearing]`` table."""
+    return "[bearing]" if name == models.DEFAULT else f'[bearing] type = "{name}"'
 
 
 def toml_value(cell: str):
@@ -155,16 +159,15 @@ def test_every_range_and_choice_the_page_shows_is_what_the_loader_does(page):
 
 
 @pytest.mark.parametrize("rows, expected", [
-    (config_reference.bearing_rows, ["type"] + [f.name for f in dataclasses.fields(BearingParams)]),
-    (lambda: config_reference.bearing_rows("dcrb"),
-     ["type"] + [f.name for f in dataclasses.fields(DcrbParams)]),
+    *[(lambda name=name: config_reference.bearing_rows(name),
+       ["type"] + [f.name for f in dataclasses.fields(m.Params)]) for name, m in models.MODELS.items()],
     (config_reference.defect_rows, ["wheelset", "side"] + [f.name for f in dataclasses.fields(Defect)]
      + ["angle_deg"]),
     (config_reference.wheel_defect_rows, [f.name for f in dataclasses.fields(WheelDefect)]),
     (config_reference.rig_rows, [f.name for f in dataclasses.fields(RigConfig)
                               if f.name not in RIG_SECTIONS]),
     (config_reference.sweep_rows, list(SWEEP_FIELDS)),
-], ids=["bearing", "bearing_dcrb", "defects", "wheel_defects", "rig", "sweep"])
+], ids=[f"bearing_{name}" for name in models.MODELS] + ["defects", "wheel_defects", "rig", "sweep"])
 def test_free_form_tables_document_every_field_the_code_takes(rows, expected):
     got = rows()
     assert [r[0] for r in got] == expected
@@ -176,8 +179,8 @@ def test_free_form_tables_document_every_field_the_code_takes(rows, expected):
 
 
 def test_free_form_defaults_and_ranges_are_the_dataclasses(page):
-    for heading, cls in (("[bearing]", BearingParams), ('[bearing] type = "dcrb"', DcrbParams),
-                         ("[rig]", RigConfig)):
+    for heading, cls in [(bearing_heading(name), m.Params) for name, m in models.MODELS.items()] \
+            + [("[rig]", RigConfig)]:
         for f in dataclasses.fields(cls):
             if f.name in RIG_SECTIONS:
                 continue
@@ -212,9 +215,8 @@ def test_page_title_intro_and_headings(md, page):
     assert sum(line.startswith("# ") for line in lines) == 1
     assert not any(line.startswith("###") for line in lines)
     assert "generated from the dataclasses that declare them" in md
-    expected = [f"[{s}]" for s in SECTIONS] + ["[bearing]", '[bearing] type = "dcrb"', "[[defects]]",
-                                             "[[wheel_defects]]",
-                                             "[rig]", "[sweep]"]
+    expected = [f"[{s}]" for s in SECTIONS] + [bearing_heading(name) for name in models.MODELS] \
+        + ["[[defects]]", "[[wheel_defects]]", "[rig]", "[sweep]"]
     assert list(page) == expected
 
 

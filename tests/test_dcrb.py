@@ -14,7 +14,7 @@ from axlebox.bearing.frequencies import shaft_hz
 from axlebox.bearing.kernel import dispatch
 from axlebox.bearing.kernel.evaluate import rates
 from axlebox.bearing.kernel.layout import Q_O
-from axlebox.bearing.models.dcrb import DT_MAX, DcrbParams
+from axlebox.bearing.models.dcrb import DcrbParams
 from axlebox.bearing.rig import RigConfig, simulate
 from axlebox.bearing.spectra import envelope_spectrum
 from axlebox.bearing.statics import equilibrium, loaddist, stiffness
@@ -128,11 +128,9 @@ def test_rig_quasi_dynamic_dcrb_rings_at_bpfo(outer):
     assert x.std() == pytest.approx(x_dyn.std(), rel=0.15)
 
 
-def test_the_dcrb_declares_its_methods_and_steps():
-    """Its own step limits, refused by name above them; the type key in both configs."""
-    assert set(DT_MAX["dynamic"]) == set(models.methods(DcrbParams()))
-    with pytest.raises(ParameterError, match=r"RigConfig\.dt"):
-        RigConfig(bearing=DcrbParams(), method="leapfrog", dt=2 * DT_MAX["dynamic"]["leapfrog"])
+def test_the_dcrb_is_taken_by_name():
+    """The type key in both configs, and its catalogue entry (its steps and the checks every model
+    takes: tests/test_bearing_models.py)."""
     assert isinstance(models.from_table({"type": "dcrb", "Z": 16}), DcrbParams)
     with pytest.raises(ParameterError,
                        match=r"bearing\.type = 'crb' is not allowed: expected one of dtrb, dcrb"):
