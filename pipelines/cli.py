@@ -95,25 +95,40 @@ def _cmd_demo(a) -> None:
          config=CONFIG if a.config is None else a.config)
 
 
+def _bearing_params(kind: str, a):
+    """The parameters of the bearing model ``kind`` (``--type``) from ``--damping``, ``--cage``
+    and ``--param NAME=VALUE``; a name that is not a field of that model is refused naming
+    ``--type`` and, where it is another model's field, that model."""
+    from axlebox.bearing import models
+    cls = models.MODELS[kind].Params
+    fields = {f.name: f for f in dataclasses.fields(cls)}
+    given = _params(a.param)
+    for k in given:
+        if k not in fields:
+            others = [n for n, m in models.MODELS.items()
+                      if n != kind and k in {f.name for f in dataclasses.fields(m.Params)}]
+            whose = f" (a field of {' and '.join(others)})" if others else ""
+            raise ParameterError(f"--param {k} is not allowed with --type {kind}{whose}: expected one "
+                                 f"of {', '.join(fields)}")
+    overrides = {}
+    for k, v in given.items():
+        if fields[k].type in ("str", str):           # a named choice (damping, cage, model)
+            overrides[k] = v
+            continue
+        x = number(f"--param {k}", v)
+        overrides[k] = int(x) if fields[k].type in ("int", int) and x.is_integer() else x
+    return cls(**{"damping": a.damping, "cage": a.cage, **overrides})
+
+
 def _cmd_bearing_simulate(a) -> None:
     from math import radians
 
     from axlebox.bearing.defects import Defect
-    from axlebox.bearing.models.params import BearingParams
     from axlebox.bearing.rig import RigConfig, simulate
     if a.defect_width < 0:
         raise ParameterError(f"--defect-width = {a.defect_width} is not allowed: expected a width >= 0 mm "
                              "(0: healthy)")
-    overrides = {k: number(f"--param {k}", v) if k not in ("damping", "cage") else v
-                 for k, v in _params(a.param).items()}
-    if "Z" in overrides:
-        z = overrides["Z"]
-        overrides["Z"] = int(z) if float(z).is_integer() else z
-    known = [f.name for f in dataclasses.fields(BearingParams)]
-    for k in overrides:
-        if k not in known:
-            raise ParameterError(f"--param {k} is not allowed: expected one of {', '.join(known)}")
-    bearing = BearingParams(**{"damping": a.damping, "cage": a.cage, **overrides})
+    bearing = _bearing_params(a.type, a)
     defects = ()
     if a.defect_width > 0:
         defects = (Defect(W=a.defect_width * 1e-3, L=a.defect_length * 1e-3, H=a.defect_depth * 1e-3,
@@ -129,7 +144,8 @@ def _cmd_bearing_simulate(a) -> None:
         print(f"\rsimulating {a.duration:g} s: {100 * x:5.1f} %", end="", file=sys.stderr, flush=True)
     res = simulate(cfg, out=out, progress=progress)
     print(file=sys.stderr)
-    print(f"wrote {out}: cage {res.cage_hz(min(0.05, a.duration / 2)):.4f} Hz, outer-ring a_z rms "
+    print(f"wrote {out}: {a.type.upper()}, cage {res.cage_hz(min(0.05, a.duration / 2)):.4f} Hz, "
+          f"outer-ring a_z rms "
           f"{res.acceleration[:, 2].std():.3g} m/s^2")
     if a.plot:
         res.plot(out.with_suffix(".png"))
@@ -391,6 +407,7 @@ def _add_analysis_options(dg) -> None:
 
 
 def parser() -> argparse.ArgumentParser:
+    from axlebox.bearing import models
     p = _Parser(prog="axlebox", description="Railway vehicle dynamics with flexible bodies and "
                                             "axle-box bearing faults.")
     sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
@@ -458,10 +475,14 @@ def parser() -> argparse.ArgumentParser:
                          "(<folder>/<body>.hdf5 or .fem)")
     bx.set_defaults(func=_cmd_bodies_export)
 
-    be = sub.add_parser("bearing", help="the axle-box bearing (DTRB) alone")
+    be = sub.add_parser("bearing", help="an axle-box bearing alone (any model: --type)")
     bes = be.add_subparsers(dest="bearing_command", required=True, parser_class=_Parser)
     bsim = bes.add_parser("simulate", help="standalone rig: spinning inner ring, outer ring on a "
                                            "spring-damper, constant load; writes an axlebox-result file")
+    bsim.add_argument("--type", choices=list(models.MODELS), default=models.DEFAULT,
+                      help="the bearing model, as [bearing] type: " + "; ".join(
+                          f"{n} {m.SUMMARY}" for n, m in models.MODELS.items())
+                      + f" (default {models.DEFAULT}); --param takes its fields")
     bsim.add_argument("--speed-kmh", type=float, default=48.0, help="vehicle speed (default 48)")
     bsim.add_argument("--defect-width", type=float, default=0.0, metavar="MM",
                       help="defect width in mm (default 0: healthy)")
@@ -471,8 +492,9 @@ def parser() -> argparse.ArgumentParser:
                       help="defect depth in mm (default 2)")
     bsim.add_argument("--defect-row", type=int, default=2, help="row of the defect, 1 or 2 (default 2)")
     bsim.add_argument("--defect-kind", default="outer",
-                      help="outer (on the cup, default), inner (on the cone, turning with the "
-                           "shaft) or roller (on one roller, turning with its spin)")
+                      help="outer (on the outer ring, the DTRB's cup; default), inner (on the "
+                           "inner ring, the DTRB's cone, turning with the shaft) or roller (on one "
+                           "roller, turning with its spin)")
     bsim.add_argument("--defect-roller", type=int, default=1,
                       help="the roller (1..Z) that carries a roller defect (default 1)")
     bsim.add_argument("--defect-angle", type=float, default=0.0, metavar="DEG",
@@ -492,7 +514,8 @@ def parser() -> argparse.ArgumentParser:
     bsim.add_argument("--cage", default="dynamic", choices=["dynamic", "kinematic"],
                       help="cage rotation: dynamic state or the paper's Eq. 2 (default dynamic)")
     bsim.add_argument("--param", action="append", metavar="NAME=VALUE",
-                      help="bearing parameter (SI), repeatable, e.g. u_r=1e-4")
+                      help="a field of the --type model's parameters (SI), repeatable, e.g. "
+                           "u_r=1e-4 (the fields: axlebox configs' [bearing] reference)")
     bsim.add_argument("--seed", type=int, default=0, help="turns the roller set by a random phase")
     bsim.add_argument("--plot", action="store_true", help="also write <out>.png")
     bsim.add_argument("--out", required=True, help="result file (.h5)")

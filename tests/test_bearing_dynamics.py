@@ -1,5 +1,7 @@
 """DTRB dynamics on the standalone rig against the kinematic closed forms and the paper's numbers
 (issue 3).  Each simulation runs once per module (fixtures); the default step is 1e-5 s."""
+import dataclasses
+
 import numpy as np
 import pytest
 from scipy.ndimage import uniform_filter1d
@@ -331,6 +333,23 @@ def test_cli_bad_input_exits_2_naming_the_parameter(args, field, tmp_path, capsy
     assert main(["bearing", "simulate", *args, "--out", str(tmp_path / "x.h5")]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and field in err
+
+
+@pytest.mark.parametrize("name", list(models.MODELS))
+def test_cli_refuses_another_models_parameter_by_name(name, tmp_path, capsys):
+    """``--type NAME --param K=V`` with K a field of another model but not of NAME: exit 2, one
+    line naming the option, the field, the type and the fields it takes."""
+    from axlebox.pipelines.cli import main
+    own = {f.name for f in dataclasses.fields(models.MODELS[name].Params)}
+    foreign = sorted({f.name for n, m in models.MODELS.items() if n != name
+                      for f in dataclasses.fields(m.Params)} - own)
+    assert foreign, name
+    assert main(["bearing", "simulate", "--type", name, "--param", f"{foreign[0]}=1e-4",
+                 "--out", str(tmp_path / "x.h5")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1
+    assert f"--param {foreign[0]} is not allowed with --type {name} (a field of " in err
+    assert err.endswith(", ".join(f.name for f in dataclasses.fields(models.MODELS[name].Params)))
 
 
 def test_cli_simulate_writes_the_result_file(tmp_path, capsys):

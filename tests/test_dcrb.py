@@ -13,9 +13,9 @@ from axlebox.bearing.defects import WIDTH, Defect
 from axlebox.bearing.frequencies import shaft_hz
 from axlebox.bearing.kernel import dispatch
 from axlebox.bearing.kernel.evaluate import rates
-from axlebox.bearing.kernel.layout import Q_O
+from axlebox.bearing.kernel.layout import Q_NAMES, Q_O
 from axlebox.bearing.models.dcrb import DcrbParams
-from axlebox.bearing.rig import RigConfig, simulate
+from axlebox.bearing.rig import RigConfig, load, simulate
 from axlebox.bearing.spectra import envelope_spectrum
 from axlebox.bearing.statics import equilibrium, loaddist, stiffness
 from axlebox.mbs import config as vconfig
@@ -126,6 +126,21 @@ def test_rig_quasi_dynamic_dcrb_rings_at_bpfo(outer):
     assert abs(f[m][np.argmax(A[m])] - bpfo) <= f[1]
     x_dyn = outer.acceleration[outer.time >= 0.05, 2]
     assert x.std() == pytest.approx(x_dyn.std(), rel=0.15)
+
+
+def test_the_rig_command_runs_the_dcrb(tmp_path, capsys):
+    """``axlebox bearing simulate --type dcrb``: the rig's run and result file are the DCRB's (its
+    parameters in the file's config, its 15 rollers a row, its BPFO), the run (RK4, 1e-5 s) the
+    one the rig tests above compile."""
+    from axlebox.pipelines import cli
+    out = tmp_path / "rig.h5"
+    assert cli.main(["bearing", "simulate", "--type", "dcrb", "--duration", "0.01", "--defect-width",
+                     "2", "--defect-length", "30", "--out", str(out)]) == 0
+    assert capsys.readouterr().out.startswith(f"wrote {out}: DCRB, ")
+    r = load(out)
+    assert r.config.bearing == DcrbParams() and r.config.defects == (Defect(W=2e-3, L=30e-3),)
+    assert r.Q.shape == (100, 2, 15, len(Q_NAMES))
+    assert models.orders(r.config.bearing).BPFO * F_S == pytest.approx(32.0, abs=0.5)
 
 
 def test_the_dcrb_is_taken_by_name():

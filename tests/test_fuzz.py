@@ -365,8 +365,10 @@ RIG_OPTIONS = {"--speed-kmh": numbers, "--defect-width": numbers, "--defect-leng
                "--method": st.sampled_from(["rk4", "leapfrog", "imex", "x"]),
                "--damping": st.sampled_from(["ratio", "paper", "stiffness", "x"]),
                "--cage": st.sampled_from(["dynamic", "kinematic", "x"]), "--seed": numbers,
-               "--param": st.tuples(st.sampled_from(["Z", "beta", "zeta", "c_r", "x", "D_m", ""]),
-                                    numbers).map(lambda t: f"{t[0]}={t[1]}")}
+               "--param": st.tuples(st.sampled_from(["Z", "beta", "zeta", "c_r", "x", "D_m", "", "u_a",
+                                                     "L_we", "n_slices", "model"]),
+                                    numbers).map(lambda t: f"{t[0]}={t[1]}"),
+               "--type": st.sampled_from(["dtrb", "dcrb", "x"])}
 
 
 @SETTINGS
