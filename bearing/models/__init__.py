@@ -30,10 +30,10 @@ from axlebox._params import from_table as _table
 
 from ..kernel import layout
 from . import dcrb, dtrb
-from .params import GIVEN_BY_MODEL, RollerBearing
+from .params import GIVEN_BY_MODEL, SCHEMES, RollerBearing
 
 DEFAULT = "dtrb"
-SCHEMES = ("dynamic", "quasi-dynamic")      # a model's ``model`` field, and its DT_MAX's keys
+# SCHEMES (params.py): a model's ``model`` field's choices, and its DT_MAX's keys
 
 
 class Part(NamedTuple):

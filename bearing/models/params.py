@@ -20,7 +20,7 @@ from axlebox._params import ParameterError, check_ranges, choice, param, require
 
 from ..kernel.layout import DAMPING_LAWS
 
-MODELS = ("dynamic", "quasi-dynamic")            # the schemes a model runs by (bearing/models/__init__.py)
+SCHEMES = ("dynamic", "quasi-dynamic")           # the schemes a model runs by, its ``model`` field
 CAGE_MODES = ("dynamic", "kinematic")
 # s: the quasi-dynamic scheme's largest step whatever its method and model: held by accuracy
 # (the defect's passage), not stability (bearing/kernel/quasidynamic.py)
@@ -83,7 +83,7 @@ class RollerBearing:
                         "stiffness for bearing contacts (below its Eq. 4, its ref. 6)")
     cage: str = choice("dynamic", CAGE_MODES, "cage rotation: a dynamic state, or kinematic (the "
                        "paper's Eq. 2)")
-    model: str = choice("dynamic", MODELS, "'dynamic': the paper's model, every roller and cage "
+    model: str = choice("dynamic", SCHEMES, "'dynamic': the paper's model, every roller and cage "
                         "with its six DOF; 'quasi-dynamic': the rollers' contact equilibrium solved "
                         "each step, spins and cage rotation as states (bearing/kernel/quasidynamic.py; for "
                         "studies, not for the defect's mechanism)")
