@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from axlebox._params import ParameterError, check_ranges, choice, param
+from axlebox._threads import Fitter
 
 from . import kernel_integrate as ki
 from .exchange import HOLDS, exchange
@@ -141,7 +142,7 @@ def split_outputs(model: Model, out_wh: np.ndarray, out_el: np.ndarray) -> dict:
 def simulate(model: Model, duration: float, settings: Settings | None = None, *, y0=None,
              t0: float = 0.0, chunk: float = 0.25, progress=None, continued: bool = False,
              checkpoint=None, checkpoint_every: float = 0.0, resume: dict | None = None,
-             sink=None, exchange_ring=None) -> Run:
+             sink=None, exchange_ring=None, threads: Fitter | None = None) -> Run:
     """Integrate ``model`` for ``duration`` s from ``y0`` (default: the model's initial state).
 
     ``continued``: ``y0`` is the ``y_end`` of an earlier leapfrog run with the same step, whose
@@ -159,8 +160,14 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
     outputs (``out_y``: the state snapshots among them, those of ``k % state_every == 0``), in
     order, the same values as the kept run's; the returned run's output arrays are then empty,
     and the snapshots ``checkpoint`` gets and ``resume`` takes hold only ``k``, ``y`` and
-    ``wall_s``."""
+    ``wall_s``.
+
+    ``threads``: what fits numba's threads to the cores other processes leave free as the run
+    goes (:class:`axlebox._threads.Fitter`, applied inside the chunks: the chunks stay as they
+    are); default: as the environment's ``AXLEBOX_THREADS`` says.  The results are the same bits
+    on any thread count."""
     s = settings or Settings()
+    fitter = threads if threads is not None else Fitter.from_env()
     if not (math.isfinite(duration) and duration > 0):
         raise ParameterError(f"duration = {duration!r} is not allowed: expected a time > 0 s")
     h = s.step
@@ -217,48 +224,50 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
                       "out_y": out_y[:first_state(k1) - first_state(k0)]})
     wall0 = time.perf_counter()
     k_saved = k
-    while k < n_out:
-        k1 = min(n_out, k + per)
-        tk = t0 + k * s.n_sub * h
-        base = 0 if sink is None else k
-        try:
-            if s.method == "rk4":
-                status, k_done, bad = ki.run_rk4(y, tk, h, s.n_sub, k1, k, n_out - 1, S, W, model.B,
-                                                 model.nq, nend, s.vmax, out_t, out_sens, out_wh, out_el,
-                                                 out_y, se, base)
-            elif s.method in ("leapfrog", "imex", "imex2"):
-                status, k_done, bad = ki.run_leapfrog(y, tk, h, s.n_sub, k1, k, n_out - 1, S, W, model.B,
-                                                      X, model.nq, nend, s.vmax, out_t, out_sens, out_wh,
-                                                      out_el, out_y, se, k == 0 and not continued, base)
-            else:
-                status, k_done, bad = ki.run_galpha(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S,
-                                                    W, model.B, model.nq, nend, s.vmax, out_t, out_sens,
-                                                    out_wh, out_el, out_y, se, s.rho_inf, groups,
-                                                    n_groups, pattern, scale, atol, s.rtol,
-                                                    s.max_iter, stats, base)
-        except (ZeroDivisionError, FloatingPointError):
-            # a state blown up between two outputs can meet a division by zero in a kernel
-            # before the output's finiteness check: the same divergence, caught a little later
-            status, k_done, bad = ki.NOT_FINITE, k, -1
-        if status != ki.OK:
-            # the output that showed the divergence is kept too (as the kept run's n_keep)
-            flush(k, min(n_out, k_done + (1 if status in (ki.NOT_FINITE, ki.RUNAWAY) else 0)))
-            k = k_done
-            break
-        flush(k, k1)
-        k = k1
-        if progress is not None:
-            progress((k - 1) * s.n_sub * h, duration)
-        due = (k - k_saved) >= checkpoint_every * s.output_rate_hz - 0.5
-        if checkpoint is not None and k < n_out and due:
-            snap = {"k": k, "y": y, "exchange": X.ring,
-                    "wall_s": wall_before + time.perf_counter() - wall0}
-            if sink is None:
-                ks = (k - 1) // se + 1
-                snap.update({"out_t": out_t[:k], "out_sens": out_sens[:k], "out_wh": out_wh[:k],
-                             "out_el": out_el[:k], "out_y": out_y[:ks]})
-            checkpoint(snap)
-            k_saved = k
+    with fitter:
+        while k < n_out:
+            k1 = min(n_out, k + per)
+            tk = t0 + k * s.n_sub * h
+            base = 0 if sink is None else k
+            try:
+                if s.method == "rk4":
+                    status, k_done, bad = ki.run_rk4(y, tk, h, s.n_sub, k1, k, n_out - 1, S, W, model.B,
+                                                     model.nq, nend, s.vmax, out_t, out_sens, out_wh,
+                                                     out_el, out_y, se, base, fitter.shared)
+                elif s.method in ("leapfrog", "imex", "imex2"):
+                    status, k_done, bad = ki.run_leapfrog(y, tk, h, s.n_sub, k1, k, n_out - 1, S, W,
+                                                          model.B, X, model.nq, nend, s.vmax, out_t,
+                                                          out_sens, out_wh, out_el, out_y, se,
+                                                          k == 0 and not continued, base, fitter.shared)
+                else:
+                    status, k_done, bad = ki.run_galpha(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S,
+                                                        W, model.B, model.nq, nend, s.vmax, out_t,
+                                                        out_sens, out_wh, out_el, out_y, se, s.rho_inf,
+                                                        groups, n_groups, pattern, scale, atol, s.rtol,
+                                                        s.max_iter, stats, base, fitter.shared)
+            except (ZeroDivisionError, FloatingPointError):
+                # a state blown up between two outputs can meet a division by zero in a kernel
+                # before the output's finiteness check: the same divergence, caught a little later
+                status, k_done, bad = ki.NOT_FINITE, k, -1
+            if status != ki.OK:
+                # the output that showed the divergence is kept too (as the kept run's n_keep)
+                flush(k, min(n_out, k_done + (1 if status in (ki.NOT_FINITE, ki.RUNAWAY) else 0)))
+                k = k_done
+                break
+            flush(k, k1)
+            k = k1
+            if progress is not None:
+                progress((k - 1) * s.n_sub * h, duration)
+            due = (k - k_saved) >= checkpoint_every * s.output_rate_hz - 0.5
+            if checkpoint is not None and k < n_out and due:
+                snap = {"k": k, "y": y, "exchange": X.ring,
+                        "wall_s": wall_before + time.perf_counter() - wall0}
+                if sink is None:
+                    ks = (k - 1) // se + 1
+                    snap.update({"out_t": out_t[:k], "out_sens": out_sens[:k], "out_wh": out_wh[:k],
+                                 "out_el": out_el[:k], "out_y": out_y[:ks]})
+                checkpoint(snap)
+                k_saved = k
     wall = wall_before + time.perf_counter() - wall0
     n_keep = k + (1 if status in (ki.NOT_FINITE, ki.RUNAWAY) else 0)
     n_keep = min(n_keep, n_out)
@@ -283,4 +292,5 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
                status=st,
                message=msg, wall_s=wall,
                stats={"steps": int(stats[0]), "newton": int(stats[1]), "jacobians": int(stats[2]),
-                      "rhs": int(stats[3]), "halved": int(stats[4]), "dt": h, "method": s.method})
+                      "rhs": int(stats[3]), "halved": int(stats[4]), "dt": h, "method": s.method,
+                      "thread_switches": fitter.switches})

@@ -45,6 +45,7 @@ import math
 import numpy as np
 from numba import njit
 
+from axlebox._threads import fit_threads
 from axlebox.bearing.kernel.vec import copy1, copy2, copy3
 
 from .exchange import FIRST, LINEAR
@@ -126,16 +127,19 @@ def _kick_drift(y, a, hk, h, S, W):
             y[i] += h * a[i]
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def run_rk4(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, nq, nend, vmax, out_t, out_sens, out_wh,
-            out_el, out_y, state_every, base):
+            out_el, out_y, state_every, base, threads):
     """Advance ``y`` in place through outputs ``k0 .. n_out - 1`` by RK4; output ``k`` is at
     ``t0 + (k - k0) n_sub h``, recorded from the step's first evaluation there; no step follows
     the output ``k_last``.  ``base``: the output the buffers' first row holds (:func:`_output`).
+    ``threads``: numba's thread count as a watcher fits it, applied at every output
+    (:func:`axlebox._threads.fit_threads`; the GIL is released for the watcher to run).
     (Apart from :func:`run_leapfrog` so that a run compiles only its own method.)"""
     N = y.shape[0]
     k1, k2, k3, k4, yt = np.empty(N), np.empty(N), np.empty(N), np.empty(N), np.empty(N)
     for k in range(k0, n_out):
+        fit_threads(threads)
         for j in range(n_sub):
             t = t0 + ((k - k0) * n_sub + j) * h
             rhs(t, y, k1, S, W, B)
@@ -151,20 +155,21 @@ def run_rk4(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, nq, nend, vmax, out_t, 
     return OK, n_out, -1
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def run_leapfrog(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, X, nq, nend, vmax, out_t, out_sens,
-                 out_wh, out_el, out_y, state_every, start, base):
+                 out_wh, out_el, out_y, state_every, start, base, threads):
     """:func:`run_rk4`'s contract by the leapfrog: with ``start`` the velocities in ``y`` are
     ``u_0`` and the first kick is by ``h / 2``; after that they are ``u_{n-1/2}``, half a step
     behind the positions, and a run continued from ``y`` (``start`` False) goes on exactly as if
     it had not stopped.  Its bearings exchange with the bodies every step (``X``:
     :class:`.exchange.Exchange`), and between exchanges the bodies take ``X.m`` steps of
-    ``h / X.m`` with the loads held."""
+    ``h / X.m`` with the loads held.  ``threads``: as :func:`run_rk4`'s."""
     N = y.shape[0]
     k1 = np.empty(N)
     ys = np.empty(N)                          # the state an output's evaluation was made at
     rs = np.empty_like(X.ring)
     for k in range(k0, n_out):
+        fit_threads(threads)
         for j in range(n_sub):
             t = t0 + ((k - k0) * n_sub + j) * h
             if j == 0 and (k % state_every == 0 or k == k_last):
@@ -270,15 +275,15 @@ def _ga_newton(t, y, ydn, yd, h, am, af, ga, Minv, S, W, B, atol, rtol, max_iter
     return -1
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, nq, nend, vmax, out_t, out_sens, out_wh,
                out_el, out_y, state_every, rho_inf, groups, n_groups, pattern, scale, atol, rtol,
-               max_iter, stats, base):
+               max_iter, stats, base, threads):
     """Generalized-alpha (first order) with modified Newton; ``stats`` gets
     [steps, Newton iterations, Jacobians, RHS evaluations, halved steps].  The Jacobian is kept
     while Newton converges fast and rebuilt when it slows down or fails.  A step that fails with a
     fresh Jacobian is retried as 2, 4, ... 64 sub-steps (contact loss and return are the usual
-    cause); only then does the run stop with NO_CONVERGENCE."""
+    cause); only then does the run stop with NO_CONVERGENCE.  ``threads``: as :func:`run_rk4`'s."""
     N = y.shape[0]
     am = 0.5 * (3.0 - rho_inf) / (1.0 + rho_inf)
     af = 1.0 / (1.0 + rho_inf)
@@ -298,6 +303,7 @@ def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, nq, nend, vmax, out_
     have = False                # Jf exists
     stale = False
     for k in range(k0, n_out):
+        fit_threads(threads)
         for j in range(n_sub):
             t = t0 + ((k - k0) * n_sub + j) * h
             if j == 0:

@@ -323,7 +323,8 @@ def _add_sweep(sub) -> None:
     sw.add_argument("--scheduler", metavar="ADDRESS",
                     help="dask scheduler (e.g. tcp://host:8786; default: a local cluster)")
     sw.add_argument("--workers", type=int, metavar="N",
-                    help="local worker processes, one thread each (default: the CPU count)")
+                    help="local worker processes, at most one a core, the cores shared out as "
+                         "their threads (default: the core count)")
     sw.add_argument("--duration", type=float, metavar="S", help="simulated time of every case "
                                                                 "(default: the config's)")
     sw.add_argument("--out", required=True, help="output folder (one .h5 per case, summary.csv)")

@@ -1,7 +1,8 @@
 """``axlebox sweep CONFIG.toml --out DIR``: speeds x defect widths (x defect kinds x sides) of the
 bearing rig (a config with ``[rig]``) or the vehicle (``[run]`` ..., as ``configs/vehicle.toml``),
-one case per dask.distributed task on a local cluster (``--workers`` one-thread processes, never
-more than the cases) or the scheduler at ``--scheduler`` (its workers must see DIR).
+one case per dask.distributed task on a local cluster (``--workers`` processes, never more than
+the cases or the cores, the cores shared out as their numba threads) or the scheduler at
+``--scheduler`` (its workers must see DIR).
 
 Lists from the options, else ``[sweep] speeds_kmh``/``widths_mm``/``kinds``/``sides``/
 ``wheel_defects``, else the config's own speed and defects; width 0 removes the ``[[defects]]``
@@ -260,10 +261,22 @@ def is_finished(path, toml_text: str) -> bool:
         return False
 
 
+def shares(workers: int | None, cases: int, cores: int) -> tuple[int, int]:
+    """Local worker processes and numba threads each for ``cases`` cases on ``cores`` cores
+    (``workers``: as asked, default one a core): never more workers than cases or cores, the
+    cores shared out among them, so workers times threads is at most the cores (a thread more
+    waits at every parallel region for one that is not running: benchmarks/README.md, "The car
+    beside another process")."""
+    n = max(1, min(workers or cores, cases, cores))
+    return n, max(1, cores // n)
+
+
 def run_cases(todo: list[Case], out, scheduler=None, workers=None, log=print) -> list[str]:
     """Run ``todo`` on dask, one line per finished case; returns the names of the failed ones."""
     from dask.distributed import Client, LocalCluster, as_completed
-    n = max(1, min(workers or os.cpu_count() or 1, len(todo)))
+
+    from axlebox._threads import cores
+    n, threads = shares(workers, len(todo), cores())
     t0 = time.perf_counter()
     cluster = None
     if scheduler:
@@ -284,9 +297,12 @@ def run_cases(todo: list[Case], out, scheduler=None, workers=None, log=print) ->
         client = Client(cluster)
     failed = []
     try:
-        log(f"sweep: {len(todo)} case(s) on {scheduler or f'a local cluster of {n} worker(s)'}")
-        # local workers split the cores; a remote scheduler's workers keep numba's default
-        threads = 0 if scheduler else max(1, (os.cpu_count() or 1) // n)
+        log(f"sweep: {len(todo)} case(s) on {scheduler or f'a local cluster of {n} worker(s)'}"
+            + (f" (--workers {workers}: at most one a core, {cores()})"
+               if not scheduler and workers and workers > n and n < len(todo) else ""))
+        # local workers split the cores; a remote scheduler's workers keep numba's default (and
+        # each run fits its threads to the cores the others leave: axlebox/_threads.py)
+        threads = 0 if scheduler else threads
         futs = {client.submit(run_case, c.kind, c.toml, str(c.path(out)), threads, pure=False): c
                 for c in todo}
         for k, fut in enumerate(as_completed(futs), 1):
