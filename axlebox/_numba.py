@@ -21,7 +21,10 @@ numba was imported before axlebox.
 * The threading layer: OpenMP first.  Its idle threads spin a while before they sleep, so the
   bearings' parallel region, entered every right-hand side (~100 us apart), finds them awake
   (TBB's sleep: 132 against 115 us a call on 2 cores, benchmarks/README.md).  The user's own
-  ``NUMBA_THREADING_LAYER`` (or ``..._PRIORITY``) stands.
+  ``NUMBA_THREADING_LAYER`` (or ``..._PRIORITY``) stands.  A spinning thread on a core another
+  process keeps busy stalls every region; rather than a wait policy (a passive wait costs 40 %
+  alone), a run fits its thread count to the cores free of other processes
+  (axlebox/_threads.py).  ``OMP_WAIT_POLICY`` and ``GOMP_SPINCOUNT`` are left as they are.
 """
 from __future__ import annotations
 

@@ -36,7 +36,10 @@ from ._params import _check_field, choice
 ENV = "AXLEBOX_THREADS"
 MODES = ("fit", "fixed")
 INTERVAL = 0.25        # s between two estimates: a fraction of a 0.25 s chunk's ~6 s wall
-TAKEN = 0.3            # a core others keep busy this fraction of the time counts as theirs
+# a core others keep busy this fraction of the time counts as theirs: two threads run 3.6x slower
+# while the other process runs and one thread 1.75x two's time alone (benchmarks/README.md), so
+# two are the faster while 1 + 2.6 f < 1.75, f < 0.29
+TAKEN = 0.3
 STAT = "/proc/stat"
 # the array a run's kernel reads: the count wanted (0: leave it), the count in effect, switches made
 WANT, NOW, SWITCHES = range(3)
