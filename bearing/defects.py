@@ -71,7 +71,8 @@ class Defect:
     W: float = param(2e-3, 1e-6, 0.1, doc="width along the raceway")
     L: float = param(50.4e-3, 1e-6, 1.0, doc="length across the raceway (along the roller)")
     H: float = param(2e-3, 1e-7, 0.05, doc="depth")
-    row: int = param(2, 1, 2, unit="", doc="bearing row, 1 (inboard) or 2 (outboard)")
+    row: int = param(2, 1, 16, unit="", doc="bearing row, from 1 (inboard) to the bearing's rows "
+                     "(2: a double-row bearing's outboard row)")
     angle: float = param(0.0, -2 * pi, 2 * pi, unit="rad", doc="centre of the defect (a roller "
                                                                   "defect: the roller's spin angle at "
                                                                   "which it is at the cup contact)")
@@ -126,6 +127,7 @@ def table(defects, p) -> np.ndarray:
     rows = []
     spans = []
     for d in defects:
+        require(d.row <= p.rows, d, "row", f"the bearing has {p.rows} row{'s' if p.rows > 1 else ''}")
         require(d.W < p.D_b, d, "W", f"a defect wider than the roller diameter D_b = {p.D_b:g} m "
                 "is not a local defect of Eq. (14) (the roller would meet its floor)")
         tau = d.tau(p)

@@ -24,16 +24,14 @@ from axlebox._numba import kernel
 
 from .kernel.advance import advance
 from .kernel.evaluate import evaluate
-from .kernel.layout import (CAGE_ANGLE, CAGE_RATE, CAGES, CPHI, F_X, INNER, LOAD, N_CAGE, OUTER, RING, ROWS,
-                     TH_Y, U_X, V_X, W_Y)
+from .kernel.layout import (CAGE_ANGLE, CAGE_RATE, CPHI, F_X, INNER, LOAD, N_CAGE, OUTER, RING, RINGS,
+                            TH_Y, U_X, V_X, W_Y)
 
 # rig vector slots: the outer ring's mass, its springs and dampers to ground, the load on it,
 # the inner ring's speed, the springs' zero (the static place)
 R_MASS, R_KX, R_KY, R_KZ, R_CX, R_CY, R_CZ, R_FX, R_FY, R_FZ, R_OMEGA, R_UX, R_UY, R_UZ, R_N = range(15)
 # the rig state after the bearing's: the outer ring's displacement (3) and velocity (3)
 RIG_U, RIG_V, RIG = 0, 3, 6
-# the rig's cage output (t, 2, CAGE_OUT): each row's cage angle and speed
-ANGLE, SPEED, CAGE_OUT = 0, 1, 2
 
 
 @kernel
@@ -72,8 +70,9 @@ def run_rk4(tag, Y, t0, dt, n_steps, every, P, D, rig, w, acc, Fout, Qout, cage)
     ``tag``, its scratch ``w``, bearing/kernel/evaluate.py ``Work``).
 
     Written as it goes: ``acc (n_steps, 3)`` outer-ring acceleration at every step start;
-    every ``every`` steps ``Fout (., 2, LOAD)`` ring loads, ``Qout (., 2, Z, N_Q)`` contact
-    forces, ``cage (., 2, 2)`` cage angle and speed.  Returns False if the state stops being
+    every ``every`` steps ``Fout (., RINGS, LOAD)`` ring loads, ``Qout (., n, Z, N_Q)`` contact
+    forces, ``cage (., n, CAGE_OUT)`` cage angle and speed (n the rows).  Returns False if the
+    state stops being
     finite.
     """
     n = Y.shape[0]
@@ -81,8 +80,8 @@ def run_rk4(tag, Y, t0, dt, n_steps, every, P, D, rig, w, acc, Fout, Qout, cage)
     if acc.shape[0] < n_steps or Fout.shape[0] < n_out or Qout.shape[0] < n_out or cage.shape[0] < n_out:
         raise ValueError("run_rk4: output arrays are shorter than the run")    # no bounds checks below
     k1, k2, k3, k4, tmp = np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
-    ring = np.zeros((ROWS, RING))
-    F = np.zeros((ROWS, LOAD))
+    ring = np.zeros((RINGS, RING))
+    F = np.zeros((RINGS, LOAD))
     Qc = np.zeros(Qout.shape[1:])
     for i in range(n_steps):
         t = t0 + i * dt
@@ -117,10 +116,11 @@ def _record(i, every, Y, a, F, Qc, acc, Fout, Qout, cage):
         m = i // every
         Fout[m] = F
         Qout[m] = Qc
-        cb = nb - ROWS * N_CAGE
-        for j in range(ROWS):
-            cage[m, j, ANGLE] = Y[cb + N_CAGE * j + CPHI]
-            cage[m, j, SPEED] = a[cb + N_CAGE * j + CPHI]
+        rows = cage.shape[1]
+        cb = nb - rows * N_CAGE
+        for j in range(rows):
+            cage[m, j, CAGE_ANGLE] = Y[cb + N_CAGE * j + CPHI]
+            cage[m, j, CAGE_RATE] = a[cb + N_CAGE * j + CPHI]
 
 
 @kernel(allocates=True)
@@ -137,10 +137,10 @@ def run_leapfrog(tag, Y, t0, dt, n_steps, every, P, D, rig, w, K, acc, Fout, Qou
     n_out = (n_steps + every - 1) // every
     if acc.shape[0] < n_steps or Fout.shape[0] < n_out or Qout.shape[0] < n_out or cage.shape[0] < n_out:
         raise ValueError("run_leapfrog: output arrays are shorter than the run")
-    ring_b = np.zeros((ROWS, RING))
-    F = np.zeros((ROWS, LOAD))
+    ring_b = np.zeros((RINGS, RING))
+    F = np.zeros((RINGS, LOAD))
     Qc = np.zeros(Qout.shape[1:])
-    cages = np.zeros(CAGES)
+    cages = np.zeros(cage.shape[1:])
     x = Y[:nb]
     for i in range(n_steps):
         t = t0 + i * dt
@@ -155,9 +155,7 @@ def run_leapfrog(tag, Y, t0, dt, n_steps, every, P, D, rig, w, K, acc, Fout, Qou
             m = i // every
             Fout[m] = F
             Qout[m] = Qc
-            for j in range(ROWS):
-                cage[m, j, ANGLE] = cages[CAGE_ANGLE + j]
-                cage[m, j, SPEED] = cages[CAGE_RATE + j]
+            cage[m] = cages
         hk = 0.5 * dt if first else dt
         for q in range(3):
             Y[nb + RIG_V + q] += hk * acc[i, q]

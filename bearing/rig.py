@@ -36,9 +36,9 @@ from .statics.equilibrium import static_state
 from .kernel.evaluate import work
 from .frequencies import shaft_hz
 from .kernel.implicit import scratch
-from .integrate import (ANGLE, CAGE_OUT, R_CX, R_FX, R_KX, R_MASS, R_N, R_OMEGA, R_UX, RIG, RIG_U,
+from .integrate import (R_CX, R_FX, R_KX, R_MASS, R_N, R_OMEGA, R_UX, RIG, RIG_U,
                         run_leapfrog, run_rk4)
-from .kernel.layout import F_X, F_Z, LOAD, N_Q, OUTER, Q_A, Q_NAMES, Q_O, ROWS
+from .kernel.layout import CAGE_ANGLE, CAGE_OUT, F_X, F_Z, LOAD, N_Q, OUTER, Q_A, Q_NAMES, Q_O, RINGS
 from .models.params import BearingParams
 from .kernel.quasidynamic import QD_WIDTH
 from .kernel.step import MODES
@@ -124,8 +124,8 @@ class RigConfig:
 @dataclass
 class RigResult:
     """Outputs at ``fs`` Hz: outer-ring acceleration (t, 3), ring loads (t, 2, 6) on inner/outer,
-    contact forces Q (t, 2 rows, Z, 6: cup, cone, rib, pocket walls, side beams), cage angle and
-    speed (t, 2, 2)."""
+    contact forces Q (t, rows, Z, 6: cup, cone, rib, pocket walls, side beams), cage angle and
+    speed (t, rows, 2)."""
 
     config: RigConfig
     time: np.ndarray
@@ -139,9 +139,10 @@ class RigResult:
         return self.config.fs_out
 
     def cage_hz(self, t_from: float = 0.0) -> float:
-        """Mean cage rotation frequency from ``t_from`` on (both rows; slope of the angle)."""
+        """Mean cage rotation frequency from ``t_from`` on (every row's; slope of the angle)."""
         m = self.time >= t_from
-        slope = [np.polyfit(self.time[m], self.cage[m, j, ANGLE], 1) for j in range(ROWS)]
+        slope = [np.polyfit(self.time[m], self.cage[m, j, CAGE_ANGLE], 1)
+                 for j in range(self.cage.shape[1])]
         return float(np.mean([b for b, _ in slope]) / (2 * np.pi))
 
     def save(self, path) -> Path:
@@ -258,7 +259,7 @@ def stepper(c: RigConfig, P, D, rig):
     if c.method == "rk4":
         return lambda Y, t0, n_steps, outs, start: run_rk4(tag, Y, t0, c.dt, n_steps, every, P, D, rig,
                                                           w, *outs)
-    K = scratch(p.Z)
+    K = scratch(p.Z, p.rows)
     mode = MODES[c.method]
     return lambda Y, t0, n_steps, outs, start: run_leapfrog(tag, Y, t0, c.dt, n_steps, every, P, D,
                                                            rig, w, K, *outs, mode, start)
@@ -276,9 +277,9 @@ def simulate(c: RigConfig, out=None, progress=None, chunk_s: float = 0.05,
     Y, P, D, rig = initial_state(c)
     step = stepper(c, P, D, rig)
     acc = np.zeros((n_steps, 3))
-    Fout = np.zeros((n_out, ROWS, LOAD))
-    Qout = np.zeros((n_out, ROWS, p.Z, N_Q))
-    cage = np.zeros((n_out, ROWS, CAGE_OUT))
+    Fout = np.zeros((n_out, RINGS, LOAD))
+    Qout = np.zeros((n_out, p.rows, p.Z, N_Q))
+    cage = np.zeros((n_out, p.rows, CAGE_OUT))
     done = 0
     if partial is not None and partial.is_file():
         with h5py.File(partial, "r") as f:

@@ -51,7 +51,8 @@ def rig_states():
     every = cfg.fs_out_every
     m = 10000 // every
     run_rk4(dispatch.tag(p), Yr, 0.0, cfg.dt, 10000, every, P, D, rig, work(p.Z, Y.size),
-            np.zeros((10000, 3)), np.zeros((m, 2, 6)), np.zeros((m, 2, p.Z, 6)), np.zeros((m, 2, 2)))
+            np.zeros((10000, 3)), np.zeros((m, 2, 6)), np.zeros((m, p.rows, p.Z, 6)),
+            np.zeros((m, p.rows, 2)))
     states = []
     for name, Ys in (("quasi-static start", Y), ("running rig, t = 0.1 s", Yr)):
         ring = equilibrium.ring_motion(cfg.omega_w, Ys[n:n + 3])
@@ -126,7 +127,7 @@ def implicit_order(duration=0.3):
         m = n // every
         t = time.perf_counter()
         ok = run_leapfrog(dispatch.tag(cfg.bearing), Y, 0.0, dt, n, every, P, D, rig, work(Z, Y.size),
-                          scratch(Z), acc, np.zeros((m, 2, 6)), np.zeros((m, 2, Z, 6)),
+                          scratch(Z, 2), acc, np.zeros((m, 2, 6)), np.zeros((m, 2, Z, 6)),
                           np.zeros((m, 2, 2)), mode, True, theta)
         wall = time.perf_counter() - t
         a = resample_poly(acc[:, 2], 1, every) if every > 1 else acc[:, 2]

@@ -49,9 +49,12 @@ try:                                               # the bearing core of issue 4
     from axlebox.bearing.kernel.quasidynamic import QD_WIDTH
     P = models.pack(p)
     tag = dispatch.tag(p)
+    from axlebox.bearing.kernel import layout as _lo
+    rows_sized = hasattr(_lo, "RINGS")             # the rows the model's own (issue 58)
     def step(mode):
-        sc = (work(p.Z, len(y), QD_WIDTH), scratch(p.Z))
-        out = (np.zeros((2, 6)), np.zeros((2, p.Z, 6)), np.zeros(4))
+        sc = (work(p.Z, len(y), QD_WIDTH), scratch(p.Z, p.rows) if rows_sized else scratch(p.Z))
+        cages = np.zeros((p.rows, 2)) if rows_sized else np.zeros(4)
+        out = (np.zeros((2, 6)), np.zeros((2, p.Z, 6)), cages)
         return lambda: advance(tag, y, ring, ring, P, D, *sc, 0.0, 5e-6, 4, False, mode, 1.0, *out)
 except ImportError:                                # before it (b70473e)
     from axlebox.bearing.kernel import layout

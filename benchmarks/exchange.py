@@ -39,8 +39,8 @@ def substep_us(mode: int, n: int = 4, calls: int = 500, repeats: int = 5) -> flo
     D = defects.table((defects.Defect(W=2e-3),), p)
     y, uo = equilibrium.static_state(p, P, D, (0.0, 0.0, -54e3), OMEGA)
     ring = equilibrium.ring_motion(OMEGA, uo)
-    sc = (work(p.Z, y.size, QD_WIDTH), scratch(p.Z))
-    out = (np.zeros((2, 6)), np.zeros((2, p.Z, 6)), np.zeros(4))
+    sc = (work(p.Z, y.size, QD_WIDTH), scratch(p.Z, p.rows))
+    out = (np.zeros((2, 6)), np.zeros((p.rows, p.Z, 6)), np.zeros((p.rows, 2)))
 
     def step():
         advance(tag, y, ring, ring, P, D, *sc, 0.0, 5e-6, n, False, mode, 1.0, *out)

@@ -48,7 +48,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from axlebox.bearing.kernel.layout import LOAD, RING, ROWS
+from axlebox.bearing.kernel.layout import LOAD, RING, RINGS
 from axlebox.bearing.kernel.step import MODES
 
 Exchange = namedtuple("Exchange", ["ring", "flags", "h", "n", "mode", "held", "m", "hold", "K", "r0"])
@@ -68,10 +68,10 @@ def exchange(model, method: str, h: float, n: int, ring=None, m: int = 1, hold: 
     3): the bearings' tangent stiffness the "jacobian" hold needs (:func:`axlebox.mbs.bearings.stiffness`)."""
     nbr = len(model.bearing_names)
     start = ring is None
-    ring = np.zeros((nbr, ROWS, RING)) if start else np.array(ring, float).reshape(nbr, ROWS, RING)
+    ring = np.zeros((nbr, RINGS, RING)) if start else np.array(ring, float).reshape(nbr, RINGS, RING)
     flags = np.zeros(2, np.int64)
     flags[FIRST] = 1 if start else 0
     return Exchange(ring=ring, flags=flags, h=float(h), n=int(n), mode=int(MODES[method]),
-                    held=np.zeros((2, nbr, ROWS, LOAD)), m=int(m), hold=HOLDS[hold],
+                    held=np.zeros((2, nbr, RINGS, LOAD)), m=int(m), hold=HOLDS[hold],
                     K=np.zeros((nbr, 3)) if K is None else np.array(K, float).reshape(nbr, 3),
                     r0=np.zeros((nbr, 3)))

@@ -37,8 +37,8 @@ from axlebox._numba import kernel
 from axlebox.bearing.kernel import evaluate as bev
 from axlebox.bearing.kernel import implicit
 from axlebox.bearing.kernel.advance import advance
-from axlebox.bearing.kernel.layout import (CAGES, F_X, INNER, LOAD, M_X, OUTER, Q_O, TH_X,
-                                    TH_Y, TH_Z, U_X, U_Y, U_Z, V_X, W_X, W_Y)
+from axlebox.bearing.kernel.layout import (CAGE_ANGLE, CAGE_RATE, F_X, INNER, LOAD, M_X, OUTER, Q_O,
+                                           TH_X, TH_Y, TH_Z, U_X, U_Y, U_Z, V_X, W_X, W_Y)
 from axlebox.bearing.kernel.step import cage_outputs
 from axlebox.bearing.kernel.vec import AX, AY, AZ, copy3
 
@@ -47,10 +47,11 @@ from .kernel_body import BI_POS, BI_VEL, SPIN_ANGLE, SPIN_RATE
 
 BR_MIN, BR_MOUT, BR_BODY, BR_OFF, BR_N, BR_D0, BR_ND, BR_WIDTH = range(8)
 # output rows per bearing, after the elements' rows of ``elout``: the loads (force, moment) on the
-# inner ring and on the outer ring; then roller 1's outer-raceway contact force in rows 1 and 2
-# and both cages' angle and rate
+# inner ring and on the outer ring; then roller 1's outer-raceway contact force in the first row
+# and in the last (the same row in a single-row bearing), the cage angle of those two rows and
+# their rates (BR_ANGLE + 0 the first row's, + 1 the last's; so BR_RATE)
 BR_INNER, BR_OUTER, BR_MORE, BR_ROWS = range(4)
-BR_Q1, BR_Q2, BR_CAGES = 0, 1, 2
+BR_Q1, BR_QN, BR_ANGLE, BR_RATE = 0, 1, 2, 4
 TH_IN, TH_OUT, TH = 0, 3, 6            # the markers' small angles: the inner's, the outer's
 
 Bearings = namedtuple("Bearings", ["tag", "idx", "P", "D", "ring", "th", "F", "Qc", "cages", "work",
@@ -262,8 +263,9 @@ def _loads_back(k, idx, mkF, mkM, elout, F, Qc, th, cages):
     for c in range(LOAD):
         elout[r + BR_INNER, c] = F[INNER, c]
         elout[r + BR_OUTER, c] = F[OUTER, c]
-    first = 0                                  # roller 1 of each row
-    elout[r + BR_MORE, BR_Q1] = Qc[INNER, first, Q_O]
-    elout[r + BR_MORE, BR_Q2] = Qc[OUTER, first, Q_O]
-    for c in range(CAGES):
-        elout[r + BR_MORE, BR_CAGES + c] = cages[c]
+    last = Qc.shape[0] - 1                     # the last row; roller 1 of each
+    elout[r + BR_MORE, BR_Q1] = Qc[0, 0, Q_O]
+    elout[r + BR_MORE, BR_QN] = Qc[last, 0, Q_O]
+    for i, j in enumerate((0, last)):
+        elout[r + BR_MORE, BR_ANGLE + i] = cages[j, CAGE_ANGLE]
+        elout[r + BR_MORE, BR_RATE + i] = cages[j, CAGE_RATE]

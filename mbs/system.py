@@ -264,7 +264,7 @@ class System:
         write) and their states appended to ``y0``."""
         from axlebox.bearing.kernel import implicit
         from axlebox.bearing.kernel.evaluate import work
-        from axlebox.bearing.kernel.layout import CAGES, LOAD, N_Q, RING, ROWS, Z
+        from axlebox.bearing.kernel.layout import CAGE_OUT, LOAD, N_Q, N_ROWS, RING, RINGS, Z
         from axlebox.bearing.kernel.quasidynamic import QD_WIDTH
 
         from .kernel_bearings import BR_WIDTH, TH, Bearings, NoBearings
@@ -279,13 +279,13 @@ class System:
             off += yb.size
             d0 += D.shape[0]
         P = np.stack([x[4] for x in self.bearings])
-        nz, ns = int(P[0, Z]), self.bearings[0][6].size
+        nz, nrow, ns = int(P[0, Z]), int(P[0, N_ROWS]), self.bearings[0][6].size
         y0 = np.concatenate([y0] + [x[6] for x in self.bearings])
         D = np.concatenate(D_parts) if d0 else np.zeros((1, defects.WIDTH))
         z = np.zeros
-        return Bearings(self.bearing_tag, idx, P, D, z((nbr, ROWS, RING)), z((nbr, TH)),
-                        z((nbr, ROWS, LOAD)), z((nbr, ROWS, nz, N_Q)), z((nbr, CAGES)),
-                        work(nz, ns, QD_WIDTH, (nbr,)), implicit.scratch(nz, (nbr,))), y0
+        return Bearings(self.bearing_tag, idx, P, D, z((nbr, RINGS, RING)), z((nbr, TH)),
+                        z((nbr, RINGS, LOAD)), z((nbr, nrow, nz, N_Q)), z((nbr, nrow, CAGE_OUT)),
+                        work(nz, ns, QD_WIDTH, (nbr,)), implicit.scratch(nz, nrow, (nbr,))), y0
 
     def initial_marker_pose(self, m: int) -> tuple[np.ndarray, np.ndarray]:
         """Position and axes of marker ``m`` in the initial (undeformed) configuration."""
@@ -343,6 +343,12 @@ class Model:
         return self.system.bodies
 
     @property
+    def bearing_rows(self) -> int:
+        """The rows of the car's bearings (their model's; 0 without bearings)."""
+        from axlebox.bearing.kernel.layout import N_ROWS
+        return int(self.B.P[0, N_ROWS]) if self.bearing_names else 0
+
+    @property
     def n_states(self) -> int:
         return self.y0.size
 
@@ -381,15 +387,16 @@ class Model:
                 j = i - iv
                 what = ("vx", "vy", "vz", "wx", "wy", "wz")[j] if j < 6 else f"qd{j - 5}"
                 return f"body {b.name!r} ({what})"
-        from axlebox.bearing.kernel.layout import N_CAGE, N_ROLLER, ROWS
+        from axlebox.bearing.kernel.layout import N_CAGE, N_ROLLER
 
         from .kernel_bearings import BR_N, BR_OFF
+        rows = self.bearing_rows
         for k, name in enumerate(self.bearing_names):
             off, n = int(self.B.idx[k, BR_OFF]), int(self.B.idx[k, BR_N])
             if off <= i < off + n:
                 j = i - off
-                nr = n - ROWS * N_CAGE
-                what = (f"row {j // (nr // ROWS) + 1}, roller {(j % (nr // ROWS)) // N_ROLLER + 1}"
+                nr = n - rows * N_CAGE
+                what = (f"row {j // (nr // rows) + 1}, roller {(j % (nr // rows)) // N_ROLLER + 1}"
                         if j < nr else f"row {(j - nr) // N_CAGE + 1} cage")
                 return f"bearing {name!r} ({what})"
         return f"state {i}"

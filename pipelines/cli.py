@@ -132,7 +132,8 @@ def _cmd_bearing_simulate(a) -> None:
     defects = ()
     if a.defect_width > 0:
         defects = (Defect(W=a.defect_width * 1e-3, L=a.defect_length * 1e-3, H=a.defect_depth * 1e-3,
-                          row=a.defect_row, angle=radians(a.defect_angle), kind=a.defect_kind,
+                          row=bearing.rows if a.defect_row is None else a.defect_row,
+                          angle=radians(a.defect_angle), kind=a.defect_kind,
                           roller=a.defect_roller),)
     cfg = RigConfig(speed_kmh=a.speed_kmh, F_r=a.radial_load, F_a=a.axial_load, duration=a.duration,
                     dt=a.dt, method=a.method, seed=a.seed, bearing=bearing, defects=defects)
@@ -491,7 +492,9 @@ def parser() -> argparse.ArgumentParser:
                       help="defect length across the raceway in mm (default 50.4)")
     bsim.add_argument("--defect-depth", type=float, default=2.0, metavar="MM",
                       help="defect depth in mm (default 2)")
-    bsim.add_argument("--defect-row", type=int, default=2, help="row of the defect, 1 or 2 (default 2)")
+    bsim.add_argument("--defect-row", type=int, default=None,
+                      help="row of the defect, 1 to the bearing's rows (default: its last, a double-row "
+                           "bearing's outboard row 2)")
     bsim.add_argument("--defect-kind", default="outer",
                       help="outer (on the outer ring, the DTRB's cup; default), inner (on the "
                            "inner ring, the DTRB's cone, turning with the shaft) or roller (on one "

@@ -34,6 +34,7 @@ from axlebox.mbs import comfort
 from axlebox.mbs import config as vconfig
 from axlebox.mbs import bearings as car_bearings
 from axlebox.mbs import integrate, roughness, statics, track, vehicle, wheel_defects
+from axlebox.mbs import kernel_bearings as kb
 from axlebox.mbs.wheelrail import element_kernel as ek
 from axlebox.mbs.wheelrail.element import build_tables
 from axlebox.mbs.wheelrail.profile import read_profile
@@ -228,12 +229,14 @@ def write(path, run: integrate.Run, model, cfg: vconfig.CarConfig,
     br = {}
     for i, name in enumerate(model.bearing_names):
         o = run.bearings[:, i]                      # mbs/kernel_bearings.py BR_ROWS
-        br[f"{name}/ring_loads"] = (o[:, :2], {"unit": "N, N m", "frame": "track",
-                                               "rows": "inner ring, outer ring",
-                                               "columns": "Fx Fy Fz Mx My Mz"})
-        br[f"{name}/roller1_cup_force"] = (o[:, 2, :2], {"unit": "N", "columns": "row 1, row 2"})
-        br[f"{name}/cage"] = (o[:, 2, 2:6], {"unit": "rad, rad, rad/s, rad/s",
-                                            "columns": "angle row 1, row 2; rate row 1, row 2"})
+        rows = f"row 1, row {model.bearing_rows}"
+        br[f"{name}/ring_loads"] = (o[:, [kb.BR_INNER, kb.BR_OUTER]],
+                                    {"unit": "N, N m", "frame": "track", "rows": "inner ring, outer ring",
+                                     "columns": "Fx Fy Fz Mx My Mz"})
+        br[f"{name}/roller1_cup_force"] = (o[:, kb.BR_MORE, [kb.BR_Q1, kb.BR_QN]],
+                                           {"unit": "N", "columns": rows})
+        br[f"{name}/cage"] = (o[:, kb.BR_MORE, kb.BR_ANGLE:kb.BR_RATE + 2],
+                              {"unit": "rad, rad, rad/s, rad/s", "columns": f"angle {rows}; rate {rows}"})
     dr = drives(run, model)
     ride_attrs = {"columns": ", ".join(comfort.RideComfort.COLUMNS), "unit": "1, 1, 1, m/s^2, m/s^2, "
                   "m/s^2", "standards": "Sperling (W_z, W_y); EN 12299:2009 6.7.2 (N_MV: W_d on x, y, "

@@ -40,22 +40,22 @@ def _single_rate_step(x, ring, P, D, t, h, mode, first):
     drift (bearing/kernel/implicit.py, bearing/kernel/step.py kick_drift)."""
     Z = int(P[layout.Z])
     w = work(Z, x.size)
-    dx, F, Qc = np.empty(x.size), np.zeros((layout.ROWS, layout.LOAD)), np.zeros((layout.ROWS, Z, layout.N_Q))
+    dx, F, Qc = np.empty(x.size), np.zeros((layout.RINGS, layout.LOAD)), np.zeros((2, Z, layout.N_Q))
     evaluate(TAG, t, x, ring, P, D, dx, F, Qc, w, mode != EXPLICIT, NEWMARK_K * h if mode == IMEX2 else 0.0)
-    cages = np.empty(layout.CAGES)
+    cages = np.empty((2, layout.CAGE_OUT))
     cage_outputs(x, dx, cages)
     hk = 0.5 * h if first else h
     if mode != EXPLICIT:
-        damped_kick(x, dx, w.blk, w.cblk, w.flag, P, hk, 1.0, scratch(Z))
+        damped_kick(x, dx, w.blk, w.cblk, w.flag, P, hk, 1.0, scratch(Z, 2))
     kick_drift(x, dx, P, hk, h, mode == EXPLICIT)
     return F, Qc, cages
 
 
 def _advance(x, ring_a, ring_b, P, D, t, h, n, first, mode):
     Z = int(P[layout.Z])
-    F, Qc = np.zeros((layout.ROWS, layout.LOAD)), np.zeros((layout.ROWS, Z, layout.N_Q))
-    cages = np.empty(layout.CAGES)
-    advance(TAG, x, ring_a, ring_b, P, D, work(Z, x.size, QD_WIDTH), scratch(Z), t, h, n, first, mode,
+    F, Qc = np.zeros((layout.RINGS, layout.LOAD)), np.zeros((2, Z, layout.N_Q))
+    cages = np.empty((2, layout.CAGE_OUT))
+    advance(TAG, x, ring_a, ring_b, P, D, work(Z, x.size, QD_WIDTH), scratch(Z, 2), t, h, n, first, mode,
             1.0, F, Qc, cages)
     return F, Qc, cages
 

@@ -100,7 +100,7 @@ def run(p, h, T, damped: bool, h_k: float = 0.0):
     P, D, y, ring = start(p)
     n, every = int(round(T / h)), int(round(1e-4 / h))
     out = []
-    K = scratch(int(P[layout.Z]))
+    K = scratch(int(P[layout.Z]), int(P[layout.N_ROWS]))
     for i in range(n):
         a, F, _, w = rhs(y, ring, P, D, damped, h_k * h, with_work=True)
         if i % every == 0:

@@ -237,6 +237,14 @@ class _NoAngles(RollerBearing):
     """Parameters that give none of GIVEN_BY_MODEL."""
 
 
+class _NoRows(RollerBearing):
+    """Parameters that give every number of GIVEN_BY_MODEL, and no row."""
+
+    rows = 0
+    alpha_o = alpha_i = alpha_m = clearance_n = 0.0
+    L_e = D_o = D_i = 0.04
+
+
 @pytest.mark.parametrize("changes, message", [
     *[({n: None}, rf"bearing model 'fake' \('fake_model'\) does not declare {n}: ") for n in CONTRACT],
     ({"NAME": 3}, r"NAME = 3 is not allowed: expected a non-empty string"),
@@ -252,25 +260,27 @@ class _NoAngles(RollerBearing):
     ({"DT_MAX": {"dynamic": {"rk4": 0.0}, "quasi-dynamic": {"imex": 1e-4}}},
      r"DT_MAX\['dynamic'\] = \{'rk4': 0.0\} is not allowed"),
     ({"DT_MAX": {"dynamic": {}, "quasi-dynamic": {"imex": 1e-4}}}, r"DT_MAX\['dynamic'\]"),
-    ({"Params": _NoAngles}, r"'fake'.*_NoAngles does not give alpha_o"),
+    ({"Params": _NoAngles}, r"'fake'.*_NoAngles does not give rows"),
+    ({"Params": _NoRows}, r"'fake'.*_NoRows\(\)\.rows = 0 is not allowed: expected an integer >= 1"),
 ], ids=[f"no-{n}" for n in CONTRACT] + ["NAME-kind", "NAME-key", "SUMMARY-empty", "BORE", "guess",
                                          "Params-kind", "DT_MAX-scheme", "DT_MAX-extra", "DT_MAX-step",
-                                         "DT_MAX-empty", "Params-angles"])
+                                         "DT_MAX-empty", "Params-angles", "Params-rows"])
 def test_a_model_that_breaks_the_contract_is_refused_by_name(changes, message):
     with pytest.raises(models.ModelError, match=message):
         models.check(_fake(**changes), "fake")
 
 
 def test_the_registry_checks_its_models_when_imported():
-    """The DCRB's module with its ``guess`` taken away as it loads: importing the registry fails,
-    naming the model and the missing name."""
+    """The single-row CRB's module with its ``guess`` taken away as it loads (the CRB: no other
+    model takes its parts from it): importing the registry fails, naming the model and the
+    missing name."""
     code = textwrap.dedent("""
         import importlib.abc, sys
         from importlib.machinery import PathFinder
 
         class Strip(importlib.abc.MetaPathFinder):
             def find_spec(self, name, path, target=None):
-                if name != "axlebox.bearing.models.dcrb":
+                if name != "axlebox.bearing.models.crb":
                     return None
                 spec = PathFinder.find_spec(name, path)
                 run = spec.loader.exec_module
@@ -290,5 +300,5 @@ def test_the_registry_checks_its_models_when_imported():
         """)
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr[-3000:]
-    assert r.stdout.startswith("ModelError bearing model 'dcrb' ('axlebox.bearing.models.dcrb') "
+    assert r.stdout.startswith("ModelError bearing model 'crb' ('axlebox.bearing.models.crb') "
                                "does not declare guess: "), r.stdout

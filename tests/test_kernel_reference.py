@@ -20,7 +20,8 @@ import pytest
 from axlebox.bearing.kernel import layout
 
 from axlebox.bearing import rig
-from axlebox.bearing.integrate import CAGE_OUT, RIG, RIG_U
+from axlebox.bearing.integrate import RIG, RIG_U
+from axlebox.bearing.kernel.layout import CAGE_OUT
 
 REFERENCE = Path(__file__).parent / "data" / "kernel_reference.npz"
 RTOL = 1e-9
@@ -73,8 +74,8 @@ def test_the_rig_gives_the_old_kernels_states(ref, case):
     vec = rig._rig_vector(c, Y[nb + RIG_U:nb + RIG_U + 3])
     n_out = int(round(c.duration * c.fs_out))
     n = n_out * c.fs_out_every
-    outs = (np.zeros((n, 3)), np.zeros((n_out, layout.ROWS, layout.LOAD)),
-            np.zeros((n_out, layout.ROWS, p.Z, layout.N_Q)), np.zeros((n_out, layout.ROWS, CAGE_OUT)))
+    outs = (np.zeros((n, 3)), np.zeros((n_out, layout.RINGS, layout.LOAD)),
+            np.zeros((n_out, p.rows, p.Z, layout.N_Q)), np.zeros((n_out, p.rows, CAGE_OUT)))
     assert rig.stepper(c, P, D, vec)(Y, 0.0, n, outs, True)
     rollers, cages = layout.views(Y[:nb], p.Z)
     _assert_slots(rollers, ref[f"{case}/end/rollers"], "rollers")
@@ -125,7 +126,7 @@ def test_the_car_gives_the_old_kernels_states(ref):
     run = integrate.simulate(model, T, cfg.settings(), y0=y)
     assert run.ok, run.message
     _assert_each(run.y_end[:nb], ref["car/end/bodies"], "bodies")
-    n = layout.n_state(Z)
+    n = layout.n_state(Z, 2)
     for k, name in enumerate(model.bearing_names):
         rollers, cages = layout.views(run.y_end[nb + k * n:nb + (k + 1) * n], Z)
         _assert_slots(rollers, ref["car/end/rollers"][k], f"{name} rollers")

@@ -36,7 +36,7 @@ from axlebox._numba import kernel
 
 from . import quasidynamic, step
 from .dispatch import scheme_of
-from .layout import LOAD, RING, ROWS
+from .layout import LOAD, RING, RINGS
 from .step import EXPLICIT, IMEX, IMEX2, MODES  # noqa: F401  (the modes, by name, for callers)
 
 _SCHEMES = {"dynamic": step.substep, "quasi-dynamic": quasidynamic.substep}
@@ -61,12 +61,13 @@ def _substep(tag, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages):
 def advance(tag, x, ring_a, ring_b, P, D, w, K, t_b, h, n, first, mode, theta, F_mean, Qc, cages):
     """Advance one bearing's states ``x`` (tag ``tag``, bearing/models/__init__.py) by the ``n`` sub-steps
     of ``h`` of the window of the exchange at ``t_b`` (module docstring).  ``ring_a`` /
-    ``ring_b``: the ring motion (2, RING) at the exchange before (``t_b - n h``) and at this
+    ``ring_b``: the ring motion (RINGS, RING) at the exchange before (``t_b - n h``) and at this
     one; ``P``, ``D``: the bearing's parameter vector and defect rows; ``w``, ``K``: its scratch
     (bearing/kernel/evaluate.py ``Work``, bearing/kernel/implicit.py ``Kick``).
 
-    Out: ``F_mean`` (2, LOAD) the ring loads averaged over the samples; ``Qc`` (2, Z, N_Q) the
-    contact forces and ``cages`` (bearing/kernel/layout.py) at the sample at the exchange (half a
+    Out: ``F_mean`` (RINGS, LOAD) the ring loads averaged over the samples; ``Qc`` (rows, Z, N_Q) the
+    contact forces and ``cages`` (rows, CAGE_OUT; bearing/kernel/layout.py) at the sample at the
+    exchange (half a
     sub-step after it where ``n`` is even), before its step.  ``theta``: the implicit kick's
     weight (bearing/kernel/implicit.py; 1 as shipped)."""
     F_mean[:, :] = 0.0
@@ -75,17 +76,17 @@ def advance(tag, x, ring_a, ring_b, P, D, w, K, t_b, h, n, first, mode, theta, F
     j0 = j_out if first else 1
     for j in range(j0, n + 1):
         s = 1.0 + (j - c0) / n               # 0 at the exchange before, 1 at this one
-        for r in range(ROWS):
+        for r in range(RINGS):
             for c in range(RING):
                 # (1 - s) a + s b: at s = 1 exactly b (a + s (b - a) is not, in floating point)
                 w.ring[r, c] = ring_b[r, c] if first else (1.0 - s) * ring_a[r, c] + s * ring_b[r, c]
         hk = 0.5 * h if (first and j == j0) else h
         substep(tag, x, w.ring, P, D, w, K, t_b + (j - c0) * h, h, hk, mode, theta, j == j_out, Qc,
                 cages)
-        for r in range(ROWS):
+        for r in range(RINGS):
             for c in range(LOAD):
                 F_mean[r, c] += w.F[r, c]
     m = n - j0 + 1
-    for r in range(ROWS):
+    for r in range(RINGS):
         for c in range(LOAD):
             F_mean[r, c] /= m

@@ -108,15 +108,15 @@ def tilt_grad(sign):
 
 
 def dense(w, Z_: int):
-    """The blocks of an evaluation (bearing/kernel/evaluate.py ``Work``) as one array ``(2, Z + 1, 6,
-    12)``: ``[j, k, :, :6]`` roller k's own, ``[j, k, :, 6:]`` its coupling to the cage of row
+    """The blocks of an evaluation (bearing/kernel/evaluate.py ``Work``) as one array ``(n, Z + 1, 6,
+    12)``, n the rows: ``[j, k, :, :6]`` roller k's own, ``[j, k, :, 6:]`` its coupling to the cage of row
     j, ``[j, Z, :, :6]`` that cage's own (zero where an evaluation wrote nothing), for tests and
     analysis (the kernels read the blocks where they lie)."""
     import numpy as np
 
-    from .layout import ROWS
-    G = np.zeros((ROWS, Z_ + 1, 6, 12))
-    for j in range(ROWS):
+    rows = w.cblk.shape[0]
+    G = np.zeros((rows, Z_ + 1, 6, 12))
+    for j in range(rows):
         for k in range(Z_):
             jk = j * Z_ + k
             if w.flag[jk] != BLK_NONE:

@@ -2,7 +2,7 @@
 roller's contacts with the rings.
 
 Inside numba a bearing is named by a tag (:func:`tag`): an empty named tuple of a class of its
-own for each model and scheme (:data:`TAGS`, built from bearing/models/__init__.py's
+own for each contact law and scheme (:data:`TAGS`, built from bearing/models/__init__.py's
 ``MODELS`` and ``SCHEMES``; flat and empty, so that numba's parallel loops take it as they take
 a number).  :func:`contacts` (here) and bearing/kernel/advance.py's ``substep`` (by
 :func:`scheme_of`) are compiled for the tags' classes alone, so a run compiles the model and
@@ -22,17 +22,24 @@ def _class_name(model: str, scheme: str) -> str:
     return "".join(w.capitalize() for w in f"{model} {scheme}".replace("-", " ").split())
 
 
-#: ``(model, scheme) -> tag class``; each class is a module attribute (``DtrbDynamic`` ...), so
-#: that numba's cache can pickle it
+#: ``(model, scheme) -> tag class``: one class for each contact law (a model's ``contacts``) and
+#: scheme, named by the first model that declares the law (``DtrbDynamic`` ...), so that models
+#: that differ only in their numbers (the single-row CRB and the DCRB: the rows are a parameter
+#: slot) share their machine code; each class is a module attribute, so that numba's cache can
+#: pickle it
 TAGS = {}
-for _model in MODELS:
+_BY_LAW = {}
+for _model, _module in MODELS.items():
     for _scheme in SCHEMES:
-        _cls = namedtuple(_class_name(_model, _scheme), [])
-        _cls.__module__ = __name__
-        globals()[_cls.__name__] = _cls
-        TAGS[(_model, _scheme)] = _cls
-_MODEL_OF = {cls: MODELS[m] for (m, _), cls in TAGS.items()}
-_SCHEME_OF = {cls: s for (_, s), cls in TAGS.items()}
+        _law = (_module.contacts, _scheme)
+        if _law not in _BY_LAW:
+            _cls = namedtuple(_class_name(_model, _scheme), [])
+            _cls.__module__ = __name__
+            globals()[_cls.__name__] = _cls
+            _BY_LAW[_law] = _cls
+        TAGS[(_model, _scheme)] = _BY_LAW[_law]
+_CONTACTS_OF = {cls: law for (law, _), cls in _BY_LAW.items()}
+_SCHEME_OF = {cls: s for (_, s), cls in _BY_LAW.items()}
 
 
 def tag(p):
@@ -55,7 +62,7 @@ def contacts(model, rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_i
 @overload(contacts, jit_options={"cache": True, "error_model": "numpy"}, inline="always")
 def _contacts(model, rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n_roller, want,
               h_k):
-    f = _MODEL_OF[model.instance_class].contacts
+    f = _CONTACTS_OF[model.instance_class]
 
     def impl(model, rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n_roller, want,
              h_k):

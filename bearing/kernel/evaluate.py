@@ -47,10 +47,12 @@ from .layout import (
     REC_F,
     REC_LOAD,
     REC_ORBIT,
+    N_ROWS,
     RING,
+    RINGS,
     ROLLER_SURFACE,
-    ROWS,
     Z,
+    rows_of,
 )
 from .pocket import pockets
 from .roller import (
@@ -66,9 +68,9 @@ from .vec import mul, put
 
 TWO_PI = 2.0 * pi
 
-#: one bearing's scratch (:func:`work`): the rollers' records ``rec`` (2 Z, REC), their block
-#: rows ``blk`` (2 Z, 6, BLK) and flags ``flag`` (2 Z), each row's cage block ``cblk`` (2, 6,
-#: 6), the pockets' azimuths' sines and cosines (2, Z), and what a step needs besides
+#: one bearing's scratch (:func:`work`), n rows of Z rollers: the rollers' records ``rec`` (n Z,
+#: REC), their block rows ``blk`` (n Z, 6, BLK) and flags ``flag`` (n Z), each row's cage block
+#: ``cblk`` (n, 6, 6), the pockets' azimuths' sines and cosines (n, Z), and what a step needs besides
 #: (bearing/kernel/advance.py): the state's derivative ``dx``, the ring motion ``ring`` and loads ``F``
 #: of a sub-step, its contact forces ``Qs`` and the quasi-dynamic Newton's per-roller scratch
 #: ``qd`` (bearing/kernel/quasidynamic.py)
@@ -77,11 +79,13 @@ Work = namedtuple("Work", ["rec", "blk", "flag", "cblk", "sin_p", "cos_p", "dx",
 
 
 def work(Z_: int, n_state: int, qd_width: int = 0, stack: tuple = ()) -> Work:
-    """A bearing's :class:`Work` (``stack``: leading dimensions, one bearing each)."""
+    """A bearing's :class:`Work` (``Z_`` rollers a row, ``n_state`` states, which count its rows;
+    ``stack``: leading dimensions, one bearing each)."""
     z = lambda *shape: np.zeros(stack + shape)      # noqa: E731
-    return Work(z(ROWS * Z_, REC), z(ROWS * Z_, 6, BLK), np.zeros(stack + (ROWS * Z_,), np.int64),
-                z(ROWS, 6, 6), z(ROWS, Z_), z(ROWS, Z_), z(n_state), z(ROWS, RING), z(ROWS, LOAD),
-                z(ROWS, Z_, N_Q), z(ROWS * Z_, qd_width))
+    n = rows_of(n_state, Z_)
+    return Work(z(n * Z_, REC), z(n * Z_, 6, BLK), np.zeros(stack + (n * Z_,), np.int64),
+                z(n, 6, 6), z(n, Z_), z(n, Z_), z(n_state), z(RINGS, RING), z(RINGS, LOAD),
+                z(n, Z_, N_Q), z(n * Z_, qd_width))
 
 
 @kernel
@@ -93,16 +97,16 @@ def one(W, b):
 
 @kernel
 def evaluate(model, t, x, ring, P, D, dx, F, Qc, w, want, h_k):
-    """State derivative ``dx``, ring loads ``F`` (2, LOAD) and contact forces ``Qc`` (2, Z, N_Q)
+    """State derivative ``dx``, ring loads ``F`` (RINGS, LOAD) and contact forces ``Qc`` (n, Z, N_Q)
     of the bearing ``model`` (a tag of :mod:`.models`) at state ``x`` and ring motion ``ring``;
     with ``want`` every roller's block rows too (``h_k``: bearing/contact.normal).  ``w``: its
     :class:`Work`."""
-    nz = int(P[Z])
+    nz, nrow = int(P[Z]), int(P[N_ROWS])
     rings = ring_frame(ring)
     n_inner, n_roller = count(D, INNER_RING), count(D, ROLLER_SURFACE)
     J_orb = orbital_inertia(P)
-    for j in range(ROWS):
-        cb = ROWS * nz * N_ROLLER + j * N_CAGE
+    for j in range(nrow):
+        cb = nrow * nz * N_ROLLER + j * N_CAGE
         cage = cage_frame(x, cb, P, rings.omega)
         pocket_angles(cage.phi, nz, w.sin_p[j], w.cos_p[j])
         w.cblk[j, :, :] = 0.0
@@ -136,7 +140,7 @@ def roller(model, x, dx, j, k, rings, cage, P, D, n_inner, n_roller, Qc, w, want
 
 @kernel
 def ring_loads(rec, F):
-    """The rings' loads ``F`` (2, LOAD): every roller's record summed (paper Eq. 16), roller by
+    """The rings' loads ``F`` (RINGS, LOAD): every roller's record summed (paper Eq. 16), roller by
     roller and contact slot by slot (bearing/kernel/layout.py)."""
     F[:, :] = 0.0
     for jk in range(rec.shape[0]):
@@ -152,10 +156,10 @@ def rates(model, t, y, ring, P, D, want: bool = False, h_k: float = 0.0):
     """:func:`evaluate` from Python, allocating: ``(dx, F, Qc, w)`` of the bearing of tag
     ``model`` (bearing/models/__init__.py ``tag(p).model``) at state ``y`` and ring motion ``ring``;
     ``w`` (:class:`Work`) holds the records and, with ``want``, the blocks."""
-    nz = int(P[Z])
+    nz, nrow = int(P[Z]), int(P[N_ROWS])
     y = np.ascontiguousarray(y, float)
     w = work(nz, y.size)
-    dx, F, Qc = np.zeros(y.size), np.zeros((ROWS, LOAD)), np.zeros((ROWS, nz, N_Q))
+    dx, F, Qc = np.zeros(y.size), np.zeros((RINGS, LOAD)), np.zeros((nrow, nz, N_Q))
     evaluate(model, float(t), y, np.ascontiguousarray(ring, float), P, np.ascontiguousarray(D, float),
              dx, F, Qc, w, want, float(h_k))
     return dx, F, Qc, w

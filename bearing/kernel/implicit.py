@@ -44,19 +44,19 @@ import numpy as np
 from axlebox._numba import kernel
 
 from .layout import (BLK_CAGE, BLK_COUPLED, BLK_NONE, BLK_ROLLER, CPHI, FREE_CAGE, J_CD, J_CP, J_RA,
-                     J_RD, KINEMATIC, M_C, M_R, N_CAGE, N_ROLLER, PHI, R_M, RATE, RHO, ROWS, Z)
+                     J_RD, KINEMATIC, M_C, M_R, N_CAGE, N_ROLLER, N_ROWS, PHI, R_M, RATE, RHO, Z)
 
 NEWMARK_K = 0.25        # "imex2": h_k = NEWMARK_K h, Newmark's average acceleration (docstring)
 
-#: the kick's scratch (:func:`scratch`): each roller's Cholesky factor ``L`` (2 Z, 6, 6), its
-#: coupling to the cage ``W`` (2 Z, 6, 6) and right-hand side ``z`` (2 Z, 6); the cage's system
+#: the kick's scratch (:func:`scratch`): each roller's Cholesky factor ``L`` (n Z, 6, 6), its
+#: coupling to the cage ``W`` (n Z, 6, 6) and right-hand side ``z`` (n Z, 6), n the rows; the cage's system
 #: ``S``, factor ``Lc`` (6, 6) and right-hand side ``g`` (6)
 Kick = namedtuple("Kick", ["L", "W", "z", "S", "Lc", "g"])
 
 
-def scratch(Z_: int, stack: tuple = ()) -> Kick:
-    """The kick's :class:`Kick` scratch for a bearing of ``Z_`` rollers a row."""
-    n = ROWS * Z_
+def scratch(Z_: int, rows: int, stack: tuple = ()) -> Kick:
+    """The kick's :class:`Kick` scratch for a bearing of ``rows`` rows of ``Z_`` rollers."""
+    n = rows * Z_
     return Kick(np.zeros(stack + (n, 6, 6)), np.zeros(stack + (n, 6, 6)), np.zeros(stack + (n, 6)),
                 np.zeros(stack + (6, 6)), np.zeros(stack + (6, 6)), np.zeros(stack + (6,)))
 
@@ -126,8 +126,9 @@ def damped_kick(y, a, blk, cblk, flag, P, hk, theta, K):
     hm = theta * hk
     kin = P[KINEMATIC] != FREE_CAGE
     mc = cage_masses(P)
-    for j in range(ROWS):
-        cb = ROWS * nz * N_ROLLER + j * N_CAGE
+    nrow = int(P[N_ROWS])
+    for j in range(nrow):
+        cb = nrow * nz * N_ROLLER + j * N_CAGE
         _cage_system(cblk[j], mc, a, cb, hm, hk, K.S, K.g)
         for k in range(nz):
             jk = j * nz + k

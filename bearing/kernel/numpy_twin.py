@@ -4,8 +4,9 @@ the same equations, vectorised over rollers): the baseline for benchmarks/bearin
 cross-check of the numba kernels.
 
 Vectors are arrays ``(3, ...)``: the component first, then the (row, roller) axes, so that
-``k * a`` with ``k (2, Z)`` scales a vector field and ring or cage vectors ``(3, 1, 1)`` /
-``(3, 2, 1)`` broadcast against roller vectors ``(3, 2, Z)``.  The row sign ``s`` is ``(2, 1)``.
+``k * a`` with ``k (n, Z)`` scales a vector field and ring or cage vectors ``(3, 1, 1)`` /
+``(3, n, 1)`` broadcast against roller vectors ``(3, n, Z)``, n the rows.  The row sign ``s`` is
+``(n, 1)``.
 """
 from __future__ import annotations
 
@@ -16,7 +17,8 @@ from .layout import (BETA, CAC, CAM, CPHI, CTX, CTZ, CX, C_RULE, D_DEPTH, D_EDGE
                      D_ROLLER, D_ROW, D_S1, D_S2, D_START, D_TAU, EQ2_CAGE, ETA, FREE_CAGE, G_X, G_Y, G_Z,
                      INNER, INNER_RING, J_CD, J_CP, J_RA, J_RD, KINEMATIC, K_CR, LAW, LOAD, L_B, MU_C, M_C,
                      M_R, N_CAGE, N_Q, N_ROLLER, OUTER, OUTER_RING, PHI, POCKET_CAGE, PSI, Q_A, Q_CR1,
-                     Q_CR2, Q_I, Q_O, Q_SIDE, RATE, RATIO, RHO, ROLLER_SURFACE, ROW, ROWS, R_B, R_M, SAC,
+                     Q_CR2, Q_I, Q_O, Q_SIDE, RATE, RATIO, RHO, RINGS, ROLLER_SURFACE, ROW, N_ROWS, R_B, R_M,
+                     SAC,
                      SAM, S_P, S_PA, TH_S, TH_T, TH_X, TH_Y, TH_Z, U_X, U_Z, V_S, V_X, V_Z, W_X, W_Y, W_Z,
                      Z, ZETA)
 from .vec import AX, AY, AZ
@@ -99,7 +101,7 @@ def _defect(D, kind, phi, theta):
     on each roller's row, turning with its ring (rotation ``theta``)."""
     h, s1, s2 = np.zeros_like(phi), np.zeros_like(phi), np.zeros_like(phi)
     found = np.zeros(phi.shape, dtype=bool)
-    row = np.arange(ROWS)[:, None]
+    row = np.arange(phi.shape[0])[:, None]
     for d in D:
         if d[D_KIND] != kind:
             continue
@@ -123,7 +125,7 @@ def _roller_defect(D, psi):
     """``(h_cup, h_cone, s1, s2)`` per roller from the table's roller defects, turning with each
     roller's spin angle psi (see defects.roller_depths)."""
     ho, hi, s1, s2 = (np.zeros_like(psi) for _ in range(4))
-    row = np.arange(ROWS)[:, None]
+    row = np.arange(psi.shape[0])[:, None]
     k = np.arange(psi.shape[1])[None, :]
     for d in D:
         if d[D_KIND] != ROLLER_SURFACE:
@@ -160,7 +162,8 @@ def _raceway(d0, kap, h, s1, s2, Le):
 
 
 def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``(ydot, F (2, LOAD), Qc (2, Z, N_Q))`` as bearing/kernel/evaluate.py's ``evaluate`` writes them."""
+    """``(ydot, F (RINGS, LOAD), Qc (n, Z, N_Q))`` as bearing/kernel/evaluate.py's ``evaluate``
+    writes them."""
     nz = int(P[Z])
     R, rb, Le, Lb = P[R_M], P[R_B], P[L_E], P[L_B]
     cao, sao, cai, sai = P[CAO], P[SAO], P[CAI], P[SAI]
@@ -174,9 +177,10 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     kinematic = P[KINEMATIC] != FREE_CAGE
     pockets = P[KINEMATIC] == POCKET_CAGE         # the quasi-dynamic bearing's cage (roller.py)
     J_orb = Jcp + nz * Mr * R * R
-    nr = ROWS * nz * N_ROLLER
-    rol = y[:nr].reshape(ROWS, nz, N_ROLLER)
-    cag = y[nr:nr + ROWS * N_CAGE].reshape(ROWS, N_CAGE)
+    nrow = int(P[N_ROWS])
+    nr = nrow * nz * N_ROLLER
+    rol = y[:nr].reshape(nrow, nz, N_ROLLER)
+    cag = y[nr:nr + nrow * N_CAGE].reshape(nrow, N_CAGE)
 
     # rings relative to the inner-ring centre (ui = vi = 0)
     th_i = np.array([ring[INNER, TH_X], 0.0, ring[INNER, TH_Z]]).reshape(3, 1, 1)
@@ -188,21 +192,22 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     theta_oy = ring[OUTER, TH_Y]
     omega_w = ring[INNER, W_Y] - ring[OUTER, W_Y]
 
-    s = np.array([1.0, -1.0])[:, None]                      # row sign
-    yj = -s * P[ROW]
+    row = np.arange(nrow)[:, None]
+    s = np.where(2 * row < nrow, 1.0, -1.0)                 # row sign (layout.row_sign)
+    yj = (2 * row + 1 - nrow) * P[ROW]                      # the rows' places (layout.row_y)
     pocket = TWO_PI * np.arange(nz) / nz
 
-    # cages (3, 2, 1)
+    # cages (3, n, 1)
     xc = cag[:, CX:CX + 3].T[:, :, None]
     th_c = _vec(cag[:, CTX], 0.0, cag[:, CTZ])[:, :, None]
     phi_c = cag[:, CPHI][:, None]
     vc = cag[:, RATE + CX:RATE + CX + 3].T[:, :, None]
     wcx, wcz, phid_c = cag[:, RATE + CTX], cag[:, RATE + CTZ], cag[:, RATE + CPHI]
     if P[KINEMATIC] == EQ2_CAGE:
-        phid_c = np.full(ROWS, P[RATIO] * omega_w)
+        phid_c = np.full(nrow, P[RATIO] * omega_w)
     wc = _vec(wcx, phid_c, wcz)[:, :, None]
 
-    # rollers (2, Z)
+    # rollers (n, Z)
     rho, phi, eta, tht, ths = (rol[..., q] for q in (RHO, PHI, ETA, TH_T, TH_S))
     rhod, phid, etad, thtd, thsd, ws = (rol[..., RATE + q] for q in (RHO, PHI, ETA, TH_T, TH_S, PSI))
     if kinematic:
@@ -307,9 +312,9 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
         Qs = Qs + Q
 
     # --- Newton-Euler of the rollers, Eq. (12) in polar form ---
-    ydot = np.zeros(nr + ROWS * N_CAGE)
-    yr = ydot[:nr].reshape(ROWS, nz, N_ROLLER)
-    yc = ydot[nr:].reshape(ROWS, N_CAGE)
+    ydot = np.zeros(nr + nrow * N_CAGE)
+    yr = ydot[:nr].reshape(nrow, nz, N_ROLLER)
+    yc = ydot[nr:].reshape(nrow, N_CAGE)
     Rr = R + rho
     for q, v in ((RHO, rhod), (ETA, etad), (TH_T, thtd), (TH_S, thsd), (PSI, ws), (PHI, phid)):
         yr[..., q] = v
@@ -340,10 +345,10 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     else:
         yc[:, RATE + CPHI] = 0.0 if kinematic else Mc_y / Jcp
 
-    F = np.zeros((ROWS, LOAD))
+    F = np.zeros((RINGS, LOAD))
     F[INNER] = np.concatenate([Fi, Mi])
     F[OUTER] = np.concatenate([Fo, Mo])
-    Qc = np.zeros((ROWS, nz, N_Q))
+    Qc = np.zeros((nrow, nz, N_Q))
     Qw1, Qw2 = Qw
     for q, v in ((Q_O, Qo), (Q_I, Qi), (Q_A, Qa), (Q_CR1, Qw1), (Q_CR2, Qw2), (Q_SIDE, Qs)):
         Qc[..., q] = v

@@ -12,7 +12,7 @@ from .blocks import cage_grad, friction_rows, roller_grad, rows, tilt_rows
 from .contact import (N_LINE, friction, line_integrals, line_load, line_stiffness, load, normal,
                       slip_damping)
 from .layout import (C_SIDE_1, C_SIDE_2, C_WALL_1, C_WALL_2, CAC, K_CR, L_B, M_C, M_R, MU_C, Q_CR1,
-                     Q_CR2, Q_SIDE, R_B, R_M, ROW, S_P, S_PA, SAC, V_S)
+                     Q_CR2, Q_SIDE, R_B, R_M, S_P, S_PA, SAC, V_S)
 from .vec import EY, ZERO, add, cross, dot, lin, mul, sub
 
 
@@ -25,7 +25,7 @@ def pockets(rec, Q, blk, cblk, flag, jk, fr, cage, sp, cp, P, want, h_k):
     bearing/contact.normal)."""
     erp = (sp, 0.0, cp)
     etp = (cp, 0.0, -sp)
-    P0 = lin(P[R_M], erp, -fr.s * P[ROW], EY)
+    P0 = lin(P[R_M], erp, fr.yj, EY)
     dd = sub(fr.c, add(cage.xc, add(P0, cross(cage.th, P0))))    # from the pocket's centre
     m = P[M_R] * P[M_C] / (P[M_R] + P[M_C])                       # the contact's reduced mass
     Q[Q_CR1] = _wall(rec, blk, cblk, flag, jk, fr, cage, dd, lin(P[CAC], etp, P[SAC], erp), 1.0,

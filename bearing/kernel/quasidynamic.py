@@ -80,8 +80,8 @@ from .layout import (
     RATE,
     REC_ORBIT,
     RHO,
+    N_ROWS,
     ROLLER_SURFACE,
-    ROWS,
     TH_S,
     TH_T,
     Z,
@@ -112,11 +112,11 @@ TWO_PI = 2.0 * pi
 
 
 @kernel
-def hold(x, nz):
+def hold(x, nz, nrow):
     """The held DOFs: rollers centred in their pockets (azimuth, orbit rate), no skew; the cages
     centred on the inner ring.  (The solved positions' rates are :func:`equilibrium`'s.)"""
-    for j in range(ROWS):
-        cb = ROWS * nz * N_ROLLER + j * N_CAGE
+    for j in range(nrow):
+        cb = nrow * nz * N_ROLLER + j * N_CAGE
         for q in range(CTZ + 1):                 # every cage position but its angle, CPHI
             x[cb + q] = 0.0
             x[cb + RATE + q] = 0.0
@@ -189,17 +189,16 @@ def equilibrium(model, t, x, ring, P, D, h, w):
     (:func:`spin_step` takes their friction rows).
 
     Newton's method roller by roller (:func:`_newton`).  Returns the evaluations taken,
-    counted in whole bearings (the rollers evaluated over 2 Z)."""
-    nz = int(P[Z])
-    hold(x, nz)
+    counted in whole bearings (the rollers evaluated over n Z, n the rows)."""
+    nz, nrow = int(P[Z]), int(P[N_ROWS])
+    hold(x, nz, nrow)
     rings = ring_frame(ring)
     n_inner, n_roller = count(D, INNER_RING), count(D, ROLLER_SURFACE)
     J_orb = orbital_inertia(P)
-    cb = ROWS * nz * N_ROLLER
-    cages = (cage_frame(x, cb, P, rings.omega), cage_frame(x, cb + N_CAGE, P, rings.omega))
-    for j in range(ROWS):
-        pocket_angles(cages[j].phi, nz, w.sin_p[j], w.cos_p[j])
-    for jk in range(ROWS * nz):
+    cb = nrow * nz * N_ROLLER
+    for j in range(nrow):      # the cages stay where hold put them while the rollers move
+        pocket_angles(cage_frame(x, cb + j * N_CAGE, P, rings.omega).phi, nz, w.sin_p[j], w.cos_p[j])
+    for jk in range(nrow * nz):
         s = w.qd[jk]
         b0 = jk * N_ROLLER
         for q in range(3):
@@ -212,27 +211,28 @@ def equilibrium(model, t, x, ring, P, D, h, w):
     passes = MAX_IT * (MAX_HALVE + 1)
     for it in range(passes + 1):
         n = 0
-        for jk in range(ROWS * nz):
+        for jk in range(nrow * nz):
             if w.qd[jk, QD_ACTIVE] != 0.0:
                 j, k = jk // nz, jk % nz
-                roller(model, x, w.dx, j, k, rings, cages[j], P, D, n_inner, n_roller, w.Qs, w, True,
-                       h, J_orb)
+                cage = cage_frame(x, cb + j * N_CAGE, P, rings.omega)
+                roller(model, x, w.dx, j, k, rings, cage, P, D, n_inner, n_roller, w.Qs, w, True, h,
+                       J_orb)
                 n += 1
         evaluated += n
-        if n == 0 or it == passes or _newton(x, w, P, h, nz) == 0:
+        if n == 0 or it == passes or _newton(x, w, P, h, nz, nrow) == 0:
             break
     ring_loads(w.rec, w.F)
-    for j in range(ROWS):
+    for j in range(nrow):
         orbit = 0.0
         for k in range(nz):
             orbit += w.rec[j * nz + k, REC_ORBIT]
-        cage_rates(x, w.dx, cb + j * N_CAGE, P, w.rec[j * nz:(j + 1) * nz], nz, cages[j], orbit,
-                   J_orb)
-    return evaluated / (ROWS * nz)
+        cage_rates(x, w.dx, cb + j * N_CAGE, P, w.rec[j * nz:(j + 1) * nz], nz,
+                   cage_frame(x, cb + j * N_CAGE, P, rings.omega), orbit, J_orb)
+    return evaluated / (nrow * nz)
 
 
 @kernel
-def _newton(x, w, P, h, nz):
+def _newton(x, w, P, h, nz, nrow):
     """One pass over the rollers still iterating, each evaluated at its last move: a roller whose
     residual grew takes half its step back, up to :data:`MAX_HALVE` times (a roller off a
     raceway has only the floor's stiffness, and its full step would carry it deep into the
@@ -241,7 +241,7 @@ def _newton(x, w, P, h, nz):
     (capped at :data:`CAP`).  Returns how many rollers moved (to be evaluated again)."""
     w_t = 2.0 * P[J_RD] / (P[M_R] * P[L_B])
     moved = 0
-    for jk in range(ROWS * nz):
+    for jk in range(nrow * nz):
         s = w.qd[jk]
         if s[QD_ACTIVE] == 0.0:
             continue
@@ -314,8 +314,9 @@ def spin_step(x, P, h, w):
     J_orb = orbital_inertia(P)
     blk, flag, dx = w.blk, w.flag, w.dx
     ps, ph, pc = BLK_ROLLER + PSI, BLK_ROLLER + PHI, BLK_CAGE + CPHI
-    for j in range(ROWS):
-        cb = ROWS * nz * N_ROLLER + j * N_CAGE
+    nrow = int(P[N_ROWS])
+    for j in range(nrow):
+        cb = nrow * nz * N_ROLLER + j * N_CAGE
         e = 0.0
         for k in range(nz):
             e -= _friction_entry(blk, flag, j * nz + k, CPHI, BLK_CAGE_CAGE + CPHI)

@@ -4,7 +4,9 @@ whose rollers have the six degrees of freedom of :mod:`.layout` (paper Eqs. 12, 
 Frame: the bearing's, origin at the inner-ring centre and translating with it (not spinning);
 x longitudinal, y along the axle, z vertical.  For a roller at azimuth phi:
 ``e_r = (sin phi, 0, cos phi)``, ``e_t = (cos phi, 0, -sin phi)``, ``e_r x e_t = e_y``.  Row j
-(0, 1) sits at ``y = -s row_offset`` with ``s = +1, -1``.  The roller's axis ``a`` leans by the
+of n sits at ``y_j`` (:func:`.layout.row_y`: two rows at ``-+ row_offset``, one at the centre), its
+rollers leaning as its sign ``s`` says (:func:`.layout.row_sign`: +1 on the -y side, -1 on the
++y side).  The roller's axis ``a`` leans by the
 angle ``alpha_m`` from the bearing axis in the axial plane (0 for a cylindrical roller), ``b``
 is normal to it there; the small tilt ``theta_t`` turns the roller about ``e_t``, the skew
 ``theta_s`` about ``b``.
@@ -24,20 +26,20 @@ from math import cos, pi, sin
 from axlebox._numba import kernel
 
 from .layout import (C_FORCE, C_LOAD, C_MOMENT, CAGE_SLOTS, CAM, CPHI, CTX, CTZ, CX, EQ2_CAGE, ETA,
-                     FREE_CAGE, G_X, G_Y, G_Z, INNER, J_CD, J_CP, J_RA, J_RD, KINEMATIC, M_C, M_R, OUTER, PHI,
-                     POCKET_CAGE, PSI, R_M, RATE, RATIO, REC_F, REC_LOAD, REC_M, RHO, ROW, SAM,
-                     TH_S, TH_T, TH_X, TH_Y, TH_Z, U_X, V_X, W_X, W_Y, Z)
+                     FREE_CAGE, G_X, G_Y, G_Z, INNER, J_CD, J_CP, J_RA, J_RD, KINEMATIC, M_C, M_R, N_ROWS,
+                     OUTER, PHI, POCKET_CAGE, PSI, R_M, RATE, RATIO, REC_F, REC_LOAD, REC_M, RHO, ROW, SAM,
+                     TH_S, TH_T, TH_X, TH_Y, TH_Z, U_X, V_X, W_X, W_Y, Z, row_sign, row_y)
 from .vec import EY, add, dot, get, lin, mul, sub
 
 TWO_PI = 2.0 * pi
 
-#: a roller's kinematics (:func:`roller_frame`): the row's sign ``s``, its azimuth ``phi`` and
-#: orbit rate ``phid``,
+#: a roller's kinematics (:func:`roller_frame`): the row's sign ``s`` and axial place ``yj``,
+#: the roller's azimuth ``phi`` and orbit rate ``phid``,
 #: the centre's radius ``Rr = R + rho``, the frame ``er, et`` and the roller's axis ``ax`` and
 #: its normal ``bx``, the centre ``c`` and its displacement ``disp`` from its nominal place, the
 #: centre's velocity ``V``, the angular velocity ``w``, the small rotation ``theta`` and its
 #: tilt and skew ``tht, ths``
-Frame = namedtuple("Frame", ["s", "phi", "phid", "Rr", "er", "et", "ax", "bx", "c", "disp", "V",
+Frame = namedtuple("Frame", ["s", "yj", "phi", "phid", "Rr", "er", "et", "ax", "bx", "c", "disp", "V",
                              "w", "theta", "tht", "ths"])
 #: a row's cage (:func:`cage_frame`): centre, small tilt, angle, velocity, angular velocity
 Cage = namedtuple("Cage", ["xc", "th", "phi", "v", "w"])
@@ -59,12 +61,6 @@ def ring_frame(ring):
                  (ring[OUTER, TH_X], 0.0, ring[OUTER, TH_Z]),
                  sub(get(ring[OUTER], V_X), get(ring[INNER], V_X)), get(ring[OUTER], W_X),
                  ring[INNER, TH_Y], ring[OUTER, TH_Y], ring[INNER, W_Y] - ring[OUTER, W_Y])
-
-
-@kernel
-def row_sign(j):
-    """``s``: +1 for row 0, -1 for row 1."""
-    return 1.0 if j == 0 else -1.0
 
 
 @kernel
@@ -94,7 +90,8 @@ def roller_frame(x, b0, j, P, phi_p, sp, cp, phid_c):
     """:class:`Frame` of the roller of row j whose slots start at ``b0``; ``phi_p``, ``sp``,
     ``cp``: the azimuth of its pocket and its sine and cosine, where a kinematic cage puts it (at
     the rate ``phid_c``)."""
-    s = row_sign(j)
+    nrow = int(P[N_ROWS])
+    s, yj = row_sign(j, nrow), row_y(j, nrow, P[ROW])
     rho, eta = x[b0 + RHO], x[b0 + ETA]
     phi, phid = x[b0 + PHI], x[b0 + RATE + PHI]
     if P[KINEMATIC] != FREE_CAGE:
@@ -111,7 +108,7 @@ def roller_frame(x, b0, j, P, phi_p, sp, cp, phid_c):
     w = add(lin(phid, EY, x[b0 + RATE + PSI], ax),
             lin(x[b0 + RATE + TH_T], et, x[b0 + RATE + TH_S], bx))
     tht, ths = x[b0 + TH_T], x[b0 + TH_S]
-    return Frame(s, phi, phid, Rr, er, et, ax, bx, lin(Rr, er, -s * P[ROW] + eta, EY),
+    return Frame(s, yj, phi, phid, Rr, er, et, ax, bx, lin(Rr, er, yj + eta, EY),
                  lin(rho, er, eta, EY), V, w, lin(tht, et, ths, bx), tht, ths)
 
 

@@ -12,7 +12,7 @@ from axlebox._numba import kernel
 
 from .evaluate import evaluate
 from .implicit import NEWMARK_K, damped_kick
-from .layout import CAGE_ANGLE, CAGE_RATE, CPHI, FREE_CAGE, KINEMATIC, N_CAGE, N_ROLLER, PHI, RATE, ROWS
+from .layout import CAGE_ANGLE, CAGE_RATE, CPHI, FREE_CAGE, KINEMATIC, N_CAGE, N_ROLLER, N_ROWS, PHI, RATE
 from .vec import copy3
 
 EXPLICIT, IMEX, IMEX2 = 0, 1, 2
@@ -21,13 +21,14 @@ MODES = {"leapfrog": EXPLICIT, "imex": IMEX, "imex2": IMEX2}
 
 @kernel
 def cage_outputs(x, dx, out):
-    """The two cages' azimuth and its rate (``out``: :data:`.layout.CAGE_ANGLE`, ``CAGE_RATE``)
-    from the state ``x`` and its derivative ``dx`` (whose azimuth row is the rate: the state's
-    for a free cage, Eq. 2's for a kinematic one)."""
-    cb = x.shape[0] - ROWS * N_CAGE
-    for j in range(ROWS):
-        out[CAGE_ANGLE + j] = x[cb + j * N_CAGE + CPHI]
-        out[CAGE_RATE + j] = dx[cb + j * N_CAGE + CPHI]
+    """Each row's cage azimuth and its rate (``out`` (rows, CAGE_OUT): :data:`.layout.CAGE_ANGLE`,
+    ``CAGE_RATE``) from the state ``x`` and its derivative ``dx`` (whose azimuth row is the rate:
+    the state's for a free cage, Eq. 2's for a kinematic one)."""
+    rows = out.shape[0]
+    cb = x.shape[0] - rows * N_CAGE
+    for j in range(rows):
+        out[j, CAGE_ANGLE] = x[cb + j * N_CAGE + CPHI]
+        out[j, CAGE_RATE] = dx[cb + j * N_CAGE + CPHI]
 
 
 @kernel
@@ -37,7 +38,7 @@ def kick_drift(y, a, P, hk, h, kick):
     is False: the implicit kick did it), then the positions drifted by ``h`` at the new rates; a
     kinematic cage drives the azimuths at the rate the right-hand side gave."""
     kin = P[KINEMATIC] != FREE_CAGE
-    cages = y.shape[0] - ROWS * N_CAGE
+    cages = y.shape[0] - int(P[N_ROWS]) * N_CAGE
     for o in range(0, y.shape[0], N_ROLLER):
         for q in range(RATE):
             if kick:

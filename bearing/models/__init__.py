@@ -29,7 +29,7 @@ from axlebox._params import ParameterError
 from axlebox._params import from_table as _table
 
 from ..kernel import layout
-from . import dcrb, dtrb
+from . import crb, dcrb, dtrb
 from .params import GIVEN_BY_MODEL, SCHEMES, RollerBearing
 
 DEFAULT = "dtrb"
@@ -116,11 +116,14 @@ def check(m, key: str | None = None):
         if not (isinstance(v, (int, float)) and math.isfinite(v)):
             raise ModelError(f"{who}: {m.Params.__name__}().{name} = {v!r} is not allowed: "
                              "expected a number")
+    if isinstance(p.rows, bool) or not isinstance(p.rows, int) or p.rows < 1:
+        raise ModelError(f"{who}: {m.Params.__name__}().rows = {p.rows!r} is not allowed: expected "
+                         "an integer >= 1")
     return m
 
 
 #: the models by the name ``[bearing] type`` gives them, each checked against :data:`CONTRACT`
-MODELS = {name: check(m, name) for name, m in (("dtrb", dtrb), ("dcrb", dcrb))}
+MODELS = {name: check(m, name) for name, m in (("dtrb", dtrb), ("dcrb", dcrb), ("crb", crb))}
 
 
 def module(p):
@@ -178,7 +181,7 @@ def pack(p, gravity=(0.0, 0.0, -9.81)):
 
 
 def n_state(p) -> int:
-    return layout.n_state(p.Z)
+    return layout.n_state(p.Z, p.rows)
 
 
 def nominal_state(p, omega_w: float = 0.0):

@@ -116,6 +116,7 @@ class DcrbParams(RollerBearing):
         require(self.L_we <= self.L_b, self, "L_we", f"expected at most the roller length "
                 f"L_b = {self.L_b:g} m")
 
+    rows = 2                                   # an NJ and an NJP side by side
     alpha_o = alpha_i = alpha_m = 0.0          # a cylindrical roller's: radial contacts, axis
 
     @property
@@ -211,9 +212,9 @@ def ring_stiffness(p: DcrbParams, F):
     # axial: the rib contacts at a hundredth of the radial load, two in series a roller
     E = e_prime(p.E_r, p.nu_r, p.E_r, p.nu_r)
     K = k_point_sphere(E, p.R_e)
-    q = 0.01 * np.linalg.norm(F) / (2 * p.Z)
+    q = 0.01 * np.linalg.norm(F) / (p.rows * p.Z)
     k_one = 1.5 * K ** (2 / 3) * q ** (1 / 3)
-    out[lo.F_Y] = 2 * p.Z * 0.5 * k_one
+    out[lo.F_Y] = p.rows * p.Z * 0.5 * k_one
     return out
 
 

@@ -37,7 +37,7 @@ def quasi_dynamic_steps() -> dict:
 #: them (the quasi-static model, the fault orders, the defects, the nominal state, the catalogue);
 #: :class:`RollerBearing` declares each as a property that refuses, naming the model's class,
 #: until the model gives it (tests/test_bearing_models.py reads the readers)
-GIVEN_BY_MODEL = ("alpha_o", "alpha_i", "alpha_m", "clearance_n", "L_e", "D_o", "D_i")
+GIVEN_BY_MODEL = ("rows", "alpha_o", "alpha_i", "alpha_m", "clearance_n", "L_e", "D_o", "D_i")
 
 
 @dataclass(frozen=True)
@@ -129,6 +129,13 @@ class RollerBearing:
                                   "(bearing/models/params.py, RollerBearing)")
 
     @property
+    def rows(self) -> int:
+        """The rows of rollers (an integer >= 1): the kernels' arrays are sized by it and its
+        rows placed about the centre by it (bearing/kernel/layout.py ``row_y``: two rows at
+        ``-+ row_offset``, one at the centre)."""
+        return self._not_given("rows", "the rows of rollers, an integer >= 1")
+
+    @property
     def alpha_o(self) -> float:
         """The outer raceway's contact angle (rad): its contact normal from the radial plane
         (0 for radial contacts); the fault orders' and the quasi-static model's angle."""
@@ -171,6 +178,8 @@ class RollerBearing:
 @dataclass(frozen=True)
 class BearingParams(RollerBearing):
     """The DTRB: the paper's double-row tapered roller bearing (module docstring)."""
+
+    rows = 2                                   # back to back (bearing/models/dtrb.py)
 
     alpha_o: float = param(radians(10.0), 0.0, radians(45.0), unit="rad", doc="cup (outer) contact angle")
     alpha_i: float = param(radians(7.5), 0.0, radians(45.0), unit="rad", doc="cone (inner) contact angle")

@@ -1,13 +1,16 @@
-"""Quasi-static equilibrium of a double-row roller bearing under ring loads (Newton's method): any
-model's, by its contact angle ``alpha_o`` and clearance ``clearance_n`` (the DCRB's radial: 0).
+"""Quasi-static equilibrium of a roller bearing of one or more rows under ring loads (Newton's
+method): any model's, by its rows, contact angle ``alpha_o`` and clearance ``clearance_n`` (the
+DCRB's radial: 0).
 
 Unknowns: the inner ring's displacement relative to the outer ring,
 ``q = (x, y, z, theta_x, theta_z)`` (the spin rotation theta_y is free).  For
 the roller k of row j at azimuth ``psi_k = 2 pi (k - 1) / Z`` (measured from
-+z towards +x, the paper's Eq. 2 convention) and axial position
-``y_j = -+ row_offset``, the inner ring moves ``d = t + theta x r`` at the
-roller, and Eqs. (1) and (3) give the normal approach along the contact
-normal ``n = cos(alpha) e_r + s_j sin(alpha) e_y`` (``s_j = (-1)^(j-1)``):
++z towards +x, the paper's Eq. 2 convention) and axial position ``y_j``
+(bearing/kernel/layout.py ``row_y``: two rows at ``-+ row_offset``, one at the
+centre), the inner ring moves ``d = t + theta x r`` at the roller, and Eqs. (1)
+and (3) give the normal approach along the contact normal
+``n = cos(alpha) e_r + s_j sin(alpha) e_y`` (``s_j``: ``row_sign``, +1 on the -y
+side, -1 on the +y side):
 
 ``delta_n = d . n - c_n``, ``c_n = max(u_r cos(alpha), u_a sin(alpha)) / 2``
 (:attr:`RollerBearing.clearance_n`, each model's own).
@@ -32,6 +35,7 @@ import numpy as np
 
 from axlebox._params import ParameterError
 
+from ..kernel.layout import row_sign, row_y
 from ..models.params import RollerBearing
 from .stiffness import roller_raceways
 
@@ -43,30 +47,28 @@ QX, QY, QZ, QTX, QTZ, N_QS = range(6)     # q: the inner ring's displacement and
 class Equilibrium:
     q: np.ndarray            # (5,) x, y, z (m), theta_x, theta_z (rad) of the inner ring
     psi: np.ndarray          # (Z,) roller azimuths, rad
-    delta: np.ndarray        # (2, Z) normal approach, m (negative: no contact)
-    Q: np.ndarray            # (2, Z) roller loads, N
+    delta: np.ndarray        # (rows, Z) normal approach, m (negative: no contact)
+    Q: np.ndarray            # (rows, Z) roller loads, N
     load: np.ndarray         # (5,) the applied Fx, Fy, Fz, Mx, Mz
     iterations: int
     residual: float          # |load - roller resultant| / |load|
 
     def loaded_zone(self, row: int) -> float:
-        """Half-angle of the loaded zone of ``row`` (0 or 1), rad: the largest ``|psi|`` carrying load."""
+        """Half-angle of the loaded zone of ``row`` (from 0), rad: the largest ``|psi|`` carrying load."""
         psi = np.angle(np.exp(1j * self.psi))
         loaded = self.Q[row] > 0
         return float(np.abs(psi[loaded]).max()) if loaded.any() else 0.0
 
 
 def _geometry(p: RollerBearing, psi: np.ndarray):
-    """Per roller: generalised normal ``g = [n; r x n]`` restricted to q (2, Z, 5) and clearance."""
+    """Per roller: generalised normal ``g = [n; r x n]`` restricted to q (rows, Z, 5) and clearance."""
     R = 0.5 * p.D_m
-    s = np.array([1.0, -1.0])
-    y = np.array([-p.row_offset, p.row_offset])
     ca, sa = np.cos(p.alpha_o), np.sin(p.alpha_o)
     er = np.stack([np.sin(psi), np.zeros_like(psi), np.cos(psi)], axis=-1)        # (Z, 3)
-    G = np.zeros((2, len(psi), N_QS))
-    for j in range(2):
-        n = ca * er + s[j] * sa * np.array([0.0, 1.0, 0.0])
-        r = R * er + np.array([0.0, y[j], 0.0])
+    G = np.zeros((p.rows, len(psi), N_QS))
+    for j in range(p.rows):
+        n = ca * er + row_sign(j, p.rows) * sa * np.array([0.0, 1.0, 0.0])
+        r = R * er + np.array([0.0, row_y(j, p.rows, p.row_offset), 0.0])
         m_x, _, m_z = np.cross(r, n).T
         G[j, :, QX:QZ + 1] = n
         G[j, :, QTX] = m_x
