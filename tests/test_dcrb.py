@@ -148,8 +148,8 @@ def test_the_dcrb_is_taken_by_name():
     takes: tests/test_bearing_models.py)."""
     assert isinstance(models.from_table({"type": "dcrb", "Z": 16}), DcrbParams)
     with pytest.raises(ParameterError,
-                       match=r"bearing\.type = 'crb' is not allowed: expected one of dtrb, dcrb"):
-        models.from_table({"type": "crb"})
+                       match=r"bearing\.type = 'nu' is not allowed: expected one of dtrb, dcrb, crb"):
+        models.from_table({"type": "nu"})
     entry = catalogue.lookup("dcrb")
     assert entry.bore == 0.130 and entry.orders == models.orders(DcrbParams())
     cfg = vconfig.load(configs.path("dcrb_48kmh"))
