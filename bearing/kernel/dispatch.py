@@ -52,19 +52,16 @@ def scheme_of(tag_class) -> str:
     return _SCHEME_OF[tag_class]
 
 
-def contacts(model, rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n_roller, want,
-             h_k):
+def contacts(model, ct, Q, j, k, fr, rings, psi, P, D, n_inner, n_roller, want, h_k):
     """A roller's contacts with the rings in the bearing model of tag ``model`` (numba only:
     the model's own ``contacts``)."""
     raise NotImplementedError("bearing.kernel.dispatch.contacts runs in numba only")
 
 
 @overload(contacts, jit_options={"cache": True, "error_model": "numpy"}, inline="always")
-def _contacts(model, rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n_roller, want,
-              h_k):
+def _contacts(model, ct, Q, j, k, fr, rings, psi, P, D, n_inner, n_roller, want, h_k):
     f = _CONTACTS_OF[model.instance_class]
 
-    def impl(model, rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n_roller, want,
-             h_k):
-        f(rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n_roller, want, h_k)
+    def impl(model, ct, Q, j, k, fr, rings, psi, P, D, n_inner, n_roller, want, h_k):
+        f(ct, Q, j, k, fr, rings, psi, P, D, n_inner, n_roller, want, h_k)
     return impl

@@ -52,6 +52,7 @@ from .layout import (
     RINGS,
     ROLLER_SURFACE,
     Z,
+    Touch,
     rows_of,
 )
 from .pocket import pockets
@@ -132,9 +133,9 @@ def roller(model, x, dx, j, k, rings, cage, P, D, n_inner, n_roller, Qc, w, want
     rec[:] = 0.0
     put(rec, REC_F, mul(P[M_R], (P[G_X], P[G_Y], P[G_Z])))          # its weight, then its contacts
     w.flag[jk] = BLK_NONE
-    contacts(model, rec, Qc[j, k], w.blk, w.cblk[j], w.flag, jk, j, k, fr, rings, x[b0 + PSI], P, D,
-             n_inner, n_roller, want, h_k)
-    pockets(rec, Qc[j, k], w.blk, w.cblk[j], w.flag, jk, fr, cage, sp, cp, P, want, h_k)
+    ct = Touch(rec, w.blk, w.cblk[j], w.flag, jk)
+    contacts(model, ct, Qc[j, k], j, k, fr, rings, x[b0 + PSI], P, D, n_inner, n_roller, want, h_k)
+    pockets(ct, Qc[j, k], fr, cage, sp, cp, P, want, h_k)
     rec[REC_ORBIT] = roller_rates(x, dx, b0, fr, rec, P, phid_c, J_orb)
 
 

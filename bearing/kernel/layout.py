@@ -61,6 +61,7 @@ shares: roller and cage dynamics, pockets, contact laws, :mod:`.roller`, :mod:`.
 """
 from __future__ import annotations
 
+from collections import namedtuple
 from math import cos, pi, sin
 
 import numpy as np
@@ -100,6 +101,11 @@ REC_ORBIT = REC_LOAD + C_LOAD * N_C
 REC_SPIN, REC = REC_ORBIT + 1, REC_ORBIT + 2
 BLK_ROLLER, BLK_CAGE, BLK_CAGE_CAGE, BLK = 0, 6, 12, 18
 BLK_NONE, BLK_OWN, BLK_COUPLED = 0, 1, 2
+#: what one roller's contacts write, passed as one (bearing/kernel/evaluate.py makes it a roller):
+#: its record ``rec`` (REC,), the bearing's block rows ``blk`` (n Z, 6, BLK) and their flags
+#: ``flag`` (n Z), its row's cage block ``cblk`` (6, 6), and ``jk``, its index in ``blk`` and
+#: ``flag``
+Touch = namedtuple("Touch", ["rec", "blk", "cblk", "flag", "jk"])
 
 # --- the parameter slots every model fills ----------------------------------------------------------
 # Z rollers a row; N_ROWS the rows; R_M pitch radius; R_B roller radius; L_B roller length; CAM,

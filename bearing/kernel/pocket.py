@@ -17,26 +17,27 @@ from .vec import EY, ZERO, add, cross, dot, lin, mul, sub
 
 
 @kernel(inline="always")
-def pockets(rec, Q, blk, cblk, flag, jk, fr, cage, sp, cp, P, want, h_k):
+def pockets(ct, Q, fr, cage, sp, cp, P, want, h_k):
     """The pocket of roller ``fr`` (bearing/kernel/roller.py ``Frame``) in ``cage`` (its ``Cage``),
     the pocket's azimuth of sine ``sp`` and cosine ``cp``: both walls and the side beams into
-    the roller's record ``rec``, their normal loads into its contact outputs ``Q``, and with
-    ``want`` their rows into its block and its cage's ``cblk`` (bearing/kernel/blocks.py; ``h_k``:
+    the roller's record ``ct.rec`` (``ct``: its :data:`.layout.Touch`), their normal loads into
+    its contact outputs ``Q``, and with ``want`` their rows into its block and its cage's
+    ``ct.cblk`` (bearing/kernel/blocks.py; ``h_k``:
     bearing/contact.normal)."""
     erp = (sp, 0.0, cp)
     etp = (cp, 0.0, -sp)
     P0 = lin(P[R_M], erp, fr.yj, EY)
     dd = sub(fr.c, add(cage.xc, add(P0, cross(cage.th, P0))))    # from the pocket's centre
     m = P[M_R] * P[M_C] / (P[M_R] + P[M_C])                       # the contact's reduced mass
-    Q[Q_CR1] = _wall(rec, blk, cblk, flag, jk, fr, cage, dd, lin(P[CAC], etp, P[SAC], erp), 1.0,
+    Q[Q_CR1] = _wall(ct, fr, cage, dd, lin(P[CAC], etp, P[SAC], erp), 1.0,
                      C_WALL_1, m, P, want, h_k)
-    Q[Q_CR2] = _wall(rec, blk, cblk, flag, jk, fr, cage, dd, lin(-P[CAC], etp, P[SAC], erp), -1.0,
+    Q[Q_CR2] = _wall(ct, fr, cage, dd, lin(-P[CAC], etp, P[SAC], erp), -1.0,
                      C_WALL_2, m, P, want, h_k)
-    Q[Q_SIDE] = _side_beams(rec, blk, cblk, flag, jk, fr, cage, dd, m, P, want, h_k)
+    Q[Q_SIDE] = _side_beams(ct, fr, cage, dd, m, P, want, h_k)
 
 
 @kernel(inline="always")
-def _wall(rec, blk, cblk, flag, jk, fr, cage, dd, nw, sw, slot, m, P, want, h_k):
+def _wall(ct, fr, cage, dd, nw, sw, slot, m, P, want, h_k):
     """One pocket wall of normal ``nw`` (side ``sw``, record slot ``slot``): its line contact along
     the roller, the roller's skew relative to the cage in the tilt.  Returns its normal load."""
     Lb = P[L_B]
@@ -57,21 +58,21 @@ def _wall(rec, blk, cblk, flag, jk, fr, cage, dd, nw, sw, slot, m, P, want, h_k)
     f = friction(v, nw, P[MU_C] * Q, P[V_S])
     fr_ = lin(-Q, nw, 1.0, f)
     couple = mul(m1, cross(fr.ax, nw))               # the roller's skew against the wall
-    load(rec, slot, fr_, sub(cross(r, f), couple), sub(couple, cross(rel, fr_)))
+    load(ct.rec, slot, fr_, sub(cross(r, f), couple), sub(couple, cross(rel, fr_)))
     if want and c > 0.0:
         Jw, Jwc = roller_grad(nw, r, fr), cage_grad(nw, rel)
-        rows(blk, cblk, flag, jk, c, Jw, Jwc, True)
+        rows(ct, c, Jw, Jwc, True)
         if stiff:
-            friction_rows(blk, cblk, flag, jk, slip_damping(v, nw, P[MU_C] * Q, P[V_S]), EY, nw, r,
+            friction_rows(ct, slip_damping(v, nw, P[MU_C] * Q, P[V_S]), EY, nw, r,
                           fr, rel, True)
-            tilt_rows(blk, cblk, flag, jk, h_k * KL * kdk, h_k * KL * kkk, Jw,
+            tilt_rows(ct, h_k * KL * kdk, h_k * KL * kkk, Jw,
                       (0.0, 0.0, 0.0, 0.0, gs, 0.0), Jwc, (0.0, 0.0, 0.0, -gs * bx_x, -gs * bx_z, 0.0),
                       True)
     return Q
 
 
 @kernel(inline="always")
-def _side_beams(rec, blk, cblk, flag, jk, fr, cage, dd, m, P, want, h_k):
+def _side_beams(ct, fr, cage, dd, m, P, want, h_k):
     """The side beams at the roller's two ends: the axial play ``chi`` of the roller in its
     pocket beyond the clearance, the same line law along the end's diameter.  Returns their
     normal load."""
@@ -88,10 +89,10 @@ def _side_beams(rec, blk, cblk, flag, jk, fr, cage, dd, m, P, want, h_k):
         Q, c = normal(P[K_CR] * d0 ** N_LINE, P[K_CR], N_LINE, sw * chid, m, P, d0, 0.0, h_k)
         n = mul(sw, EY)
         if want and c > 0.0:
-            rows(blk, cblk, flag, jk, c, roller_grad(n, ZERO, fr), cage_grad(n, sub(fr.c, cage.xc)),
+            rows(ct, c, roller_grad(n, ZERO, fr), cage_grad(n, sub(fr.c, cage.xc)),
                  True)
         fr_ = mul(-sw * Q, EY)
         rel = sub(lin(1.0, fr.c, 0.5 * sw * P[L_B], EY), cage.xc)     # from the roller's end
-        load(rec, slot, fr_, ZERO, mul(-1.0, cross(rel, fr_)))
+        load(ct.rec, slot, fr_, ZERO, mul(-1.0, cross(rel, fr_)))
         Qs += Q
     return Qs

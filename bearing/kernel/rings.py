@@ -31,7 +31,7 @@ def raceway_approach(fr, n, sigma, clearance, u, th, P):
 
 
 @kernel(inline="always")
-def raceway_load(rec, blk, cblk, flag, jk, fr, n, sigma, r, rel, v_r, w_r, d0, kap, law, K, L, mu,
+def raceway_load(ct, fr, n, sigma, r, rel, v_r, w_r, d0, kap, law, K, L, mu,
                  slot, P, want, h_k):
     """The raceway contact of :func:`raceway_approach` under its line law's ``law = (i0, i1,
     kdd, kdk, kkk)`` (``int delta^n``, ``int s delta^n`` over the line of length L and, for the
@@ -47,20 +47,20 @@ def raceway_load(rec, blk, cblk, flag, jk, fr, n, sigma, r, rel, v_r, w_r, d0, k
     f = friction(v, n, mu * Q, P[V_S])
     fr_ = lin(-Q, n, 1.0, f)
     couple = mul(-sigma * fr.s * m1, fr.et)          # the tilted line's restoring moment
-    load(rec, slot, fr_, add(couple, cross(r, f)), mul(-1.0, add(cross(rel, fr_), couple)))
+    load(ct.rec, slot, fr_, add(couple, cross(r, f)), mul(-1.0, add(cross(rel, fr_), couple)))
     if want and c > 0.0:
         J = roller_grad(n, r, fr)
-        rows(blk, cblk, flag, jk, c, J, ZERO6, False)
+        rows(ct, c, J, ZERO6, False)
         if want and h_k > 0.0:
-            tilt_rows(blk, cblk, flag, jk, h_k * KL * kdk, h_k * KL * kkk, J, tilt_grad(sigma * fr.s),
+            tilt_rows(ct, h_k * KL * kdk, h_k * KL * kkk, J, tilt_grad(sigma * fr.s),
                       ZERO6, ZERO6, False)
-            friction_rows(blk, cblk, flag, jk, slip_damping(v, n, mu * Q, P[V_S]), fr.et, n, r, fr,
+            friction_rows(ct, slip_damping(v, n, mu * Q, P[V_S]), fr.et, n, r, fr,
                           ZERO, False)
     return Q
 
 
 @kernel(inline="always")
-def rib(rec, blk, cblk, flag, jk, fr, n, ra, u, th, v_r, w_r, gap, K, mu, slot, P, want, h_k):
+def rib(ct, fr, n, ra, u, th, v_r, w_r, gap, K, mu, slot, P, want, h_k):
     """A rib's point contact ``K delta^(3/2)`` at ``ra`` from the centre of roller ``fr``, normal
     ``n`` from the roller to the rib, beyond the play ``gap``; the ring's displacement, small
     rotation, velocity and angular velocity ``u, th, v_r, w_r``: into the roller's record slot
@@ -73,10 +73,10 @@ def rib(rec, blk, cblk, flag, jk, fr, n, ra, u, th, v_r, w_r, gap, K, mu, slot, 
     v = sub(add(fr.V, cross(fr.w, ra)), add(v_r, cross(w_r, rel)))
     Q, c = normal(K * d0 * sqrt(d0), K, N_POINT, dot(v, n), P[M_R], P, d0, 0.0, h_k)
     fr_ = lin(-Q, n, 1.0, friction(v, n, mu * Q, P[V_S]))
-    load(rec, slot, fr_, cross(ra, fr_), mul(-1.0, cross(rel, fr_)))
+    load(ct.rec, slot, fr_, cross(ra, fr_), mul(-1.0, cross(rel, fr_)))
     if want and c > 0.0:
-        rows(blk, cblk, flag, jk, c, roller_grad(n, ra, fr), ZERO6, False)
+        rows(ct, c, roller_grad(n, ra, fr), ZERO6, False)
         if h_k > 0.0:
-            friction_rows(blk, cblk, flag, jk, slip_damping(v, n, mu * Q, P[V_S]), fr.et, n, ra, fr,
+            friction_rows(ct, slip_damping(v, n, mu * Q, P[V_S]), fr.et, n, ra, fr,
                           ZERO, False)
     return Q

@@ -220,11 +220,11 @@ def ring_stiffness(p: DcrbParams, F):
 
 # --- the rollers' contacts with the rings (numba) -----------------------------------------------
 @kernel(inline="always")
-def contacts(rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n_roller, want, h_k):
-    """Roller k of row j (:class:`.roller.Frame` ``fr``; ``psi`` its spin angle) on both raceways
-    (their line contacts by slices) and against the ribs of both rings: their loads into the
-    roller's record ``rec``, their normal loads into its outputs ``Q`` (``Q_A`` the two ribs'
-    together) and, with ``want``, their rows into its block."""
+def contacts(ct, Q, j, k, fr, rings, psi, P, D, n_inner, n_roller, want, h_k):
+    """Roller k of row j (:class:`.roller.Frame` ``fr``; ``psi`` its spin angle) on both raceways (their line
+    contacts by slices) and against the ribs of both rings: their loads into the roller's record ``ct.rec``
+    (``ct``: its bearing/kernel/layout.py ``Touch``), their normal loads into its outputs ``Q`` (``Q_A`` the
+    two ribs' together) and, with ``want``, their rows into its block."""
     stiff = want and h_k > 0.0
     h, s1, s2 = depth_under(D, OUTER_RING, j, fr.phi, rings.angle_o)
     hr_o, hr_i, r1, r2 = roller_depths(D, j, k, psi) if n_roller > 0 else (0.0, 0.0, 0.0, 0.0)
@@ -232,7 +232,7 @@ def contacts(rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n
         h, s1, s2 = hr_o, r1, r2
     n = fr.er                                                      # to the outer ring
     d0, kap, r, rel = raceway_approach(fr, n, 1.0, P[C_O], rings.uo, rings.tho, P)
-    Q[Q_O] = raceway_load(rec, blk, cblk, flag, jk, fr, n, 1.0, r, rel, rings.vo, rings.wo, d0, kap,
+    Q[Q_O] = raceway_load(ct, fr, n, 1.0, r, rel, rings.vo, rings.wo, d0, kap,
                           slices(d0, kap, h, s1, s2, P, stiff), P[K_LINE], P[L_E], P[MU_R], C_OUTER,
                           P, want, h_k)
     h, s1, s2 = depth_under(D, INNER_RING, j, fr.phi, rings.angle_i) if n_inner > 0 else (0.0, 0.0, 0.0)
@@ -240,17 +240,17 @@ def contacts(rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n
         h, s1, s2 = hr_i, r1, r2
     n = mul(-1.0, fr.er)                                           # to the inner ring
     d0, kap, r, rel = raceway_approach(fr, n, -1.0, 0.0, rings.ui, rings.thi, P)
-    Q[Q_I] = raceway_load(rec, blk, cblk, flag, jk, fr, n, -1.0, r, rel, rings.vi, rings.wi, d0, kap,
+    Q[Q_I] = raceway_load(ct, fr, n, -1.0, r, rel, rings.vi, rings.wi, d0, kap,
                           slices(d0, kap, h, s1, s2, P, stiff), P[K_LINE], P[L_E], P[MU_R], C_INNER,
                           P, want, h_k)
-    Q[Q_A] = (_ribs(rec, blk, cblk, flag, jk, fr, 1.0, rings.uo, rings.tho, rings.vo, rings.wo,
+    Q[Q_A] = (_ribs(ct, fr, 1.0, rings.uo, rings.tho, rings.vo, rings.wo,
                     C_OUTER_RIB, P, want, h_k)
-              + _ribs(rec, blk, cblk, flag, jk, fr, -1.0, rings.ui, rings.thi, rings.vi, rings.wi,
+              + _ribs(ct, fr, -1.0, rings.ui, rings.thi, rings.vi, rings.wi,
                       C_INNER_RIB, P, want, h_k))
 
 
 @kernel
-def _ribs(rec, blk, cblk, flag, jk, fr, side, u, th, v_r, w_r, slot, P, want, h_k):
+def _ribs(ct, fr, side, u, th, v_r, w_r, slot, P, want, h_k):
     """The ribs of one ring (``side`` +1 the outer ring's, whose ribs meet the roller's end face
     above its axis, -1 the inner ring's, below): the one at the end the roller has moved toward
     along the bearing's axis, beyond half the play.  Returns its normal load."""
@@ -259,7 +259,7 @@ def _ribs(rec, blk, cblk, flag, jk, fr, side, u, th, v_r, w_r, slot, P, want, h_
     lead = 1.0 if eta - u_y >= 0.0 else -1.0          # the roller moves toward +y or -y
     # the end face toward it (the roller's axis is s e_y), at h_r from the axis toward the ring
     ra = lin(0.5 * lead * fr.s * P[L_B], fr.ax, side * P[H_R], fr.er)
-    return rib(rec, blk, cblk, flag, jk, fr, mul(lead, EY), ra, u, th, v_r, w_r, P[PLAY], P[K_A],
+    return rib(ct, fr, mul(lead, EY), ra, u, th, v_r, w_r, P[PLAY], P[K_A],
                P[MU_A], slot, P, want, h_k)
 
 

@@ -115,12 +115,12 @@ def ring_stiffness(p, F):
 
 # --- the rollers' contacts with the rings (numba) -------------------------------------------------
 @kernel(inline="always")
-def contacts(rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n_roller, want, h_k):
-    """Roller k of row j (:class:`.roller.Frame` ``fr``; ``psi`` its spin angle) against the
-    cup, the cone and the cone's rib (``rings``: :class:`.roller.Rings`): their loads into the
-    roller's record ``rec``, their normal loads into its outputs ``Q`` and, with ``want``, their
-    rows into its block (bearing/kernel/blocks.py).  ``n_inner``, ``n_roller``: the defect table's
-    inner-ring and roller defects (none: not looked up)."""
+def contacts(ct, Q, j, k, fr, rings, psi, P, D, n_inner, n_roller, want, h_k):
+    """Roller k of row j (:class:`.roller.Frame` ``fr``; ``psi`` its spin angle) against the cup, the cone and
+    the cone's rib (``rings``: :class:`.roller.Rings`): their loads into the roller's record ``ct.rec``
+    (``ct``: its bearing/kernel/layout.py ``Touch``), their normal loads into its outputs ``Q`` and, with
+    ``want``, their rows into its block (bearing/kernel/blocks.py). ``n_inner``, ``n_roller``: the defect
+    table's inner-ring and roller defects (none: not looked up)."""
     s = fr.s
     stiff = want and h_k > 0.0
     h, s1, s2 = depth_under(D, OUTER_RING, j, fr.phi, rings.angle_o)
@@ -129,7 +129,7 @@ def contacts(rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n
         h, s1, s2 = hr_o, r1, r2
     n = lin(P[CAO], fr.er, s * P[SAO], EY)                     # cup, Eqs. (1), (3a), (4a), (14)
     d0, kap, r, rel = raceway_approach(fr, n, 1.0, P[C_O], rings.uo, rings.tho, P)
-    Q[Q_O] = raceway_load(rec, blk, cblk, flag, jk, fr, n, 1.0, r, rel, rings.vo, rings.wo, d0, kap,
+    Q[Q_O] = raceway_load(ct, fr, n, 1.0, r, rel, rings.vo, rings.wo, d0, kap,
                           line_with_defect(d0, kap, h, s1, s2, P[L_E], stiff), P[K_O], P[L_E],
                           P[MU_R], C_OUTER, P, want, h_k)
     h, s1, s2 = depth_under(D, INNER_RING, j, fr.phi, rings.angle_i) if n_inner > 0 else (0.0, 0.0, 0.0)
@@ -137,11 +137,11 @@ def contacts(rec, Q, blk, cblk, flag, jk, j, k, fr, rings, psi, P, D, n_inner, n
         h, s1, s2 = hr_i, r1, r2
     n = lin(-P[CAI], fr.er, -s * P[SAI], EY)                   # cone, Eqs. (1), (3b), (4a)
     d0, kap, r, rel = raceway_approach(fr, n, -1.0, 0.0, rings.ui, rings.thi, P)
-    Q[Q_I] = raceway_load(rec, blk, cblk, flag, jk, fr, n, -1.0, r, rel, rings.vi, rings.wi, d0, kap,
+    Q[Q_I] = raceway_load(ct, fr, n, -1.0, r, rel, rings.vi, rings.wi, d0, kap,
                           line_with_defect(d0, kap, h, s1, s2, P[L_E], stiff), P[K_I], P[L_E],
                           P[MU_R], C_INNER, P, want, h_k)
     # the cone's rib on the large end, at h_r above the roller's axis, Eqs. (3c), (4b), (8)
-    Q[Q_A] = rib(rec, blk, cblk, flag, jk, fr, lin(P[SAF], fr.er, -s * P[CAF], EY),
+    Q[Q_A] = rib(ct, fr, lin(P[SAF], fr.er, -s * P[CAF], EY),
                  lin(-0.5 * P[L_B], fr.ax, -P[H_R], fr.bx), rings.ui, rings.thi, rings.vi, rings.wi,
                  0.0, P[K_A], P[MU_A], C_INNER_RIB, P, want, h_k)
 
