@@ -473,7 +473,7 @@ def bad_inputs(tmp_path, left, right):
                                  CWRU_ORDERS], ["--bore is missing"]),
         "unknown bearing": ([str(files["csv with header"][0]), "--fs", str(FS), *sh,
                              "--bearing-right", "6206"],
-                            ["--bearing-right '6206'", "6203, 6205, dcrb, dtrb"]),
+                            ["--bearing-right '6206'", "6203, 6205, crb, dcrb, dtrb"]),
         "two bearings for a side": ([str(files["csv with header"][0]), "--fs", str(FS), *sh,
                                      "--bearing-left", "6205", "--orders-left", CWRU_ORDERS],
                                     ["--orders-left and --bearing-left"]),

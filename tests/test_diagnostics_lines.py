@@ -27,7 +27,7 @@ def test_the_catalogue_holds_the_published_orders():
     assert lookup(" DTRB ").orders == orders(BearingParams())
     json.dumps({k: b.to_dict() for k, b in catalogue().items()})
     with pytest.raises(ParameterError, match=r"--bearing-left '6206' is not allowed: expected one "
-                                             r"of 6203, 6205, dcrb, dtrb"):
+                                             r"of 6203, 6205, crb, dcrb, dtrb"):
         lookup("6206", "--bearing-left")
 
 
