@@ -59,12 +59,9 @@ def test_static_load_distribution_with_clearance_is_harris(single):
     p = CrbParams(crown_drop=0.0)
     d_r, Qo = single
     assert Qo.shape == (1, p.Z)
-    eps = loaddist.eps_radial(d_r, p.u_r)
     E = stiffness.e_prime(p.E_r, p.nu_r, p.E_r, p.nu_r)
     K_n = stiffness.series(stiffness.k_line(E, p.L_we), stiffness.k_line(E, p.L_we))
-    Q_max = K_n * (d_r - p.u_r / 2) ** (10 / 9)
-    psi = 2 * np.pi * np.arange(p.Z) / p.Z
-    Q_psi = Q_max * np.clip(1 - (1 - np.cos(psi)) / (2 * eps), 0, None) ** (10 / 9)
+    Q_max, Q_psi, eps = loaddist.radial_rollers(d_r, p.u_r, K_n, p.Z)
     assert Qo[0].max() == pytest.approx(Q_max, rel=0.01)
     assert np.abs(Qo[0] - Q_psi).max() < 0.01 * Q_max
     assert p.Z * Qo[0].max() * loaddist.J_r(eps) == pytest.approx(F_ROW, rel=0.03)

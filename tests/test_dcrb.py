@@ -61,12 +61,9 @@ def test_static_load_distribution_with_clearance_is_harris(static):
     here) within the 3 % the issue names."""
     p, uo, Qo = static
     d_r = -uo[2]
-    eps = loaddist.eps_radial(d_r, p.u_r)
     E = stiffness.e_prime(p.E_r, p.nu_r, p.E_r, p.nu_r)
     K_n = stiffness.series(stiffness.k_line(E, p.L_we), stiffness.k_line(E, p.L_we))
-    Q_max = K_n * (d_r - p.u_r / 2) ** (10 / 9)
-    psi = 2 * np.pi * np.arange(p.Z) / p.Z
-    Q_psi = Q_max * np.clip(1 - (1 - np.cos(psi)) / (2 * eps), 0, None) ** (10 / 9)
+    Q_max, Q_psi, eps = loaddist.radial_rollers(d_r, p.u_r, K_n, p.Z)
     for row in (0, 1):
         assert Qo[row].max() == pytest.approx(Q_max, rel=0.01)
         assert np.abs(Qo[row] - Q_psi).max() < 0.01 * Q_max

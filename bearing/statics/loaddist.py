@@ -33,3 +33,17 @@ def eps_radial(delta_r: float, u_r: float) -> float:
     """Load-zone parameter from the ring's radial approach and diametral clearance:
     ``eps = (1 - u_r / (2 delta_r)) / 2`` (Harris eq. 7.21)."""
     return 0.5 * (1 - u_r / (2 * delta_r))
+
+
+def radial_rollers(delta_r: float, P_d: float, K_n: float, Z: int, n: float = 10 / 9):
+    """A radially loaded row's roller loads in Harris's closed form with clearance (Harris and
+    Kotzalas, Essential Concepts of Bearing Technology, 2007, sec. 7.2, eqs. 7.19-7.21):
+    ``(Q_max, Q, eps)``, the heaviest roller's ``K_n (delta_r - P_d / 2)^n``, each roller's at
+    ``psi_k = 2 pi k / Z`` from the load line ``Q_max (1 - (1 - cos psi_k) / (2 eps))^n`` (0
+    outside the loaded zone) and the load-zone parameter :func:`eps_radial`; ``delta_r`` the
+    ring's radial approach, ``P_d`` the diametral clearance, ``K_n`` a roller's two raceway
+    contacts in series."""
+    eps = eps_radial(delta_r, P_d)
+    Q_max = K_n * (delta_r - 0.5 * P_d) ** n
+    psi = 2 * np.pi * np.arange(Z) / Z
+    return Q_max, Q_max * np.clip(1 - (1 - np.cos(psi)) / (2 * eps), 0, None) ** n, eps
