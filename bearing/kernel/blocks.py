@@ -52,12 +52,12 @@ def _touch(blk, flag, jk, cage):
 
 
 @kernel
-def rows(ct, c, Jr, Jc, cage):
+def rows(blk, cblk, flag, jk, c, Jr, Jc, cage):
     """``c J^T J`` into roller ``jk``'s block: its own rates, and for a pocket (``cage``) the
     coupling to its cage and the cage's own (the roller's share, and the row's cage block
-    ``cblk``, summed as the contacts come; ``ct``: the roller's :data:`.layout.Touch`)."""
-    blk, cblk, jk = ct.blk, ct.cblk, ct.jk
-    _touch(blk, ct.flag, jk, cage)
+    ``cblk``, summed as the contacts come: a roller's :data:`.layout.Touch` taken apart, its arrays
+    passed one by one: as the group, the imex sub-step took 7 % longer, benchmarks/README.md)."""
+    _touch(blk, flag, jk, cage)
     for a in range(6):
         ca = c * Jr[a]
         for b in range(6):
@@ -78,26 +78,26 @@ def _add6(a, b, sb):
 
 
 @kernel
-def tilt_rows(ct, kdk, kkk, Jd, Jk, Jdc, Jkc, cage):
+def tilt_rows(blk, cblk, flag, jk, kdk, kkk, Jd, Jk, Jdc, Jkc, cage):
     """A line contact's stiffness in its tilt ``kap`` (``kkk = dm1/dkap``) and between tilt and
     approach (``kdk = dQ/dkap = dm1/dd0``): ``kdk (Jd^T Jk + Jk^T Jd) + kkk Jk^T Jk``, ``Jd`` /
     ``Jk`` the gradients of the approach and of ``kap`` in the roller's rates, ``Jdc`` / ``Jkc``
     in the cage's.  The cross term as the difference of two squares,
     ``(A + B)^T (A + B) - (A - B)^T (A - B) = 2 (A^T B + B^T A)``."""
-    rows(ct, kkk, Jk, Jkc, cage)
+    rows(blk, cblk, flag, jk, kkk, Jk, Jkc, cage)
     if kdk != 0.0:
-        rows(ct, 0.5 * kdk, _add6(Jd, Jk, 1.0), _add6(Jdc, Jkc, 1.0), cage)
-        rows(ct, -0.5 * kdk, _add6(Jd, Jk, -1.0), _add6(Jdc, Jkc, -1.0), cage)
+        rows(blk, cblk, flag, jk, 0.5 * kdk, _add6(Jd, Jk, 1.0), _add6(Jdc, Jkc, 1.0), cage)
+        rows(blk, cblk, flag, jk, -0.5 * kdk, _add6(Jd, Jk, -1.0), _add6(Jdc, Jkc, -1.0), cage)
 
 
 @kernel
-def friction_rows(ct, cf, t1, n, r, fr, rel, cage):
+def friction_rows(blk, cblk, flag, jk, cf, t1, n, r, fr, rel, cage):
     """The friction's secant damping ``cf`` (:func:`axlebox.bearing.kernel.contact.slip_damping`) in the
     contact plane spanned by the unit ``t1`` and ``t1 x n``, for the implicit kick: the
     regularised friction is stiff in the slip (the roller spin's eigenvalue near -1.3e5 1/s holds
     an explicit step under 1.5e-5 s)."""
     for t in (t1, cross(t1, n)):
-        rows(ct, cf, roller_grad(t, r, fr), cage_grad(t, rel) if cage else ZERO6, cage)
+        rows(blk, cblk, flag, jk, cf, roller_grad(t, r, fr), cage_grad(t, rel) if cage else ZERO6, cage)
 
 
 @kernel

@@ -60,12 +60,13 @@ def _wall(ct, fr, cage, dd, nw, sw, slot, m, P, want, h_k):
     couple = mul(m1, cross(fr.ax, nw))               # the roller's skew against the wall
     load(ct.rec, slot, fr_, sub(cross(r, f), couple), sub(couple, cross(rel, fr_)))
     if want and c > 0.0:
+        blk, cblk, flag, jk = ct.blk, ct.cblk, ct.flag, ct.jk      # blocks.rows: why apart
         Jw, Jwc = roller_grad(nw, r, fr), cage_grad(nw, rel)
-        rows(ct, c, Jw, Jwc, True)
+        rows(blk, cblk, flag, jk, c, Jw, Jwc, True)
         if stiff:
-            friction_rows(ct, slip_damping(v, nw, P[MU_C] * Q, P[V_S]), EY, nw, r,
+            friction_rows(blk, cblk, flag, jk, slip_damping(v, nw, P[MU_C] * Q, P[V_S]), EY, nw, r,
                           fr, rel, True)
-            tilt_rows(ct, h_k * KL * kdk, h_k * KL * kkk, Jw,
+            tilt_rows(blk, cblk, flag, jk, h_k * KL * kdk, h_k * KL * kkk, Jw,
                       (0.0, 0.0, 0.0, 0.0, gs, 0.0), Jwc, (0.0, 0.0, 0.0, -gs * bx_x, -gs * bx_z, 0.0),
                       True)
     return Q
@@ -89,8 +90,8 @@ def _side_beams(ct, fr, cage, dd, m, P, want, h_k):
         Q, c = normal(P[K_CR] * d0 ** N_LINE, P[K_CR], N_LINE, sw * chid, m, P, d0, 0.0, h_k)
         n = mul(sw, EY)
         if want and c > 0.0:
-            rows(ct, c, roller_grad(n, ZERO, fr), cage_grad(n, sub(fr.c, cage.xc)),
-                 True)
+            rows(ct.blk, ct.cblk, ct.flag, ct.jk, c, roller_grad(n, ZERO, fr),
+                 cage_grad(n, sub(fr.c, cage.xc)), True)
         fr_ = mul(-sw * Q, EY)
         rel = sub(lin(1.0, fr.c, 0.5 * sw * P[L_B], EY), cage.xc)     # from the roller's end
         load(ct.rec, slot, fr_, ZERO, mul(-1.0, cross(rel, fr_)))

@@ -49,12 +49,13 @@ def raceway_load(ct, fr, n, sigma, r, rel, v_r, w_r, d0, kap, law, K, L, mu,
     couple = mul(-sigma * fr.s * m1, fr.et)          # the tilted line's restoring moment
     load(ct.rec, slot, fr_, add(couple, cross(r, f)), mul(-1.0, add(cross(rel, fr_), couple)))
     if want and c > 0.0:
+        blk, cblk, flag, jk = ct.blk, ct.cblk, ct.flag, ct.jk      # blocks.rows: why apart
         J = roller_grad(n, r, fr)
-        rows(ct, c, J, ZERO6, False)
+        rows(blk, cblk, flag, jk, c, J, ZERO6, False)
         if want and h_k > 0.0:
-            tilt_rows(ct, h_k * KL * kdk, h_k * KL * kkk, J, tilt_grad(sigma * fr.s),
+            tilt_rows(blk, cblk, flag, jk, h_k * KL * kdk, h_k * KL * kkk, J, tilt_grad(sigma * fr.s),
                       ZERO6, ZERO6, False)
-            friction_rows(ct, slip_damping(v, n, mu * Q, P[V_S]), fr.et, n, r, fr,
+            friction_rows(blk, cblk, flag, jk, slip_damping(v, n, mu * Q, P[V_S]), fr.et, n, r, fr,
                           ZERO, False)
     return Q
 
@@ -75,8 +76,9 @@ def rib(ct, fr, n, ra, u, th, v_r, w_r, gap, K, mu, slot, P, want, h_k):
     fr_ = lin(-Q, n, 1.0, friction(v, n, mu * Q, P[V_S]))
     load(ct.rec, slot, fr_, cross(ra, fr_), mul(-1.0, cross(rel, fr_)))
     if want and c > 0.0:
-        rows(ct, c, roller_grad(n, ra, fr), ZERO6, False)
+        blk, cblk, flag, jk = ct.blk, ct.cblk, ct.flag, ct.jk
+        rows(blk, cblk, flag, jk, c, roller_grad(n, ra, fr), ZERO6, False)
         if h_k > 0.0:
-            friction_rows(ct, slip_damping(v, n, mu * Q, P[V_S]), fr.et, n, ra, fr,
+            friction_rows(blk, cblk, flag, jk, slip_damping(v, n, mu * Q, P[V_S]), fr.et, n, ra, fr,
                           ZERO, False)
     return Q
