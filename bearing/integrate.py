@@ -72,8 +72,7 @@ def run_rk4(tag, Y, t0, dt, n_steps, every, P, D, rig, w, acc, Fout, Qout, cage)
     Written as it goes: ``acc (n_steps, 3)`` outer-ring acceleration at every step start;
     every ``every`` steps ``Fout (., RINGS, LOAD)`` ring loads, ``Qout (., n, Z, N_Q)`` contact
     forces, ``cage (., n, CAGE_OUT)`` cage angle and speed (n the rows).  Returns False if the
-    state stops being
-    finite.
+    state stops being finite.
     """
     n = Y.shape[0]
     n_out = (n_steps + every - 1) // every

@@ -263,9 +263,9 @@ def _loads_back(k, idx, mkF, mkM, elout, F, Qc, th, cages):
     for c in range(LOAD):
         elout[r + BR_INNER, c] = F[INNER, c]
         elout[r + BR_OUTER, c] = F[OUTER, c]
-    first, last = 0, Qc.shape[0] - 1          # the first and last rows; roller 1 of each
-    elout[r + BR_MORE, BR_Q1] = Qc[first, first, Q_O]
-    elout[r + BR_MORE, BR_QN] = Qc[last, first, Q_O]
+    first, last, roller1 = 0, Qc.shape[0] - 1, 0       # the first and last rows
+    elout[r + BR_MORE, BR_Q1] = Qc[first, roller1, Q_O]
+    elout[r + BR_MORE, BR_QN] = Qc[last, roller1, Q_O]
     for i, j in enumerate((first, last)):
         elout[r + BR_MORE, BR_ANGLE + i] = cages[j, CAGE_ANGLE]
         elout[r + BR_MORE, BR_RATE + i] = cages[j, CAGE_RATE]

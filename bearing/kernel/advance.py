@@ -65,11 +65,10 @@ def advance(tag, x, ring_a, ring_b, P, D, w, K, t_b, h, n, first, mode, theta, F
     one; ``P``, ``D``: the bearing's parameter vector and defect rows; ``w``, ``K``: its scratch
     (bearing/kernel/evaluate.py ``Work``, bearing/kernel/implicit.py ``Kick``).
 
-    Out: ``F_mean`` (RINGS, LOAD) the ring loads averaged over the samples; ``Qc`` (rows, Z, N_Q) the
-    contact forces and ``cages`` (rows, CAGE_OUT; bearing/kernel/layout.py) at the sample at the
-    exchange (half a
-    sub-step after it where ``n`` is even), before its step.  ``theta``: the implicit kick's
-    weight (bearing/kernel/implicit.py; 1 as shipped)."""
+    Out: ``F_mean`` (RINGS, LOAD) the ring loads averaged over the samples; ``Qc`` (rows, Z,
+    N_Q) the contact forces and ``cages`` (rows, CAGE_OUT; bearing/kernel/layout.py) at the
+    sample at the exchange (half a sub-step after it where ``n`` is even), before its step.
+    ``theta``: the implicit kick's weight (bearing/kernel/implicit.py; 1 as shipped)."""
     F_mean[:, :] = 0.0
     c0 = 0.5 * (n + 1)                       # the window's centre, in samples
     j_out = n // 2 + 1                       # the sample at (or just after) the exchange

@@ -30,10 +30,10 @@ raceway), ``Q_I`` (inner raceway), ``Q_A`` (rib), ``Q_CR1``, ``Q_CR2`` (pocket w
 ``CAGE_ANGLE`` and its rate ``CAGE_RATE``.
 
 **Defect table** ``(n, D_WIDTH)``, one defect a row (:mod:`.defects`): ``D_KIND`` (a value of
-:data:`KINDS`), ``D_ROW`` (the row's index, from 0), ``D_START`` and ``D_TAU`` (the window, rad), ``D_DEPTH``
-(A of Eq. 14), ``D_S1, D_S2`` (the stretch of the contact line it covers), ``D_ROLLER`` (the
-roller's index for a roller defect), ``D_RHO, D_EDGE, D_RADIUS`` (the edges' path: ``rho =
-r_b + r_e`` or 0 for the half-sine, ``r_e``, the raceway radius).
+:data:`KINDS`), ``D_ROW`` (the row's index, from 0), ``D_START`` and ``D_TAU`` (the window, rad),
+``D_DEPTH`` (A of Eq. 14), ``D_S1, D_S2`` (the stretch of the contact line it covers),
+``D_ROLLER`` (the roller's index for a roller defect), ``D_RHO, D_EDGE, D_RADIUS`` (the edges'
+path: ``rho = r_b + r_e`` or 0 for the half-sine, ``r_e``, the raceway radius).
 
 **Roller records** ``(n Z, REC)`` (:mod:`.evaluate`): what one roller's contacts do.  ``REC_F``
 and ``REC_M`` (three slots each): the force on the roller (its weight first, then each contact's
@@ -75,7 +75,6 @@ RATE = 6                                             # a position's rate: RATE +
 N_ROLLER = N_CAGE = 12
 
 # --- the rings ----------------------------------------------------------------------------------
-
 INNER, OUTER, RINGS = 0, 1, 2
 U_X, U_Y, U_Z, TH_X, TH_Y, TH_Z, V_X, V_Y, V_Z, W_X, W_Y, W_Z, RING = range(13)
 F_X, F_Y, F_Z, M_X, M_Y, M_Z, LOAD = range(7)
@@ -110,9 +109,9 @@ Touch = namedtuple("Touch", ["rec", "blk", "cblk", "flag", "jk"])
 # --- the parameter slots every model fills ----------------------------------------------------------
 # Z rollers a row; N_ROWS the rows; R_M pitch radius; R_B roller radius; L_B roller length; CAM,
 # SAM the roller axis's angle from the bearing axis; ROW the rows' axial spacing (row_y); masses
-# and inertias; the pockets (CAC, SAC slope, S_P, S_PA half clearances, K_CR their line stiffness), friction;
-# the damping law; gravity; the cage's mode (KINEMATIC: 0 free, 1 Eq. 2, 2 the quasi-dynamic
-# bearing's) and Eq. 2's ratio (RATIO)
+# and inertias; the pockets (CAC, SAC slope, S_P, S_PA half clearances, K_CR their line
+# stiffness), friction; the damping law; gravity; the cage's mode (KINEMATIC: 0 free, 1 Eq. 2,
+# 2 the quasi-dynamic bearing's) and Eq. 2's ratio (RATIO)
 (Z, N_ROWS, R_M, R_B, L_B, CAM, SAM, ROW, M_R, J_RA, J_RD, M_C, J_CP, J_CD, CAC, SAC, S_P, S_PA, K_CR,
  MU_C, V_S, LAW, ZETA, C_RULE, BETA, G_X, G_Y, G_Z, KINEMATIC, RATIO, N_COMMON) = range(31)
 FREE_CAGE, EQ2_CAGE, POCKET_CAGE = 0.0, 1.0, 2.0         # KINEMATIC's values
@@ -159,8 +158,8 @@ def pack_common(v, p, gravity) -> None:
     from ..statics.stiffness import e_prime, k_line
     J_ra, J_rd = p.J_r
     J_cp, J_cd = p.J_c
-    v[[Z, N_ROWS, R_M, R_B, L_B, CAM, SAM, ROW]] = (p.Z, p.rows, 0.5 * p.D_m, p.r_b, p.L_b, cos(p.alpha_m),
-                                            sin(p.alpha_m), p.row_offset)
+    v[[Z, N_ROWS, R_M, R_B, L_B, CAM, SAM, ROW]] = (p.Z, p.rows, 0.5 * p.D_m, p.r_b, p.L_b,
+                                                    cos(p.alpha_m), sin(p.alpha_m), p.row_offset)
     v[[M_R, J_RA, J_RD, M_C, J_CP, J_CD]] = p.M_r, J_ra, J_rd, p.M_c, J_cp, J_cd
     v[[CAC, SAC, S_P, S_PA]] = cos(p.alpha_c), sin(p.alpha_c), 0.5 * p.s_p, 0.5 * p.s_pa
     v[K_CR] = k_line(e_prime(p.E_r, p.nu_r, p.E_c, p.nu_c), p.L_b)

@@ -18,9 +18,8 @@ from .layout import (BETA, CAC, CAM, CPHI, CTX, CTZ, CX, C_RULE, D_DEPTH, D_EDGE
                      INNER, INNER_RING, J_CD, J_CP, J_RA, J_RD, KINEMATIC, K_CR, LAW, LOAD, L_B, MU_C, M_C,
                      M_R, N_CAGE, N_Q, N_ROLLER, OUTER, OUTER_RING, PHI, POCKET_CAGE, PSI, Q_A, Q_CR1,
                      Q_CR2, Q_I, Q_O, Q_SIDE, RATE, RATIO, RHO, RINGS, ROLLER_SURFACE, ROW, N_ROWS, R_B, R_M,
-                     SAC,
-                     SAM, S_P, S_PA, TH_S, TH_T, TH_X, TH_Y, TH_Z, U_X, U_Z, V_S, V_X, V_Z, W_X, W_Y, W_Z,
-                     Z, ZETA)
+                     SAC, SAM, S_P, S_PA, TH_S, TH_T, TH_X, TH_Y, TH_Z, U_X, U_Z, V_S, V_X, V_Z, W_X, W_Y,
+                     W_Z, Z, ZETA, row_sign, row_y)
 from .vec import AX, AY, AZ
 
 N_LINE = 10.0 / 9.0
@@ -192,9 +191,8 @@ def dtrb_rhs_numpy(t, y, ring, P, D) -> tuple[np.ndarray, np.ndarray, np.ndarray
     theta_oy = ring[OUTER, TH_Y]
     omega_w = ring[INNER, W_Y] - ring[OUTER, W_Y]
 
-    row = np.arange(nrow)[:, None]
-    s = np.where(2 * row < nrow, 1.0, -1.0)                 # row sign (layout.row_sign)
-    yj = (2 * row + 1 - nrow) * P[ROW]                      # the rows' places (layout.row_y)
+    s = np.array([[row_sign(j, nrow)] for j in range(nrow)])           # each row's sign, place
+    yj = np.array([[row_y(j, nrow, P[ROW])] for j in range(nrow)])
     pocket = TWO_PI * np.arange(nz) / nz
 
     # cages (3, n, 1)

@@ -22,8 +22,7 @@ def pockets(ct, Q, fr, cage, sp, cp, P, want, h_k):
     the pocket's azimuth of sine ``sp`` and cosine ``cp``: both walls and the side beams into
     the roller's record ``ct.rec`` (``ct``: its :data:`.layout.Touch`), their normal loads into
     its contact outputs ``Q``, and with ``want`` their rows into its block and its cage's
-    ``ct.cblk`` (bearing/kernel/blocks.py; ``h_k``:
-    bearing/contact.normal)."""
+    ``ct.cblk`` (bearing/kernel/blocks.py; ``h_k``: bearing/contact.normal)."""
     erp = (sp, 0.0, cp)
     etp = (cp, 0.0, -sp)
     P0 = lin(P[R_M], erp, fr.yj, EY)

@@ -211,13 +211,13 @@ def equilibrium(model, t, x, ring, P, D, h, w):
     passes = MAX_IT * (MAX_HALVE + 1)
     for it in range(passes + 1):
         n = 0
-        for jk in range(nrow * nz):
-            if w.qd[jk, QD_ACTIVE] != 0.0:
-                j, k = jk // nz, jk % nz
-                cage = cage_frame(x, cb + j * N_CAGE, P, rings.omega)
-                roller(model, x, w.dx, j, k, rings, cage, P, D, n_inner, n_roller, w.Qs, w, True, h,
-                       J_orb)
-                n += 1
+        for j in range(nrow):
+            cage = cage_frame(x, cb + j * N_CAGE, P, rings.omega)    # once a row and pass
+            for k in range(nz):
+                if w.qd[j * nz + k, QD_ACTIVE] != 0.0:
+                    roller(model, x, w.dx, j, k, rings, cage, P, D, n_inner, n_roller, w.Qs, w, True,
+                           h, J_orb)
+                    n += 1
         evaluated += n
         if n == 0 or it == passes or _newton(x, w, P, h, nz, nrow) == 0:
             break

@@ -1,6 +1,7 @@
 """A single-row cylindrical roller bearing (CRB): one of the DCRB pair's two rows alone, the NJ 130
 x 240 x 80 of :mod:`.dcrb` by itself, its rollers, rings, ribs, crown and cage the same.  It is
-declared to the package here and in one line of the registry (:mod:`.models`), and nothing else:
+declared to the package here and in the registry (:mod:`.models`: its import and its entry in
+``MODELS``), and nothing else:
 the shared parts take their arrays' sizes and the rows' places from the model's ``rows``
 (bearing/kernel/layout.py ``N_ROWS``, ``row_y``), so a bearing of one row runs through the same
 kernel, quasi-static model, static start, rig and car as the two-row ones.

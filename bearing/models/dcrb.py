@@ -221,10 +221,11 @@ def ring_stiffness(p: DcrbParams, F):
 # --- the rollers' contacts with the rings (numba) -----------------------------------------------
 @kernel(inline="always")
 def contacts(ct, Q, j, k, fr, rings, psi, P, D, n_inner, n_roller, want, h_k):
-    """Roller k of row j (:class:`.roller.Frame` ``fr``; ``psi`` its spin angle) on both raceways (their line
-    contacts by slices) and against the ribs of both rings: their loads into the roller's record ``ct.rec``
-    (``ct``: its bearing/kernel/layout.py ``Touch``), their normal loads into its outputs ``Q`` (``Q_A`` the
-    two ribs' together) and, with ``want``, their rows into its block."""
+    """Roller k of row j (:class:`.roller.Frame` ``fr``; ``psi`` its spin angle) on both raceways
+    (their line contacts by slices) and against the ribs of both rings: their loads into the
+    roller's record ``ct.rec`` (``ct``: its bearing/kernel/layout.py ``Touch``), their normal
+    loads into its outputs ``Q`` (``Q_A`` the two ribs' together) and, with ``want``, their rows
+    into its block."""
     stiff = want and h_k > 0.0
     h, s1, s2 = depth_under(D, OUTER_RING, j, fr.phi, rings.angle_o)
     hr_o, hr_i, r1, r2 = roller_depths(D, j, k, psi) if n_roller > 0 else (0.0, 0.0, 0.0, 0.0)

@@ -116,11 +116,12 @@ def ring_stiffness(p, F):
 # --- the rollers' contacts with the rings (numba) -------------------------------------------------
 @kernel(inline="always")
 def contacts(ct, Q, j, k, fr, rings, psi, P, D, n_inner, n_roller, want, h_k):
-    """Roller k of row j (:class:`.roller.Frame` ``fr``; ``psi`` its spin angle) against the cup, the cone and
-    the cone's rib (``rings``: :class:`.roller.Rings`): their loads into the roller's record ``ct.rec``
-    (``ct``: its bearing/kernel/layout.py ``Touch``), their normal loads into its outputs ``Q`` and, with
-    ``want``, their rows into its block (bearing/kernel/blocks.py). ``n_inner``, ``n_roller``: the defect
-    table's inner-ring and roller defects (none: not looked up)."""
+    """Roller k of row j (:class:`.roller.Frame` ``fr``; ``psi`` its spin angle) against the cup,
+    the cone and the cone's rib (``rings``: :class:`.roller.Rings`): their loads into the roller's
+    record ``ct.rec`` (``ct``: its bearing/kernel/layout.py ``Touch``), their normal loads into
+    its outputs ``Q`` and, with ``want``, their rows into its block (bearing/kernel/blocks.py).
+    ``n_inner``, ``n_roller``: the defect table's inner-ring and roller defects (none: not looked
+    up)."""
     s = fr.s
     stiff = want and h_k > 0.0
     h, s1, s2 = depth_under(D, OUTER_RING, j, fr.phi, rings.angle_o)
