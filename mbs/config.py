@@ -172,6 +172,14 @@ class Bodies:
 
     dir: str = text("", "folder of reduced-body files (axlebox bodies build); empty: built at the coarse "
                     "mesh into the cache")
+    wheelset: str = text("", "a reduced-body file for the wheelsets, your own (axlebox bodies build "
+                         "--geometry|--mesh FILE --spec SPEC; its interfaces named as the built-in "
+                         "wheelset's: journal_L_row1 ... tread_R, gear); empty: from dir or built")
+    axlebox: str = text("", "a reduced-body file for the axle boxes, your own (its interfaces bore_row1, "
+                        "bore_row2, spring_front, spring_rear, sensor_pad); empty: from dir or built")
+    frame: str = text("", "a reduced-body file for the bogie frames, your own (its interfaces "
+                      "primary_1_L ... primary_2_R, secondary_L, secondary_R, traction_centre); empty: "
+                      "from dir or built")
     modes: int = param(12, 1, 100, "-", "Craig-Bampton fixed-interface modes when the bodies are built here "
                        "(not with dir)")
     fmax_wheelset_hz: float = param(1500.0, 1.0, 1e5, "Hz", "a flexible wheelset keeps its free-free modes "

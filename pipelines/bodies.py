@@ -8,6 +8,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
+import numpy as np
+
 from axlebox._params import ParameterError, number
 from axlebox.fem import assembly, bodyfile, eigen, interfaces
 from axlebox.fem.body import make_body
@@ -177,3 +179,111 @@ def compare_table(rb: bodyfile.ReducedBody, n: int = 12) -> str:
         lines.append(f"  {k + 1:4d} {ref[k]:12.2f} {rb.frequencies_hz[k]:14.2f} {e:9.3f}")
     return "\n".join(lines)
 
+
+
+def car_interfaces(kind: str) -> tuple[str, ...]:
+    """The interfaces the car attaches to a body of ``kind`` (mbs/vehicle.py): the built-in
+    body's own names (:data:`BODIES`), which a user's body of that kind must have too."""
+    spec = BODIES[kind]
+    return tuple(sorted(spec.couplings(spec.params())))
+
+
+def build_user_body(spec_path, *, geometry=None, mesh_file=None, out_dir="bodies", force: bool = False,
+                    log: Callable[[str], None] = print) -> tuple[bodyfile.ReducedBody, Path]:
+    """A user's own part, from a CAD file (``geometry``: STEP, IGES, BREP) or a mesh file
+    (``mesh_file``: Abaqus, Nastran, gmsh, Salome MED, VTK), reduced as its spec says
+    (pipelines/bodyspec.py) into ``<out_dir>/<name>.h5``, as the built-in bodies are.  An
+    existing file built from the same request (file content and spec) is kept unless ``force``."""
+    from axlebox.geometry import cad, meshfile
+
+    from . import bodyspec
+    if (geometry is None) == (mesh_file is None):
+        raise ParameterError("--geometry and --mesh: expected exactly one (a CAD file or a mesh file)")
+    spec = bodyspec.load(spec_path)
+    b, red = spec.body, spec.reduction
+    missing = [n for n in car_interfaces(b.kind) if n not in spec.interfaces] if b.kind in BODIES else []
+    if missing:
+        raise ParameterError(f"{Path(spec_path).name}: a {b.kind} needs the interfaces the car attaches "
+                             f"to: {', '.join(missing)} missing (it has {', '.join(spec.interfaces)})")
+    src = Path(geometry if geometry is not None else mesh_file)
+    request = {"source": src.name, "sha256": _sha256(src), "spec": _plain(spec)}
+    path = Path(out_dir) / f"{spec.name}.h5"
+    if not force:
+        done = _up_to_date(path, request)
+        if done is not None:
+            log(f"{spec.name}: {path} is up to date (same file and spec); --force rebuilds")
+            return done, path
+    t0 = time.perf_counter()
+    sel = spec.selections()
+    if geometry is not None:
+        source = cad.source(geometry, b.unit, sel, spec.material.rho, b.mass_kg)
+        msh = mesh.mesh_model(f"cad-{spec.name}", cad.build, source, spec.mesh.size, order=spec.mesh.order)
+        if msh.cells.shape[1] == 4:
+            pts, cells = meshfile.raise_order(msh.points, msh.cells)
+            msh = mesh.MeshData(pts, cells, {k: _raised(v, msh.cells, cells) for k, v in msh.groups.items()})
+    else:
+        scale = cad.UNITS["m" if b.unit == "file" else b.unit]
+        msh = meshfile.read(mesh_file, scale, sel)
+    _check_shared(msh, src.name)
+    fe = assembly.assemble(msh, spec.material)
+    ones = np.ones(len(fe.points))
+    cad.check_size(src.name, float(np.ptp(fe.points, axis=0).max()), float(ones @ (fe.scalar_mass() @ ones)),
+                   b.mass_kg, b.unit)
+    log(f"{spec.name}: {msh.cells.shape[0]} tet10, {fe.ndof} DOF ({time.perf_counter() - t0:.1f} s)")
+    pieces = eigen.body_parts(fe)
+    if len(pieces) > 1:
+        raise ParameterError(f"{src.name}: the body is {len(pieces)} separate parts ({6 * len(pieces)} "
+                             f"rigid modes, expected 6): {eigen.describe(fe, pieces)}; expected one "
+                             "connected solid")
+    ref = eigen.free_free_modes(fe, red.n_reference).frequencies_hz if red.n_reference else None
+    itf = interfaces.make_interfaces(fe, spec.couplings(), spec.positions())
+    meta = {"body": b.kind, "source": str(src), "request": request, "mesh_size": spec.mesh.size}
+    n_modes = None if red.method == "guyan" or red.fmax_hz > 0 else red.modes
+    rb, _ = make_body(spec.name, fe, itf, method=red.method, n_modes=n_modes,
+                      fmax_hz=red.fmax_hz or None, damping=("modal", red.zeta), reference_hz=ref,
+                      meta=meta)
+    rb.meta["build_seconds"] = time.perf_counter() - t0
+    log(f"{spec.name}: {red.method}, {rb.n_modes} elastic modes, mass {rb.mass:.1f} kg "
+        f"({rb.meta['build_seconds']:.1f} s)")
+    if ref is not None:
+        log(compare_table(rb))
+    path = bodyfile.write(rb, path)
+    log(f"{spec.name}: wrote {path}")
+    return rb, path
+
+
+def _sha256(path: Path) -> str:
+    import hashlib
+    if not Path(path).is_file():
+        raise ParameterError(f"{str(path)!r} is not allowed: no such file")
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def _plain(spec) -> dict:
+    d = dataclasses.asdict(spec)
+    d.pop("path")
+    return d
+
+
+def _raised(facets3: np.ndarray, tet4: np.ndarray, tet10: np.ndarray) -> np.ndarray:
+    """Triangle facets of a linear mesh as triangle6 of its raised mesh (the edges' new nodes)."""
+    from axlebox.geometry.meshfile import boundary
+    faces, _ = boundary(tet10)
+    key = {tuple(sorted(f[:3])): f for f in faces}
+    return np.array([key[tuple(sorted(f[:3]))] for f in facets3])
+
+
+def _check_shared(msh: mesh.MeshData, fname: str) -> None:
+    """Refuse two interfaces that select the same piece of surface (overlapping selections).
+    Adjacent ones share the nodes of their common edge, as the built-in bodies' do: those couple
+    to the first (fem/interfaces.condense)."""
+    keys = {n: {tuple(sorted(f[:3])) for f in facets} for n, facets in msh.groups.items()}
+    names = list(keys)
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            both = keys[a] & keys[b]
+            if both:
+                at = msh.points[list(min(both))].mean(axis=0)
+                raise ParameterError(f"{fname}: interfaces {a!r} and {b!r} select the same {len(both)} "
+                                     f"facets (the first at {np.round(at, 4).tolist()} m): expected "
+                                     "separate surfaces")

@@ -34,7 +34,13 @@ def _params(text: list[str]) -> dict[str, str]:
 def _cmd_bodies_build(a) -> None:
     from axlebox.fem import bodyfile
 
-    from .bodies import BODIES, build_body, make_params
+    from .bodies import BODIES, build_body, build_user_body, make_params
+    if a.geometry or a.mesh or a.spec:
+        _user_body(a, build_user_body, bodyfile)
+        return
+    if a.body is None:
+        raise ParameterError("--body is required: expected wheelset, axlebox, frame or all (or a body of "
+                             "your own: --geometry FILE or --mesh FILE with --spec SPEC.toml)")
     names = list(BODIES) if a.body == "all" else [a.body]
     overrides = _params(a.param)
     if a.body == "all" and overrides:
@@ -56,6 +62,25 @@ def _cmd_bodies_build(a) -> None:
                               out_dir=a.out, force=a.force)
         if a.vtu:
             print(f"{n}: wrote {bodyfile.export_vtu(rb, Path(a.out) / f'{n}.vtu')}")
+
+
+def _user_body(a, build_user_body, bodyfile) -> None:
+    """``bodies build --geometry|--mesh FILE --spec SPEC``: a user's part, everything but the
+    output's handling from its spec (pipelines/bodyspec.py)."""
+    if not a.spec or not (a.geometry or a.mesh):
+        raise ParameterError("--spec goes with --geometry FILE or --mesh FILE: expected both (a body "
+                             "of your own), or neither (a built-in --body)")
+    given = [f"--{k.replace('_', '-')}" for k, v in (("body", a.body), ("modes", a.modes), ("fmax", a.fmax),
+                                                      ("mesh_size", a.mesh_size), ("param", a.param))
+             if v is not None]
+    given += ["--method"] * (a.method != "craig-bampton") + ["--coupling"] * (a.coupling != "default")
+    given += ["--zeta"] * (a.zeta != 0.01) + ["--no-reference"] * a.no_reference
+    if given:
+        raise ParameterError(f"{', '.join(given)} is not allowed with --spec: the spec's [body], [mesh], "
+                             "[reduction] and [interfaces] say it")
+    rb, path = build_user_body(a.spec, geometry=a.geometry, mesh_file=a.mesh, out_dir=a.out, force=a.force)
+    if a.vtu:
+        print(f"{rb.name}: wrote {bodyfile.export_vtu(rb, path.with_suffix('.vtu'))}")
 
 
 def _cmd_bodies_export(a) -> None:
@@ -436,8 +461,14 @@ def parser() -> argparse.ArgumentParser:
 
     b = sub.add_parser("bodies", help="modal bodies from geometry")
     bs = b.add_subparsers(dest="bodies_command", required=True, parser_class=_Parser)
-    bb = bs.add_parser("build", help="mesh, assemble and reduce bodies into <out>/<body>.h5")
-    bb.add_argument("--body", required=True, choices=["wheelset", "axlebox", "frame", "all"])
+    bb = bs.add_parser("build", help="mesh, assemble and reduce bodies into <out>/<body>.h5: the built-in "
+                       "ones (--body) or your own (--geometry or --mesh with --spec)")
+    bb.add_argument("--body", choices=["wheelset", "axlebox", "frame", "all"], help="a built-in body")
+    bb.add_argument("--geometry", metavar="FILE", help="your own part as CAD: STEP, IGES or BREP")
+    bb.add_argument("--mesh", metavar="FILE", help="your own part as a mesh: Abaqus .inp, Nastran .bdf, "
+                    "gmsh .msh, Salome .med, .vtu")
+    bb.add_argument("--spec", metavar="SPEC.toml", help="what your part is: kind, material, mesh size, "
+                    "reduction and interfaces by name (docs: your own bodies)")
     bb.add_argument("--method", default="craig-bampton", choices=["guyan", "craig-bampton"])
     g = bb.add_mutually_exclusive_group()
     g.add_argument("--modes", type=int, default=None,

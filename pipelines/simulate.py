@@ -43,28 +43,47 @@ from axlebox.mbs.wheelrail.standard import chn60, s1002, uic60
 from . import stream
 
 def reduced_bodies(cfg: vconfig.CarConfig, log=print) -> dict:
-    """The reduced bodies the config needs: from ``bodies.dir`` or built (coarse mesh, each kind
-    by its ``bodies.method_<kind>``) into the cache; none when every body is rigid and no folder
-    is given."""
+    """The reduced bodies the config needs, each kind from its own file (``bodies.<kind>``, a
+    user's body), else from ``bodies.dir``, else built (coarse mesh, by its ``bodies.method_<kind>``)
+    into the cache; none when every body is rigid and no file or folder is given.  A file must
+    have the interfaces the car attaches to its kind (pipelines/bodies.car_interfaces)."""
+    from .bodies import car_interfaces
     b = cfg.bodies
-    if not b.dir and not b.flexible:
+    own = {kind: getattr(b, kind) for kind in vconfig.BODY_KINDS if getattr(b, kind)}
+    if not b.dir and not b.flexible and not own:
         return {}
     out = {}
-    if b.dir:
-        for kind in vconfig.BODY_KINDS:
+    for kind in vconfig.BODY_KINDS:
+        field = f"bodies.{kind}" if kind in own else "bodies.dir"
+        if kind in own:
+            p = Path(own[kind])
+        elif b.dir:
             p = Path(b.dir) / f"{kind}.h5"
-            if not p.is_file():
-                raise ParameterError(f"bodies.dir = {b.dir!r} is not allowed: it has no {kind}.h5 "
-                                     "(axlebox bodies build --body all --out DIR)")
+        else:
+            continue
+        if not p.is_file():
+            why = "no such file" if kind in own else \
+                f"it has no {kind}.h5 (axlebox bodies build --body all --out DIR)"
+            raise ParameterError(f"{field} = {str(p if kind in own else b.dir)!r} is not allowed: {why}")
+        try:
             out[kind] = bodyfile.read(p, fields=False)
-            method = getattr(b, f"method_{kind}")
-            if out[kind].method != method:
-                raise ParameterError(f"bodies.method_{kind} = {method!r} is not allowed "
-                                     f"with bodies.dir = {b.dir!r}: its {kind}.h5 is "
-                                     f"{out[kind].method!r}")
+        except bodyfile.BodyFileError as err:
+            raise ParameterError(f"{field}: {err}") from None
+        lacks = [n for n in car_interfaces(kind) if n not in out[kind].nodes]
+        if lacks:
+            raise ParameterError(f"{field} = {str(p)!r} is not allowed: the car attaches a {kind} at "
+                                 f"{', '.join(lacks)}, which it lacks (it has "
+                                 f"{', '.join(out[kind].nodes) or 'no interfaces'})")
+        method = getattr(b, f"method_{kind}")
+        if out[kind].method != method:
+            raise ParameterError(f"bodies.method_{kind} = {method!r} is not allowed with {field}: its "
+                                 f"{p.name} is {out[kind].method!r}")
+    if len(out) == len(vconfig.BODY_KINDS):
         return out
     from .bodies import BODIES, build_body
     for kind in vconfig.BODY_KINDS:
+        if kind in out:
+            continue
         method = getattr(b, f"method_{kind}")
         where = cache_dir("bodies", f"coarse-{b.modes}" if method == "craig-bampton" else "coarse-guyan")
         rb, _ = build_body(kind, method=method, mesh_size=BODIES[kind].coarse_mesh_size,
