@@ -75,7 +75,8 @@ def main() -> None:
     u, b = bodies["your own (STEP)"], bodies["built-in"]
     ff = np.abs(u.reference_frequencies_hz / b.reference_frequencies_hz - 1).max()
     cb = np.abs(u.frequencies_hz[:12] / b.frequencies_hz[:12] - 1).max()
-    print(f"largest difference: free-free {ff:.2e}, Craig-Bampton (12) {cb:.2e}, mass {abs(u.mass / b.mass - 1):.1e}")
+    print(f"largest difference: free-free {ff:.2e}, Craig-Bampton (12) {cb:.2e}, "
+          f"mass {abs(u.mass / b.mass - 1):.1e}")
 
 
 if __name__ == "__main__":

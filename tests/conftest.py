@@ -31,7 +31,7 @@ LONG_FIRST = ("test_install.py", "test_dcrb.py", "test_both_sides_car.py", "test
               "test_wheelset.py", "test_bearing_implicit.py", "test_eigen_determinism.py",
               "test_quasidynamic.py", "test_docs.py", "test_bearing_dynamics.py", "test_sweep_survives.py",
               "test_inner_ring_car.py", "test_report_results.py", "test_jitcache.py", "test_fuzz.py",
-              "test_checkpoint.py")
+              "test_checkpoint.py", "test_user_bodies.py")
 
 
 def pytest_collection_modifyitems(config, items):
