@@ -22,23 +22,6 @@ if os.environ.get("PYTEST_XDIST_WORKER"):
         os.environ.setdefault(_var, "1")
 
 
-# The longest modules first (CI's --durations, .ci/run 2026-11-29): pytest-xdist's --dist loadfile
-# hands a worker one module at a time in collection order (pyproject's --no-loadscope-reorder: by
-# default it reorders them by their number of tests, which sent these few-test modules last), and
-# a long module left for last kept one worker (one numba thread) busy alone while the other idled
-LONG_FIRST = ("test_install.py", "test_dcrb.py", "test_both_sides_car.py", "test_accelerating_car.py",
-              "test_vehicle.py", "test_coupled.py", "test_threads.py", "test_validation.py",
-              "test_wheelset.py", "test_bearing_implicit.py", "test_eigen_determinism.py",
-              "test_quasidynamic.py", "test_docs.py", "test_bearing_dynamics.py", "test_sweep_survives.py",
-              "test_inner_ring_car.py", "test_report_results.py", "test_jitcache.py", "test_fuzz.py",
-              "test_checkpoint.py", "test_user_bodies.py")
-
-
-def pytest_collection_modifyitems(config, items):
-    rank = {name: i for i, name in enumerate(LONG_FIRST)}
-    items.sort(key=lambda item: rank.get(item.path.name, len(rank)))      # stable: the rest as collected
-
-
 def pytest_sessionfinish(session, exitstatus):
     if _SESSION_CACHE:
         shutil.rmtree(_SESSION_CACHE, ignore_errors=True)
