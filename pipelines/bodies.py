@@ -206,7 +206,8 @@ def build_user_body(spec_path, *, geometry=None, mesh_file=None, out_dir="bodies
         raise ParameterError(f"{Path(spec_path).name}: a {b.kind} needs the interfaces the car attaches "
                              f"to: {', '.join(missing)} missing (it has {', '.join(spec.interfaces)})")
     src = Path(geometry if geometry is not None else mesh_file)
-    request = {"source": src.name, "sha256": _sha256(src), "spec": _plain(spec)}
+    flag = "--geometry" if geometry is not None else "--mesh"
+    request = {"source": src.name, "sha256": _sha256(src, flag), "spec": _plain(spec)}
     path = Path(out_dir) / f"{spec.name}.h5"
     if not force:
         done = _up_to_date(path, request)
@@ -252,10 +253,10 @@ def build_user_body(spec_path, *, geometry=None, mesh_file=None, out_dir="bodies
     return rb, path
 
 
-def _sha256(path: Path) -> str:
+def _sha256(path: Path, flag: str) -> str:
     import hashlib
     if not Path(path).is_file():
-        raise ParameterError(f"{str(path)!r} is not allowed: no such file")
+        raise ParameterError(f"{flag} = {str(path)!r} is not allowed: no such file")
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()
 
 

@@ -96,6 +96,14 @@ def test_a_step_of_the_builtin_axle_box_has_its_frequencies(tmp_path, builtin, c
     for name in ("bore_row1", "bore_row2"):           # masters at the selected bore halves' centroids
         y = rb.nodes[name]["position"][1]
         assert abs(abs(y) - P.length / 4) < 0.1 * P.length
+    # its exports for other multibody codes and its mode-shape report, as a built-in body's
+    out = tmp_path / "out"
+    assert cli.main(["bodies", "export", str(out / "my_box.h5"), "--format", "exudyn", "--out",
+                     str(tmp_path / "my_box.hdf5")]) == 0
+    assert cli.main(["bodies", "export", str(out / "my_box.h5"), "--format", "mbdyn", "--out", str(out)]) == 0
+    assert (tmp_path / "my_box.hdf5").stat().st_size > 0 and (out / "my_box.fem").stat().st_size > 0
+    assert cli.main(["bodies", "report", str(out / "my_box.h5"), "--out", str(tmp_path / "modes")]) == 0
+    assert (tmp_path / "modes" / "index.html").is_file()
     # the same file and spec again: kept, not rebuilt
     capsys.readouterr()
     build_user_body(spec, geometry=step, out_dir=tmp_path / "out")
