@@ -61,8 +61,10 @@ def check_size(fname: str, extent: float, mass: float, mass_kg: float, unit: str
                              f"{unit!r})")
 
 
-def source(path, unit: str, selections: dict, rho: float = 0.0, mass_kg: float = 0.0) -> CadSource:
-    """A :class:`CadSource` for ``path``, refusing a file that is not there or not a CAD format."""
+def source(path, unit: str, selections: dict, rho: float = 0.0, mass_kg: float = 0.0,
+           sha256: str = "") -> CadSource:
+    """A :class:`CadSource` for ``path``, refusing a file that is not there or not a CAD format
+    (``sha256``: its content's hash where the caller has read it already)."""
     p = Path(path)
     fmt = FORMATS.get(p.suffix.lower())
     if fmt is None:
@@ -73,7 +75,7 @@ def source(path, unit: str, selections: dict, rho: float = 0.0, mass_kg: float =
     if fmt != "brep" and unit != "file":
         raise ParameterError(f"body.unit = {unit!r} is not allowed for {p.name}: a {fmt.upper()} "
                              "file declares its own unit, read from it (leave unit = 'file')")
-    sha = hashlib.sha256(p.read_bytes()).hexdigest()
+    sha = sha256 or hashlib.sha256(p.read_bytes()).hexdigest()
     return CadSource(str(p.resolve()), sha, unit, tuple(selections.items()), rho, mass_kg)
 
 

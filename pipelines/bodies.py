@@ -207,7 +207,8 @@ def build_user_body(spec_path, *, geometry=None, mesh_file=None, out_dir="bodies
                              f"to: {', '.join(missing)} missing (it has {', '.join(spec.interfaces)})")
     src = Path(geometry if geometry is not None else mesh_file)
     flag = "--geometry" if geometry is not None else "--mesh"
-    request = {"source": src.name, "sha256": _sha256(src, flag), "spec": _plain(spec)}
+    sha = _sha256(src, flag)
+    request = {"source": src.name, "sha256": sha, "spec": _plain(spec)}
     path = Path(out_dir) / f"{spec.name}.h5"
     if not force:
         done = _up_to_date(path, request)
@@ -217,7 +218,7 @@ def build_user_body(spec_path, *, geometry=None, mesh_file=None, out_dir="bodies
     t0 = time.perf_counter()
     sel = spec.selections()
     if geometry is not None:
-        source = cad.source(geometry, b.unit, sel, spec.material.rho, b.mass_kg)
+        source = cad.source(geometry, b.unit, sel, spec.material.rho, b.mass_kg, sha)
         msh = mesh.mesh_model(f"cad-{spec.name}", cad.build, source, spec.mesh.size, order=spec.mesh.order)
         if msh.cells.shape[1] == 4:
             pts, cells = meshfile.raise_order(msh.points, msh.cells)
