@@ -12,6 +12,11 @@ numba was imported before axlebox.
   a file, the stale machine code would run, and can crash the interpreter.  A
   ``NUMBA_CACHE_DIR`` the user set is left alone; the one an axlebox process set (marked in
   ``AXLEBOX_NUMBA_CACHE_DIR``) is chosen again by its child processes, whose axlebox may differ.
+* Each kernel's machine code lies in that folder under its module's name (``axlebox.bearing...``),
+  stamped with its file's content (:class:`KernelCacheLocator`), not under a hash of the file's
+  path stamped with its time as numba's own locator does: a checkout, a wheel installed in another
+  environment and a sweep's workers elsewhere, all of the same sources, share one compile.  It is
+  given to numba through its public ``NUMBA_CACHE_LOCATOR_CLASSES``; a list the user set stands.
 * Saves to the cache are serialised across processes (:func:`_serialise_cache_saves`): numba
   updates a function's index by load, modify, write, unlocked, so two processes compiling one
   function for two signatures at once (a sweep's workers, the suite's) can both name their
@@ -28,15 +33,20 @@ numba was imported before axlebox.
 """
 from __future__ import annotations
 
+import hashlib
 import os
 from pathlib import Path
 
 from numba import config
+from numba.core.caching import UserProvidedCacheLocator
 
 from ._cache import cache_dir, module_sources, modules_hash
 
 KERNEL_PACKAGES = ("bearing", "mbs")
 OURS = "AXLEBOX_NUMBA_CACHE_DIR"            # the NUMBA_CACHE_DIR an axlebox process chose
+# numba's own locators, by their public names, after ours (numba.core.caching._CacheImpl's order)
+NUMBA_LOCATORS = ("UserProvidedCacheLocator", "InTreeCacheLocator", "UserWideCacheLocator",
+                  "IPythonCacheLocator", "ZipCacheLocator")
 THREADING = ("omp", "tbb", "workqueue")
 
 
@@ -82,6 +92,26 @@ def _serialise_cache_saves() -> None:
     IndexDataCacheFile.save = locked_save
 
 
+class KernelCacheLocator(UserProvidedCacheLocator):
+    """An axlebox kernel in ``NUMBA_CACHE_DIR/<its module>``, stamped by its file's sha256;
+    anything else, or a cache folder axlebox did not choose, is left to numba's locators."""
+
+    def __init__(self, py_func, py_file):
+        super().__init__(py_func, py_file)
+        self._cache_path = os.path.join(config.CACHE_DIR, py_func.__module__)
+
+    def get_source_stamp(self):
+        with open(self._py_file, "rb") as f:
+            return hashlib.sha256(f.read()).hexdigest()
+
+    @classmethod
+    def from_function(cls, py_func, py_file):
+        ours = os.environ.get(OURS)
+        if not (ours and config.CACHE_DIR == ours and py_func.__module__.startswith(__package__ + ".")):
+            return None
+        return super().from_function(py_func, py_file)
+
+
 def user_cache_dir() -> str | None:
     """The ``NUMBA_CACHE_DIR`` the user set (None where unset, or set by an axlebox process)."""
     chosen = os.environ.get("NUMBA_CACHE_DIR")
@@ -106,6 +136,9 @@ def configure() -> None:
         return
     env["NUMBA_CACHE_DIR"] = env[OURS] = str(where)
     config.CACHE_DIR = str(where)
+    if not env.get("NUMBA_CACHE_LOCATOR_CLASSES"):
+        env["NUMBA_CACHE_LOCATOR_CLASSES"] = ",".join((f"{__name__}.KernelCacheLocator",) + NUMBA_LOCATORS)
+        config.CACHE_LOCATOR_CLASSES = env["NUMBA_CACHE_LOCATOR_CLASSES"]
 
 
 configure()

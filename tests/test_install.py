@@ -7,6 +7,7 @@ without the ``wheel`` package). The fresh venv is given that wheel alone: it see
 environment's packages through a ``.pth`` file, not the base interpreter's (``--system-site-packages``
 would show the base's, which on a fresh machine has only what Python ships)."""
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -83,7 +84,8 @@ def test_wheel_installs_axlebox_alone_with_every_source_and_the_configs(wheel, t
 def test_plain_install_runs_the_demo_from_another_folder(wheel, tmp_path):
     """``pip install`` of the wheel (not editable) into a fresh venv; from a folder outside the
     checkout: ``axlebox configs``, ``python -m axlebox --help`` and ``axlebox demo`` (at its shortest
-    duration, 1.41 s simulated) work, and the code that ran is the venv's copy."""
+    duration, 1.41 s simulated) work, and the code that ran is the venv's copy; its kernels are
+    the checkout's machine code where that was compiled first in the session (same sources)."""
     venv = tmp_path / "venv"
     _run([sys.executable, "-m", "venv", "--without-pip", venv])
     py, exe = venv / "bin" / "python", venv / "bin" / "axlebox"
@@ -112,3 +114,8 @@ def test_plain_install_runs_the_demo_from_another_folder(wheel, tmp_path):
     _run([exe, "demo", "--out", "demo", "--duration", str(min_duration())], cwd=elsewhere, env=env)
     assert (elsewhere / "demo" / "report" / "index.html").is_file()
     assert (elsewhere / "demo" / "diagnosis.json").is_file()
+    # the venv's copy kept its kernels beside the checkout's, under their modules' names, none under
+    # numba's own folders named by a hash of their path (axlebox/_numba.py KernelCacheLocator)
+    if not _numba.user_cache_dir():
+        folders = [p.name for p in Path(os.environ["NUMBA_CACHE_DIR"]).iterdir()]
+        assert folders and not [n for n in folders if re.search(r"_[0-9a-f]{40}$", n)], folders

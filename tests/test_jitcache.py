@@ -105,11 +105,38 @@ def test_a_kernel_loaded_after_an_edit_to_a_constant_it_reads_runs_the_new_const
     own, hits, folder = touch()
     assert own == 1 and hits == 0 and str(tmp_path / "cache") in folder     # compiled, in the copy's cache
     assert touch() == (1, 1, folder)                                          # loaded from it
+    user = str(tmp_path / "user")
+    assert touch(NUMBA_CACHE_DIR=user) == (1, 0, user)        # numba's own locator and check
     _edit(tmp_path / "src/axlebox/bearing/kernel/layout.py", "BLK_NONE, BLK_OWN, BLK_COUPLED = 0, 1, 2",
           "BLK_NONE, BLK_OWN, BLK_COUPLED = 0, 5, 2")
     own, hits, new_folder = touch()
     assert (own, hits) == (5, 0) and new_folder != folder
-    assert touch(NUMBA_CACHE_DIR=folder)[:2] == (1, 1)        # numba's own check: stale code
+    assert touch(NUMBA_CACHE_DIR=user)[:2] == (1, 1)          # numba's own check: stale code
+
+
+def test_two_copies_of_the_same_sources_in_two_places_share_one_compile(tmp_path):
+    """A kernel compiled by one copy of axlebox is loaded by another copy of the same sources
+    elsewhere (a checkout and the wheel installed from it, a sweep's workers in two environments):
+    its machine code lies under its module's name, stamped by its file's content
+    (axlebox/_numba.py KernelCacheLocator), not under a hash of its path with the file's time."""
+    import subprocess
+    import sys
+    for copy in ("a", "b"):
+        _installed_copy(tmp_path / copy)
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("NUMBA_CACHE_DIR", _numba.OURS, "NUMBA_CACHE_LOCATOR_CLASSES")}
+    env["AXLEBOX_CACHE"] = str(tmp_path / "cache")
+
+    def touch(copy):
+        out = subprocess.run([sys.executable, "-c", _TOUCH], env={**env, "PYTHONPATH": str(tmp_path / copy)},
+                             capture_output=True, text=True, check=True, cwd=tmp_path).stdout.split()
+        return int(out[0]), int(out[1]), out[2]
+
+    own, hits, folder = touch("a")
+    assert (own, hits) == (1, 0)
+    assert touch("b") == (1, 1, folder)
+    names = {p.name for p in Path(folder).iterdir()}       # _touch and the kernels it calls
+    assert "axlebox.bearing.kernel.blocks" in names and all(n.startswith("axlebox.bearing.") for n in names)
 
 
 def test_mesh_key_moves_with_any_geometry_source(tmp_path):
