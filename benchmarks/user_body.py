@@ -17,40 +17,14 @@ from pathlib import Path
 import numpy as np
 
 
-def write_inputs(folder: Path, h: float) -> tuple[Path, Path]:
-    """The built-in frame as STEP and a spec whose boxes are its named faces' bounding boxes."""
-    import gmsh
-
-    from axlebox.geometry import frame
-    gmsh.initialize(interruptible=False)
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.model.add("frame")
-        named = frame.build(frame.FrameParams())
-        gmsh.model.occ.synchronize()
-        lines = [f'[body]\nkind = "frame"\nname = "user_frame"\n\n[mesh]\nsize = {h}\n\n'
-                 '[reduction]\nmodes = 12\nn_reference = 12\n']
-        for name, tags in named.items():
-            bb = np.array([gmsh.model.getBoundingBox(2, t) for t in tags])
-            box = [round(float(v), 6) for v in (*bb[:, :3].min(0), *bb[:, 3:].max(0))]
-            lines.append(f'[interfaces.{name}]\nbox = {box}\ncoupling = "rbe3"\n')
-        gmsh.option.setString("Geometry.OCCTargetUnit", "M")
-        gmsh.write(str(folder / "frame.step"))
-    finally:
-        gmsh.option.setString("Geometry.OCCTargetUnit", "")
-        gmsh.finalize()
-    (folder / "frame.toml").write_text("\n".join(lines))
-    return folder / "frame.step", folder / "frame.toml"
-
-
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--mesh-size", type=float, default=0.08)
     ap.add_argument("--repeats", type=int, default=2)
     a = ap.parse_args()
-    from axlebox.pipelines.bodies import build_body, build_user_body
+    from axlebox.pipelines.bodies import build_body, build_user_body, write_template
     work = Path(tempfile.mkdtemp(prefix="user-body-"))
-    step, spec = write_inputs(work, a.mesh_size)
+    step, spec = write_template("frame", work, mesh_size=a.mesh_size, n_reference=12)
     best = {"built-in": np.inf, "your own (STEP)": np.inf}
     bodies = {}
     for r in range(a.repeats):

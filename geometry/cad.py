@@ -9,7 +9,10 @@ must lie in.
 """
 from __future__ import annotations
 
+import contextlib
 import hashlib
+import os
+import sys
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -46,6 +49,21 @@ class CadSource:
     selections: tuple
     rho: float = 0.0
     mass_kg: float = 0.0
+
+
+@contextlib.contextmanager
+def occ_quiet():
+    """OpenCASCADE's STEP writer prints its transfer statistics to the process's standard output
+    (file descriptor 1), past gmsh's ``General.Terminal = 0``: sent to /dev/null meanwhile."""
+    sys.stdout.flush()
+    saved = os.dup(1)
+    try:
+        with open(os.devnull, "w") as null:
+            os.dup2(null.fileno(), 1)
+        yield
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
 
 
 def check_size(fname: str, extent: float, mass: float, mass_kg: float, unit: str) -> None:

@@ -188,6 +188,60 @@ def car_interfaces(kind: str) -> tuple[str, ...]:
     return tuple(sorted(spec.couplings(spec.params())))
 
 
+def write_template(kind: str, out_dir, *, mesh_size: float | None = None, modes: int = 12,
+                   n_reference: int = 0) -> tuple[Path, Path]:
+    """The built-in ``kind`` as a body of your own would come: ``<out_dir>/<kind>.step`` (its
+    solid, in metres) and ``<out_dir>/<kind>.toml`` (its spec, at the car's coarse mesh unless
+    ``mesh_size``): every interface the car attaches to by its name, each by the box around the
+    built-in surface (the gear rim by its cylinder: a box round it holds the gear's sides too),
+    coupled as built in, at the built-in reference point where there is one.  Built through
+    :func:`build_user_body` it is the built-in body again (tests/test_user_bodies.py): a
+    starting point to edit in CAD and in the spec (``axlebox bodies template``)."""
+    import gmsh
+
+    from axlebox.geometry import cad
+    if kind not in BODIES:
+        raise ParameterError(f"body = {kind!r} is not allowed: expected one of {sorted(BODIES)}")
+    spec = BODIES[kind]
+    p = spec.params()
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    couplings, positions = spec.couplings(p), spec.positions(p)
+    h = spec.coarse_mesh_size if mesh_size is None else number("--mesh-size", mesh_size)
+    lines = [f'# the built-in {kind} (axlebox bodies template), as a spec of your own\n'
+             f'[body]\nkind = "{kind}"\nname = "my_{kind}"\n',
+             f"[mesh]\nsize = {h}\n", f"[reduction]\nmodes = {modes}\nn_reference = {n_reference}\n"]
+    gmsh.initialize(interruptible=False)
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add(kind)
+        named = spec.build(p)
+        gmsh.model.occ.synchronize()
+        for name, tags in named.items():
+            if kind == "wheelset" and name == "gear":
+                s = p.side_sign(p.gear_side)
+                y0 = min(s * (p.gear_center - p.gear_width / 2), s * (p.gear_center + p.gear_width / 2))
+                place = f"cylinder = {[0.0, y0, 0.0, 0.0, 1.0, 0.0, p.r_gear, p.gear_width]}"
+            else:
+                bb = np.array([gmsh.model.getBoundingBox(2, t) for t in tags])
+                place = f"box = {[round(float(v), 6) + 0.0 for v in (*bb[:, :3].min(0), *bb[:, 3:].max(0))]}"
+            at = f"\nposition = {[float(v) for v in positions[name]]}" if name in positions else ""
+            lines.append(f'[interfaces.{name}]\n{place}\ncoupling = "{couplings[name]}"{at}\n')
+        gmsh.option.setString("Geometry.OCCTargetUnit", "M")
+        step = out / f"{kind}.step"
+        tmp = step.with_name(step.name + ".part.step")
+        with cad.occ_quiet():
+            gmsh.write(str(tmp))
+        tmp.replace(step)
+    finally:
+        gmsh.option.setString("Geometry.OCCTargetUnit", "")
+        gmsh.finalize()
+    toml = out / f"{kind}.toml"
+    toml.with_name(toml.name + ".part").write_text("\n".join(lines))
+    toml.with_name(toml.name + ".part").replace(toml)
+    return step, toml
+
+
 def build_user_body(spec_path, *, geometry=None, mesh_file=None, out_dir="bodies", force: bool = False,
                     log: Callable[[str], None] = print) -> tuple[bodyfile.ReducedBody, Path]:
     """A user's own part, from a CAD file (``geometry``: STEP, IGES, BREP) or a mesh file

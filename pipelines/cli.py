@@ -88,6 +88,12 @@ def _cmd_bodies_export(a) -> None:
     print(f"wrote {export(a.body_file, a.format, a.out)}")
 
 
+def _cmd_bodies_template(a) -> None:
+    from .bodies import write_template
+    for path in write_template(a.body, a.out, mesh_size=a.mesh_size):
+        print(f"wrote {path}")
+
+
 def _cmd_bodies_report(a) -> None:
     from .render import report
     report(a.dir, a.out, max_modes=a.max_modes)
@@ -487,6 +493,13 @@ def parser() -> argparse.ArgumentParser:
                     help="rebuild even if <out>/<body>.h5 holds the same request (default: keep it)")
     bb.add_argument("--out", required=True, help="output folder")
     bb.set_defaults(func=_cmd_bodies_build)
+
+    bt = bs.add_parser("template", help="a built-in body as STEP and the spec that builds it again "
+                       "(bodies build --geometry --spec): a start for your own")
+    bt.add_argument("--body", required=True, choices=["wheelset", "axlebox", "frame"])
+    bt.add_argument("--mesh-size", type=float, default=None, help="element size in m (default: the car's)")
+    bt.add_argument("--out", required=True, help="output folder: <body>.step and <body>.toml")
+    bt.set_defaults(func=_cmd_bodies_template)
 
     br = bs.add_parser("report", help="render mode shapes off-screen and write index.html")
     br.add_argument("dir", help="folder of reduced-body files (or one .h5 file)")

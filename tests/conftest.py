@@ -22,6 +22,23 @@ if os.environ.get("PYTEST_XDIST_WORKER"):
         os.environ.setdefault(_var, "1")
 
 
+# Modules run first, before pytest-xdist's own order (``--no-loadscope-reorder`` hands it this
+# one): test_install's demo runs from a wheel in a venv of its own, the longest few-test module,
+# which xdist's order (the most tests first) put last, a worker busy for 3 min after the other
+# had finished (CI timeline, 2026-11-29).  Its kernels are the checkout's (axlebox/_numba.py), so
+# whichever compiles first, the other process loads.
+FIRST = ("test_install.py",)
+
+
+def pytest_collection_modifyitems(session, config, items):
+    modules: dict = {}
+    for item in items:
+        modules.setdefault(item.path.name, []).append(item)
+    # xdist's order (xdist/scheduler/loadscope.py): by the number of tests, stable
+    order = sorted(modules, key=lambda m: (m not in FIRST, -len(modules[m])))
+    items[:] = [item for m in order for item in modules[m]]
+
+
 def pytest_sessionfinish(session, exitstatus):
     if _SESSION_CACHE:
         shutil.rmtree(_SESSION_CACHE, ignore_errors=True)
