@@ -143,7 +143,7 @@ def build(p: WheelsetParams) -> dict[str, list[int]]:
     """Build the solid; named faces per side s in {L, R}:
 
     ``journal_<s>_row1`` / ``journal_<s>_row2`` (inboard / outboard bearing seat),
-    ``tread_<s>`` (bottom contact patch of the tread), ``gear`` (gear rim).
+    ``tread_<s>`` (bottom contact patch of the tread), ``gear`` (gear rim, whole).
     """
     import gmsh
     revolve_profile(profile(p), sector_deg=p.contact_sector_deg)
@@ -165,7 +165,7 @@ def build(p: WheelsetParams) -> dict[str, list[int]]:
     if p.r_gear > 0:
         sg = p.side_sign(p.gear_side)
         g = sorted((sg * (p.gear_center - p.gear_width / 2), sg * (p.gear_center + p.gear_width / 2)))
-        named["gear"] = [f for f in select(boxes, y=g)
-                         if boxes[f][3] - boxes[f][0] > 1.9 * p.r_gear - 1e-3
-                         and abs(boxes[f][4] - boxes[f][1]) > 1e-6]
+        # the whole rim, every sector the revolve made (its sides are flat in y): an RBE3 on the
+        # rim less its bottom sector put the gear's master 24 mm above the axle
+        named["gear"] = [f for f in select(boxes, y=g) if abs(boxes[f][4] - boxes[f][1]) > 1e-6]
     return named

@@ -10,6 +10,7 @@ from typing import Callable
 
 import numpy as np
 
+from axlebox._cache import package_dir, source_hash
 from axlebox._params import ParameterError, number
 from axlebox.fem import assembly, bodyfile, eigen, interfaces
 from axlebox.fem.body import make_body
@@ -120,7 +121,7 @@ def build_body(body: str, *, method: str = "craig-bampton", n_modes: int | None 
     h = spec.mesh_size if mesh_size is None else mesh_size
     request = {"body": body, "params": dataclasses.asdict(p), "mesh_size": h, "method": method,
                "n_modes": n_modes, "fmax_hz": fmax_hz, "coupling": coupling,
-               "damping": list(damping), "n_reference": n_reference}
+               "damping": list(damping), "n_reference": n_reference, "sources": sources_hash()}
     if out_dir is not None and not force:
         done = _up_to_date(Path(out_dir) / f"{body}.h5", request)
         if done is not None:
@@ -155,6 +156,16 @@ def build_body(body: str, *, method: str = "craig-bampton", n_modes: int | None 
         path = bodyfile.write(rb, Path(out_dir) / f"{body}.h5")
         log(f"{body}: wrote {path}")
     return rb, path
+
+
+def sources_hash() -> str:
+    """Hash of what a body is made by: every source of geometry/ and fem/, and this module (the
+    built-in bodies' interfaces).  Part of every build's request, so a body built before an
+    edit or an upgrade (the car's cache of coarse bodies above all) is built again, not kept."""
+    import hashlib
+    h = hashlib.sha256(source_hash([package_dir("geometry"), package_dir("fem")]).encode())
+    h.update(Path(__file__).read_bytes())
+    return h.hexdigest()[:16]
 
 
 def _up_to_date(path: Path, request: dict) -> bodyfile.ReducedBody | None:
@@ -204,10 +215,11 @@ def write_template(kind: str, out_dir, *, mesh_size: float | None = None, modes:
         raise ParameterError(f"body = {kind!r} is not allowed: expected one of {sorted(BODIES)}")
     spec = BODIES[kind]
     p = spec.params()
+    from .bodyspec import MeshEntry
+    h = MeshEntry(size=spec.coarse_mesh_size if mesh_size is None else mesh_size).size    # its range
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     couplings, positions = spec.couplings(p), spec.positions(p)
-    h = spec.coarse_mesh_size if mesh_size is None else number("--mesh-size", mesh_size)
     lines = [f'# the built-in {kind} (axlebox bodies template), as a spec of your own\n'
              f'[body]\nkind = "{kind}"\nname = "my_{kind}"\n',
              f"[mesh]\nsize = {h}\n", f"[reduction]\nmodes = {modes}\nn_reference = {n_reference}\n"]
@@ -221,7 +233,7 @@ def write_template(kind: str, out_dir, *, mesh_size: float | None = None, modes:
             if kind == "wheelset" and name == "gear":
                 s = p.side_sign(p.gear_side)
                 y0 = min(s * (p.gear_center - p.gear_width / 2), s * (p.gear_center + p.gear_width / 2))
-                place = f"cylinder = {[0.0, y0, 0.0, 0.0, 1.0, 0.0, p.r_gear, p.gear_width]}"
+                place = f"cylinder = {[0.0, round(y0, 9), 0.0, 0.0, 1.0, 0.0, p.r_gear, p.gear_width]}"
             else:
                 bb = np.array([gmsh.model.getBoundingBox(2, t) for t in tags])
                 place = f"box = {[round(float(v), 6) + 0.0 for v in (*bb[:, :3].min(0), *bb[:, 3:].max(0))]}"
@@ -262,7 +274,7 @@ def build_user_body(spec_path, *, geometry=None, mesh_file=None, out_dir="bodies
     src = Path(geometry if geometry is not None else mesh_file)
     flag = "--geometry" if geometry is not None else "--mesh"
     sha = _sha256(src, flag)
-    request = {"source": src.name, "sha256": sha, "spec": _plain(spec)}
+    request = {"source": src.name, "sha256": sha, "spec": _plain(spec), "sources": sources_hash()}
     path = Path(out_dir) / f"{spec.name}.h5"
     if not force:
         done = _up_to_date(path, request)

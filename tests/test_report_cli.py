@@ -82,3 +82,19 @@ def test_build_resumes_instead_of_rebuilding(tmp_path):
     r = _cli(*[a if a != "4" else "5" for a in args])
     assert r.returncode == 0 and "up to date" not in r.stdout
     assert not list(tmp_path.glob("*.part"))
+
+
+def test_a_body_built_by_other_sources_is_built_again(tmp_path, monkeypatch):
+    """A body file whose request names other geometry/fem sources (built before an edit or an
+    upgrade: the car's cache of coarse bodies) is not kept: the same request today rebuilds it."""
+    from axlebox.pipelines import bodies
+    kw = dict(mesh_size=0.05, n_modes=4, n_reference=0, out_dir=tmp_path)
+    with monkeypatch.context() as m:
+        m.setattr(bodies, "sources_hash", lambda: "an older build")
+        bodies.build_body("axlebox", log=lambda *_: None, **kw)
+    lines = []
+    bodies.build_body("axlebox", log=lines.append, **kw)
+    assert not any("up to date" in line for line in lines), lines
+    lines = []
+    bodies.build_body("axlebox", log=lines.append, **kw)
+    assert any("up to date" in line for line in lines), lines
