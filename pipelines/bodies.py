@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 import json
 import time
 from dataclasses import dataclass
@@ -162,7 +163,6 @@ def sources_hash() -> str:
     """Hash of what a body is made by: every source of geometry/ and fem/, and this module (the
     built-in bodies' interfaces).  Part of every build's request, so a body built before an
     edit or an upgrade (the car's cache of coarse bodies above all) is built again, not kept."""
-    import hashlib
     h = hashlib.sha256(source_hash([package_dir("geometry"), package_dir("fem")]).encode())
     h.update(Path(__file__).read_bytes())
     return h.hexdigest()[:16]
@@ -211,11 +211,12 @@ def write_template(kind: str, out_dir, *, mesh_size: float | None = None, modes:
     import gmsh
 
     from axlebox.geometry import cad
+
+    from .bodyspec import MeshEntry
     if kind not in BODIES:
         raise ParameterError(f"body = {kind!r} is not allowed: expected one of {sorted(BODIES)}")
     spec = BODIES[kind]
     p = spec.params()
-    from .bodyspec import MeshEntry
     h = MeshEntry(size=spec.coarse_mesh_size if mesh_size is None else mesh_size).size    # its range
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -321,7 +322,6 @@ def build_user_body(spec_path, *, geometry=None, mesh_file=None, out_dir="bodies
 
 
 def _sha256(path: Path, flag: str) -> str:
-    import hashlib
     if not Path(path).is_file():
         raise ParameterError(f"{flag} = {str(path)!r} is not allowed: no such file")
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()
