@@ -21,21 +21,15 @@ from pathlib import Path
 import numpy as np
 
 from axlebox import configs
-from axlebox.bearing.diagnostics.envelope import envelope_spectrum
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.models.params import BearingParams
 from axlebox.mbs import integrate
 from axlebox.pipelines import simulate as psim
 from axlebox.pipelines.bodies import build_user_body, write_template
 from axlebox.pipelines.readers import TRACK_FADE_IN_S
+from coupled import bpfo_line          # benchmarks/coupled.py: the step-halving reference's line
 
 KINDS = ("wheelset", "axlebox", "frame")
-
-
-def bpfo_line(x, fs: float, bpfo: float) -> float:
-    """The envelope spectrum's (broadband, one window) highest amplitude within 3 % of BPFO."""
-    f, A = envelope_spectrum(x, fs)
-    return float(A[np.abs(f / bpfo - 1.0) < 0.03].max())
 
 
 def main() -> None:

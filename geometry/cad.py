@@ -20,6 +20,7 @@ import numpy as np
 
 from axlebox._params import ParameterError
 
+from ._occ import boundary_faces
 from .select import Named
 
 #: file suffix -> format; STEP and IGES carry their length unit, BREP does not
@@ -133,7 +134,7 @@ def build(src: CadSource) -> dict[str, list[int]]:
     box = np.asarray(gmsh.model.getBoundingBox(-1, -1))
     volume = sum(occ.getMass(3, t) for _, t in occ.getEntities(3))
     check_size(name, float((box[3:] - box[:3]).max()), src.rho * volume, src.mass_kg, src.unit)
-    faces = _boundary_faces()
+    faces = boundary_faces()
     out = {}
     for iname, sel in src.selections:
         tags = _named(faces, sel.name) if isinstance(sel, Named) else _placed(faces, sel)
@@ -142,12 +143,6 @@ def build(src: CadSource) -> dict[str, list[int]]:
                                  f"among its {len(faces)} boundary faces")
         out[iname] = tags
     return out
-
-
-def _boundary_faces() -> list[int]:
-    import gmsh
-    faces = gmsh.model.getBoundary(gmsh.model.getEntities(3), combined=True, oriented=False)
-    return sorted({abs(t) for _, t in faces})
 
 
 def _named(faces: list[int], label: str) -> list[int]:

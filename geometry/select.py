@@ -76,8 +76,3 @@ class Named:
 
     def looked_for(self) -> str:
         return f"a surface named {self.name!r}"
-
-
-def pieces_held(selection, points: np.ndarray) -> np.ndarray:
-    """Indices of the pieces (n, k, 3) of surface the place ``selection`` holds for."""
-    return np.flatnonzero(selection.holds(np.asarray(points, float)))

@@ -19,7 +19,7 @@ from axlebox._params import ParameterError
 from axlebox.geometry import axlebox as ab_geometry
 from axlebox.geometry import mesh as gmesh
 from axlebox.pipelines import cli
-from axlebox.pipelines.bodies import BODIES, build_body, build_user_body, car_interfaces
+from axlebox.pipelines.bodies import BODIES, build_body, build_user_body, car_interfaces, write_template
 
 H = BODIES["axlebox"].coarse_mesh_size         # 0.04 m: the demo's
 N_REF = 12
@@ -290,33 +290,20 @@ def _frame_places():
         out[f"secondary_{side}"] = {"box": [-p.side_beam_length / 2, y - b / 2, zt, p.side_beam_length / 2,
                                             y + b / 2, zt]}
     out["traction_centre"] = {"box": [-p.cross_beam_x, -0.15, -h / 2, p.cross_beam_x, 0.15, -h / 2]}
-    return p, out
+    return out
 
 
 def test_the_car_runs_on_a_frame_of_your_own(tmp_path, capsys):
     """The built-in frame as STEP, its interfaces by box, reduced through the user's path and put
     in the car as ``bodies.frame``: the statics converge and the bearings couple (a short run of
     the validation case), and a frame without a traction centre is refused in one line."""
-    import gmsh
-
     from axlebox import configs
     from axlebox._cache import cache_dir
     from axlebox.fem import bodyfile
-    from axlebox.geometry import frame as fr_geometry
     from axlebox.mbs import integrate
     from axlebox.pipelines import simulate as psim
-    p, places = _frame_places()
-    gmsh.initialize(interruptible=False)
-    try:
-        gmsh.option.setNumber("General.Terminal", 0)
-        gmsh.model.add("frame")
-        fr_geometry.build(p)
-        gmsh.model.occ.synchronize()
-        gmsh.option.setString("Geometry.OCCTargetUnit", "M")
-        gmsh.write(str(tmp_path / "frame.step"))
-    finally:
-        gmsh.option.setString("Geometry.OCCTargetUnit", "")
-        gmsh.finalize()
+    places = _frame_places()
+    write_template("frame", tmp_path)               # its STEP; the spec here is a user's own boxes
     spec = tmp_path / "my_frame.toml"
     spec.write_text(_spec(tmp_path / "x.toml", places, kind="frame").read_text()
                     .replace(f"size = {H}", f"size = {BODIES['frame'].coarse_mesh_size}")
