@@ -4,7 +4,7 @@ The bearings' parallel region meets every right-hand side, 10-20 us apart.  A th
 its core with another busy process is off the core for that process's whole time slice
 (milliseconds), and every meeting waits for it: beside one busy loop on 2 cores the validation
 car ran 3.3-3.7x slower on 2 threads, and 1.02x on one (benchmarks/README.md, "The car beside
-another process").  So a run (:func:`axlebox.mbs.integrate.simulate`) starts a :class:`Fitter`:
+another process").  So a run (:func:`axlebox.mbs.solver.integrate.simulate`) starts a :class:`Fitter`:
 a watcher thread that every :data:`INTERVAL` s estimates the cores busy with other processes
 (:func:`others_busy`, from ``/proc/stat`` less this process's own CPU time) and writes the
 thread count that fits (:func:`fitted`) into a small array; the run's kernel reads it at every

@@ -7,7 +7,7 @@ quasi-static solution), so that at rest the bearing alone carries ``F_ext``.
 
 * :func:`run_rk4`: classical Runge-Kutta 4, every stage a full evaluation of the bearing
   (:func:`.evaluate.evaluate`; the dynamic scheme only).
-* :func:`run_leapfrog`: the vehicle's kick-drift leapfrog (mbs/kernel_integrate.py), one
+* :func:`run_leapfrog`: the vehicle's kick-drift leapfrog (mbs/kernel/integrate.py), one
   evaluation a step, velocities half a step behind the positions; with ``mode`` 1 ("imex") the
   rollers' and cages' contact damping in the kick implicitly, with 2 ("imex2") their contact
   stiffness and friction too (bearing/kernel/implicit.py); the quasi-dynamic bearing takes its own

@@ -13,7 +13,7 @@ import os
 import platform
 import time
 
-from axlebox.mbs import integrate
+from axlebox.mbs.solver import integrate
 from axlebox.pipelines import simulate as psim
 
 

@@ -1,5 +1,5 @@
 """Ride comfort's cost: Sperling's W_z/W_y and EN 12299's N_MV of one floor sensor
-(:func:`axlebox.mbs.comfort.ride_comfort`) on a 5 min record, at the comfort config's 1 kHz and the
+(:func:`axlebox.mbs.post.comfort.ride_comfort`) on a 5 min record, at the comfort config's 1 kHz and the
 validation config's 10 kHz; best of ``--repeat`` wall times and the peak memory it allocates
 (tracemalloc).  The record: three axes of random floor motion (its content does not change the
 cost: FFTs of fixed length).  Run: ``python3 benchmarks/comfort.py [--repeat N]``.
@@ -12,7 +12,7 @@ import tracemalloc
 
 import numpy as np
 
-from axlebox.mbs.comfort import ride_comfort
+from axlebox.mbs.post.comfort import ride_comfort
 
 
 def main() -> None:

@@ -15,7 +15,7 @@ dotted.
 from __future__ import annotations
 
 import argparse
-from axlebox.mbs import config as vconfig
+from axlebox.mbs.vehicle import config as vconfig
 from pathlib import Path
 
 

@@ -6,7 +6,7 @@ import resource
 import time
 import tracemalloc
 
-from axlebox.mbs import track
+from axlebox.mbs.track import irregularity as track
 from axlebox.mbs.wheelrail.conicity import equivalent_conicity
 from axlebox.mbs.wheelrail.geometry import TrackLayout, contact_table
 from axlebox.mbs.wheelrail.standard import chn60, s1002, uic60

@@ -84,7 +84,7 @@ print(json.dumps(res))
 CAR = r"""
 import json, sys
 from axlebox import configs
-from axlebox.mbs import integrate
+from axlebox.mbs.solver import integrate
 from axlebox.pipelines import simulate as psim
 T = float(sys.argv[1])
 cfg = psim.load_config(configs.path("validation_48kmh"), duration=T)

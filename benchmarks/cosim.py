@@ -5,7 +5,7 @@
 The paper coupled its SIMPACK car to its Simulink DTRB through SIMAT, exchanging every 1e-4 s
 (its Fig. 6; the DTRB by Runge-Kutta at 1e-4 s).  Here: the shipped study config with
 ``[coupling] exchange_dt = 1e-4``, the bodies in ten steps of 1e-5 s an exchange with the
-bearings' loads held (``body_substeps = 10``, ``hold``; mbs/exchange.py "Co-simulation"), the
+bearings' loads held (``body_substeps = 10``, ``hold``; mbs/kernel/exchange.py "Co-simulation"), the
 bearings in their own 5e-6 s sub-steps; outputs at 10 kHz through the ideal sensor (an exchange
 of 1e-4 s cannot feed the sensor model's 50 kHz).  The cases run as ``axlebox sweep`` runs them
 (``--widths 3``, the four speeds).  For each case and side: VF over the whole record and over

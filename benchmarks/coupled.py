@@ -11,7 +11,7 @@ configs' imex at 1e-5 s on all numba threads and on one (same numbers expected),
 2.5e-6 s (the step halved twice); they give the rate and the convergence
 of what the diagnosis reads after the 0.5 s fade-in: the defect-side (ws2_R) and healthy-side
 RMS and the BPFO line of the defect side's envelope spectrum.  Last, the right-hand side at the
-end of the first run taken apart by stage (each stage of :func:`axlebox.mbs.kernel_system.rhs` called
+end of the first run taken apart by stage (each stage of :func:`axlebox.mbs.kernel.system.rhs` called
 alone, in numba): at the start the bearings sit in their quasi-static state, with fewer
 contacts active than running.
 """
@@ -29,13 +29,13 @@ from axlebox import configs
 from axlebox.bearing.diagnostics.envelope import envelope_spectrum
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.models.params import BearingParams
-from axlebox.mbs import integrate
-from axlebox.mbs.kernel_bearings import bearing_forces
-from axlebox.mbs.kernel_body import BI_N, frame_kinematics, gravity_load, position_rates
-from axlebox.mbs.kernel_elements import element_forces
-from axlebox.mbs.kernel_markers import marker_acceleration, marker_kinematics, marker_loads
-from axlebox.mbs.kernel_system import _accelerations
-from axlebox.mbs.kernel_wheels import G_GRAV, wheel_forces
+from axlebox.mbs.solver import integrate
+from axlebox.mbs.kernel.bearings import bearing_forces
+from axlebox.mbs.kernel.body import BI_N, frame_kinematics, gravity_load, position_rates
+from axlebox.mbs.kernel.elements import element_forces
+from axlebox.mbs.kernel.markers import marker_acceleration, marker_kinematics, marker_loads
+from axlebox.mbs.kernel.system import _accelerations
+from axlebox.mbs.kernel.wheels import G_GRAV, wheel_forces
 from axlebox.pipelines import simulate as psim
 from axlebox.pipelines.readers import TRACK_FADE_IN_S
 
@@ -56,7 +56,7 @@ def rhs_us(model, y0, n=200, repeats=5) -> float:
 
 @njit
 def _stage(which, nrep, t, y, dy, S, W):
-    """``nrep`` calls of one stage of :func:`axlebox.mbs.kernel_system.rhs` (same order, same arrays)."""
+    """``nrep`` calls of one stage of :func:`axlebox.mbs.kernel.system.rhs` (same order, same arrays)."""
     bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f, wtab, wpar, trk, wrk, sens, \
         br_i, br_P, br_D = S
     Ab, rb, vb, omb, omfb, mku, mkp, mkv, mkR, mkw, mkF, mkM, gen, elout, whout, sensout = W

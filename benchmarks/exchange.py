@@ -1,4 +1,4 @@
-"""What the exchange between the car's bodies and its bearings costs (mbs/exchange.py).
+"""What the exchange between the car's bodies and its bearings costs (mbs/kernel/exchange.py).
 
     python3 benchmarks/exchange.py [--duration 0.3] [--exchange 2e-5]
 
@@ -26,7 +26,7 @@ from axlebox.bearing.kernel.evaluate import work
 from axlebox.bearing.kernel.implicit import scratch
 from axlebox.bearing.kernel.quasidynamic import QD_WIDTH
 from axlebox.bearing.models.params import BearingParams
-from axlebox.mbs import integrate
+from axlebox.mbs.solver import integrate
 
 from coupled import FRONT, variant
 

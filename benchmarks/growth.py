@@ -52,7 +52,7 @@ def one(case: str, duration: float, bodies: str) -> dict:
         states = None
     else:
         from axlebox import configs
-        from axlebox.mbs import integrate
+        from axlebox.mbs.solver import integrate
         from axlebox.pipelines import simulate as psim
         over = {"bodies": {"dir": bodies}}
         name = "validation_48kmh"

@@ -31,10 +31,10 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-from axlebox.mbs.body import flexible  # noqa: E402
-from axlebox.mbs.elements import Load  # noqa: E402
-from axlebox.mbs.integrate import Settings, simulate  # noqa: E402
-from axlebox.mbs.system import System  # noqa: E402
+from axlebox.mbs.solver.body import flexible  # noqa: E402
+from axlebox.mbs.solver.elements import Load  # noqa: E402
+from axlebox.mbs.solver.integrate import Settings, simulate  # noqa: E402
+from axlebox.mbs.solver.system import System  # noqa: E402
 
 from peer_case import LoadHistory, build_case  # noqa: E402
 
@@ -95,7 +95,7 @@ def rhs_cost(model, y, n=20000) -> float:
     overhead).  Take a state from the run: at rest (q = 0) the kernel skips its R q loops."""
     from numba import njit
 
-    from axlebox.mbs.kernel_system import rhs
+    from axlebox.mbs.kernel.system import rhs
 
     @njit
     def loop(y, dy, S, W, n):

@@ -13,7 +13,7 @@ side's.  The lag: `impulse_lag` at the line's period (the defect side given firs
 from __future__ import annotations
 
 import argparse
-from axlebox.mbs import config as vconfig
+from axlebox.mbs.vehicle import config as vconfig
 
 import numpy as np
 

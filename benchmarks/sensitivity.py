@@ -36,7 +36,7 @@ from scipy.signal import welch
 from axlebox import configs
 from axlebox.bearing.diagnostics.criterion import VF_BAND_PAPER, Criterion
 from axlebox.bearing.diagnostics.envelope import envelope_spectrum
-from axlebox.mbs import config as vconfig
+from axlebox.mbs.vehicle import config as vconfig
 from axlebox.pipelines import simulate as psim
 from axlebox.pipelines.diagnose import analyse_file
 
@@ -85,7 +85,7 @@ VARIANTS = {
     "zeta_ab4": ("axle-box modal damping 4 %", {"bodies": {"zeta_axlebox": 0.04}}),
     "zeta_ab8": ("axle-box modal damping 8 %", {"bodies": {"zeta_axlebox": 0.08}}),
     "no_masses": ("without the axle-box assembly's masses", NO_MASSES),
-    # the defect side's 2-5 kHz against short-wave roughness on both sides (mbs/roughness.py,
+    # the defect side's 2-5 kHz against short-wave roughness on both sides (mbs/track/roughness.py,
     # CNOSSOS-EU 2012 tables, contact filter at the static wheel load)
     "rough_iso_composite": ("roughness: ISO 3095 limit rails, composite-block wheels, contact filter",
                             {"track": {"rail_roughness": "iso3095", "wheel_roughness": "composite"}}),
@@ -103,7 +103,7 @@ VARIANTS = {
     "edges0_beta2.5e-5": ("defect profile: sharp edges, damping 2.5e-5 s x stiffness",
                           {**edges(0.0), "bearing": {"damping": "stiffness", "beta": 2.5e-5}}),
     # the paper's co-simulation: loads exchanged every 1e-4 s, the bodies in ten steps between
-    # (mbs/exchange.py "Co-simulation"); 10 kHz outputs, so the ideal sensor
+    # (mbs/kernel/exchange.py "Co-simulation"); 10 kHz outputs, so the ideal sensor
     "cosim_zoh": ("co-simulation, exchange 1e-4 s, loads held (zero-order hold)", cosim("zoh")),
     "cosim_linear": ("co-simulation, exchange 1e-4 s, loads extrapolated (linear)", cosim("linear")),
     "cosim_jacobian": ("co-simulation, exchange 1e-4 s, loads held with the interface Jacobian",

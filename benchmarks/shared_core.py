@@ -60,7 +60,8 @@ WALL = re.compile(r"simulated in ([0-9.]+) s wall")
 DRIVER = """
 import os, sys, numba
 from axlebox import _threads
-from axlebox.mbs import integrate, kernel_integrate as ki
+from axlebox.mbs.solver import integrate
+from axlebox.mbs.kernel import integrate as ki
 from axlebox.pipelines.cli import main
 class Told(_threads.Fitter):
     def __exit__(self, *exc):

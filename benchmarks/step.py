@@ -4,7 +4,7 @@
 
 The validation case (configs/validation_48kmh.toml, front bogie flexible, coarse bodies; the
 integrator's own 10 kHz output, no sensor model) by each ``method:dt[:exchange_dt]`` (the
-bearings' step, and the bodies' step and exchange, mbs/exchange.py; default dt), bypassing the
+bearings' step, and the bodies' step and exchange, mbs/kernel/exchange.py; default dt), bypassing the
 configs' step limits: whether it runs, wall seconds per simulated second, and after the 0.5 s
 fade-in the defect-side (ws2_R) and healthy-side RMS, the defect side's BPFO envelope line, its
 largest |a|, the healthy side's lag behind it (impulse by impulse, broadband: what the
@@ -26,7 +26,7 @@ from axlebox.bearing.diagnostics.lag import impulse_lag
 from axlebox.bearing.diagnostics.criterion import VF_BAND_PAPER
 from axlebox.bearing.diagnostics.spectral import fc_vf
 from axlebox.bearing.models.params import BearingParams
-from axlebox.mbs import integrate
+from axlebox.mbs.solver import integrate
 from axlebox.pipelines.readers import TRACK_FADE_IN_S
 
 from coupled import FRONT, bpfo_line, variant

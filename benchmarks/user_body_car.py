@@ -23,7 +23,7 @@ import numpy as np
 from axlebox import configs
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.models.params import BearingParams
-from axlebox.mbs import integrate
+from axlebox.mbs.solver import integrate
 from axlebox.pipelines import simulate as psim
 from axlebox.pipelines.bodies import build_user_body, write_template
 from axlebox.pipelines.readers import TRACK_FADE_IN_S

@@ -16,8 +16,8 @@ import time
 import numpy as np
 
 from axlebox import configs
-from axlebox.mbs import config as vconfig
-from axlebox.mbs import integrate
+from axlebox.mbs.vehicle import config as vconfig
+from axlebox.mbs.solver import integrate
 from axlebox.pipelines import simulate as psim
 
 

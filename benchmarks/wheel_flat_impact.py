@@ -1,5 +1,5 @@
 """The wheel-flat impact in the car: the peak normal force of a flat wheel at 20-80 km/h, on rigid
-rails and on the ballasted track (mbs/trackbed.py), against its static load.
+rails and on the ballasted track (mbs/track/bed.py), against its static load.
 
     python3 benchmarks/wheel_flat_impact.py [--lengths 0.04 0.05] [--speeds 20 40 60 80]
         [--shape rounded] [--json OUT]
@@ -19,9 +19,9 @@ import time
 def run(length: float, speed: float, track: str, shape: str) -> dict:
 
     from axlebox import configs
-    from axlebox.mbs import config as vconfig
-    from axlebox.mbs import integrate
-    from axlebox.mbs.kernel_wheels import G_RAMP
+    from axlebox.mbs.vehicle import config as vconfig
+    from axlebox.mbs.solver import integrate
+    from axlebox.mbs.kernel.wheels import G_RAMP
     from axlebox.mbs.wheelrail import element_kernel as ek
     from axlebox.pipelines import simulate as psim
     cfg = vconfig.load(configs.path("vehicle")).replace(

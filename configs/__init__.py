@@ -3,7 +3,7 @@
 ``axlebox sweep`` take a name (``validation_48kmh``) wherever they take a path.
 
 * ``vehicle``: the B-type metro motor car at 48 km/h on FRA class 5 track, stiff bushings for
-  the bearings (the defaults of :mod:`axlebox.mbs.config`)
+  the bearings (the defaults of :mod:`axlebox.mbs.vehicle.config`)
 * ``validation_48kmh``: the paper's validation case, eight DTRBs, a 50.4 x 2 x 2 mm defect
 * ``field_64kmh``: the same case at 64.5 km/h, the paper's other field record (its Fig. 1b)
 * ``inner_48kmh``: the same case with the defect on the inner ring (beyond the paper)

@@ -193,7 +193,7 @@ def compare_table(rb: bodyfile.ReducedBody, n: int = 12) -> str:
 
 
 def car_interfaces(kind: str) -> tuple[str, ...]:
-    """The interfaces the car attaches to a body of ``kind`` (mbs/vehicle.py): the built-in
+    """The interfaces the car attaches to a body of ``kind`` (mbs/vehicle/car.py): the built-in
     body's own names (:data:`BODIES`), which a user's body of that kind must have too."""
     spec = BODIES[kind]
     return tuple(sorted(spec.couplings(spec.params())))

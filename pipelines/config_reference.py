@@ -1,10 +1,10 @@
 """The config reference: the page of every config field, generated from the declarations.
 
-Each car config section is a dataclass of :mod:`axlebox.mbs.config` whose fields carry their
+Each car config section is a dataclass of :mod:`axlebox.mbs.vehicle.config` whose fields carry their
 default, range or choices, unit and one-line meaning (:mod:`axlebox._params`); the bearing
 models' parameters (:data:`axlebox.bearing.models.MODELS`), the defects
-(:class:`axlebox.bearing.defects.Defect`, :class:`axlebox.mbs.config.BearingDefect`,
-:class:`axlebox.mbs.config.WheelDefect`) and the bearing rig's ``[rig]``
+(:class:`axlebox.bearing.defects.Defect`, :class:`axlebox.mbs.vehicle.config.BearingDefect`,
+:class:`axlebox.mbs.vehicle.config.WheelDefect`) and the bearing rig's ``[rig]``
 (:class:`axlebox.bearing.rig.RigConfig`) are declared the same way; ``[sweep]`` is
 :mod:`axlebox.pipelines.sweep`'s.  Nothing about a field is written here: the page is made from
 those declarations, so it cannot drift from what the loader accepts.
@@ -23,7 +23,7 @@ from axlebox.bearing.defects import PROFILES, Defect
 from axlebox.bearing.kernel.layout import KINDS
 
 from axlebox.bearing.rig import RIG_METHODS, RIG_SECTIONS, RigConfig
-from axlebox.mbs import config as vconfig
+from axlebox.mbs.vehicle import config as vconfig
 
 from .sweep import SIDES, SWEEP_FIELDS
 
@@ -192,7 +192,7 @@ def bearing_rows(model: str = _models.DEFAULT) -> list[tuple]:
 
 
 def defect_rows() -> list[tuple]:
-    """``[[defects]]``: where on the car (:class:`~axlebox.mbs.config.BearingDefect`), then the
+    """``[[defects]]``: where on the car (:class:`~axlebox.mbs.vehicle.config.BearingDefect`), then the
     Defect's fields (the car's angle in degrees, angle_deg; the rig's in rad, angle)."""
     place = _dataclass_rows(vconfig.BearingDefect, skip=("shape", "angle_deg"))
     shape = [r[:5] + ("rig only (the vehicle's is angle_deg): " + r[5],) if r[0] == "angle" else r
@@ -201,7 +201,7 @@ def defect_rows() -> list[tuple]:
 
 
 def wheel_defect_rows() -> list[tuple]:
-    """``[[wheel_defects]]``: :class:`~axlebox.mbs.config.WheelDefect`'s fields, each marked with
+    """``[[wheel_defects]]``: :class:`~axlebox.mbs.vehicle.config.WheelDefect`'s fields, each marked with
     the kinds that take it."""
     kinds_of = vconfig.WHEEL_DEFECT_FIELDS
     rows = []
@@ -244,7 +244,7 @@ def sections() -> list[tuple[str, str, list[tuple]]]:
                         "gives its angle in degrees (angle_deg); the rig config takes the Defect "
                         "fields as they are (angle in rad).", defect_rows()),
         ("[[wheel_defects]]", "Wheel tread defects, each a radius deviation turning with its wheel "
-                              "(vehicle config; axlebox.mbs.config.WheelDefect).",
+                              "(vehicle config; axlebox.mbs.vehicle.config.WheelDefect).",
          wheel_defect_rows()),
         ("[rig]", "The standalone bearing rig's config (configs/study_rig.toml; "
                   "axlebox.bearing.rig.RigConfig, SI): sections [rig], [bearing] and [[defects]]. "
@@ -270,7 +270,7 @@ def reference_markdown() -> str:
     each a table of field, type, default, unit, allowed values and meaning."""
     lines = ["# Config reference", "",
              "Every field of the configs, generated from the dataclasses that declare them "
-             "(`axlebox.mbs.config`, the bearing models, the defects, the rig): defaults and "
+             "(`axlebox.mbs.vehicle.config`, the bearing models, the defects, the rig): defaults and "
              "ranges are the code's own. SI units, except the fields named in other units "
              "(`speed_kmh` in km/h, `*_deg` in degrees, `amplitudes_um` in µm, `widths_mm` in mm). "
              "Unit `-`: dimensionless. A range `lo … hi` includes both ends.", ""]

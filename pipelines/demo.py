@@ -36,7 +36,7 @@ def min_duration(config: str = CONFIG) -> float:
     for the validation case's DTRB at 48 km/h, 1.44 s for ``dcrb_48kmh``'s DCRB)."""
     from axlebox.bearing import models
     from axlebox.bearing.frequencies import shaft_hz
-    from axlebox.mbs import config as vconfig
+    from axlebox.mbs.vehicle import config as vconfig
 
     from .readers import TRACK_FADE_IN_S
     cfg = vconfig.load(configs.resolve(config))

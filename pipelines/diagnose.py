@@ -143,7 +143,7 @@ def write_json(path, data: dict) -> Path:
 def read_input(path, *, left=None, right=None, fs=None, column: int = 2, speed_channel=None,
                speed_unit: str = "km/h", tacho=None, tacho_threshold=None, speed_csv=None,
                wheel_radius: float = 0.42, max_samples: int | None = None):
-    """The record and its shaft speed over time (:mod:`.speed`; None where nothing gives it):
+    """The record and its shaft speed over time (:mod:`axlebox.pipelines.speed`; None where nothing gives it):
     ``(Record, Speed | None)``; a tacho's record is cut to the span of its pulses.  The record
     is read on its middle ``max_samples`` (all where None; :func:`.readers.read`) and around its
     gaps (:func:`.readers.condition`); a speed channel or profile on the same samples."""

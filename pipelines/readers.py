@@ -4,7 +4,7 @@ file's first bytes (not its name):
 * ``axlebox-result`` HDF5 (``axlebox simulate`` / ``axlebox bearing simulate``): sensors ``ws2_L``
   and ``ws2_R`` by default, the vertical column (2) of ``signals/<sensor>/acceleration``, ``fs``
   from its ``fs_hz`` attribute; the shaft speed and bearing from the stored config, read through
-  the loader that runs it (vehicle: :func:`axlebox.mbs.config.validate`, ``run.speed_kmh``,
+  the loader that runs it (vehicle: :func:`axlebox.mbs.vehicle.config.validate`, ``run.speed_kmh``,
   ``wheelset.r0`` and ``[bearing]``; rig: :func:`axlebox.bearing.rig.config_from_dict`,
   ``rig.speed_kmh``, ``rig.r_wheel`` and its ``[bearing]``), defaults filled in as a run fills
   them; the most loaded roller's load on each side (the 99th percentile of the sensor's
@@ -52,12 +52,12 @@ from axlebox._params import ParameterError
 from axlebox.bearing import catalogue, resultfile
 from axlebox.bearing.diagnostics.acquisition import HOLD_S, held
 from axlebox.bearing.frequencies import FaultOrders, shaft_hz
-from axlebox.mbs.config import CarConfig, validate
-from axlebox.mbs.system import TRACK_RAMP_S
+from axlebox.mbs.vehicle.config import CarConfig, validate
+from axlebox.mbs.solver.system import TRACK_RAMP_S
 
 HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
 DEFAULT_SENSORS = ("ws2_L", "ws2_R")
-TRACK_FADE_IN_S = TRACK_RAMP_S   # vehicle runs start on smooth track (mbs/system.py)
+TRACK_FADE_IN_S = TRACK_RAMP_S   # vehicle runs start on smooth track (mbs/solver/system.py)
 # samples a channel the whole-record diagnosis reads: 41 s at 25.6 kHz, 105 s at 10 kHz, 2.8 GB
 # of memory at most for the analysis (benchmarks/README.md, "Long records"); a longer record is
 # read on its middle (away from a sensor's settling at the start), or in windows (--window-turns)
@@ -257,7 +257,7 @@ def _roller_loads(f: h5py.File, cfg, names) -> tuple | None:
 
 def _file_config(f: h5py.File, path):
     """The config the open result file ``f`` stores, through the loader that ran it: a
-    :class:`~axlebox.bearing.rig.RigConfig` (``[rig]``), a :class:`~axlebox.mbs.config.CarConfig`
+    :class:`~axlebox.bearing.rig.RigConfig` (``[rig]``), a :class:`~axlebox.mbs.vehicle.config.CarConfig`
     (a vehicle run: its config has ``[run]`` or the file wheel-rail outputs) or None (neither);
     a config this version refuses is one line naming the file and the field."""
     from axlebox.bearing.rig import config_from_dict

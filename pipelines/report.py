@@ -31,7 +31,7 @@ from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
 from axlebox.bearing.diagnostics.channel import jsonable
 from axlebox.bearing.diagnostics.pair import PairResult
-from axlebox.mbs.comfort import RideComfort, floor_comfort, nmv_words, sperling_words
+from axlebox.mbs.post.comfort import RideComfort, floor_comfort, nmv_words, sperling_words
 
 from . import conclusions
 from . import report_figures as figs
@@ -127,7 +127,7 @@ def _windows_figures(path, out: Path, log, **options) -> list[tuple[str, Path]]:
     figure of the verdicts and the speed over time; nothing for other results."""
     import matplotlib.pyplot as plt
 
-    from axlebox.mbs.config import CarConfig
+    from axlebox.mbs.vehicle.config import CarConfig
 
     from .readers import result_config
     from .windows import analyse_windows
@@ -152,7 +152,7 @@ def _windows_figures(path, out: Path, log, **options) -> list[tuple[str, Path]]:
 def _speed_range(path) -> tuple[float, float] | None:
     """The lowest and highest speed (km/h) over the part read (from the track's fade-in) of a
     car run along a speed profile; None for a constant speed."""
-    from axlebox.mbs.config import CarConfig
+    from axlebox.mbs.vehicle.config import CarConfig
 
     from .readers import result_config
     cfg = result_config(path)

@@ -28,7 +28,7 @@ import numpy as np
 from scipy import signal
 
 from axlebox._params import ParameterError
-from axlebox.mbs.weighting import filtered
+from axlebox.mbs.post.weighting import filtered
 
 STOPBAND_DB = 80.0      # attenuation from fs/2 on: aliases below 1e-4 of what is filtered out
 
@@ -53,7 +53,7 @@ def antialias(fs_in: float, fs_out: float, passband: float) -> np.ndarray:
 
 
 def measure(a: np.ndarray, fs_in: float, s) -> np.ndarray:
-    """What the chain ``s`` (the ``[sensors]`` section, mbs/config.py Sensors) records of the
+    """What the chain ``s`` (the ``[sensors]`` section, mbs/vehicle/config.py Sensors) records of the
     accelerations ``a`` ((t, ...) at ``fs_in``): the samples at ``s.fs_hz`` (every k-th instant
     of the input)."""
     a = np.asarray(a, float)

@@ -30,11 +30,13 @@ from axlebox._files import tmp_path
 from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
 from axlebox.fem import bodyfile
-from axlebox.mbs import comfort
-from axlebox.mbs import config as vconfig
-from axlebox.mbs import bearings as car_bearings
-from axlebox.mbs import integrate, roughness, statics, track, vehicle, wheel_defects
-from axlebox.mbs import kernel_bearings as kb
+from axlebox.mbs.post import comfort
+from axlebox.mbs.vehicle import config as vconfig
+from axlebox.mbs.vehicle import bearings as car_bearings
+from axlebox.mbs.solver import integrate
+from axlebox.mbs.track import roughness, irregularity as track
+from axlebox.mbs.vehicle import statics, car as vehicle, wheel_defects
+from axlebox.mbs.kernel import bearings as kb
 from axlebox.mbs.wheelrail import element_kernel as ek
 from axlebox.mbs.wheelrail.element import build_tables
 from axlebox.mbs.wheelrail.profile import read_profile
@@ -121,8 +123,8 @@ def track_record(cfg: vconfig.CarConfig):
 
 def wheel_records(cfg: vconfig.CarConfig, names) -> dict:
     """Each wheel's radius deviation record ``(values, slopes, ds)`` around its rolling circle:
-    its roughness (mbs/roughness.py; independent random phases per wheel from the run's seed)
-    plus its ``[[wheel_defects]]`` (mbs/wheel_defects.py), on one grid (a roughness grid, or
+    its roughness (mbs/track/roughness.py; independent random phases per wheel from the run's seed)
+    plus its ``[[wheel_defects]]`` (mbs/vehicle/wheel_defects.py), on one grid (a roughness grid, or
     0.25 mm); only the wheels that have either."""
     t, r0 = cfg.track, cfg.wheelset.r0
     rough = t.wheel_roughness != "none"
@@ -164,7 +166,7 @@ def _car(cfg, tabs, trk, red, bearings=None):
 def build_model(cfg: vconfig.CarConfig, log=print):
     """Vehicle model in static equilibrium: (model, y0).  With ``joint.model = "bearing"`` the
     equilibrium is found with row bushings first, then the bearings are put in their own
-    (mbs/bearings.py)."""
+    (mbs/vehicle/bearings.py)."""
     red = reduced_bodies(cfg, log)
     tabs, trk = tables(cfg), track_record(cfg)
     model = _car(cfg, tabs, trk, red)
@@ -193,7 +195,7 @@ def shafts(run: integrate.Run, model, block: int = 4096) -> dict:
     snapshots, so for a constant acceleration), read a block of snapshots at a time."""
     from scipy.interpolate import CubicHermiteSpline
 
-    from axlebox.mbs.kernel_body import BI_POS, BI_VEL, SPIN_ANGLE, SPIN_RATE
+    from axlebox.mbs.kernel.body import BI_POS, BI_VEL, SPIN_ANGLE, SPIN_RATE
     ks = [k for k, b in enumerate(model.bodies) if b.spin]          # the wheelsets
     if not ks or run.time.size == 0 or len(run.state_time) < 2:
         return {}
@@ -218,8 +220,8 @@ def drives(run: integrate.Run, model) -> dict:
     """``<drive>/torque`` (N m, about the axle, on the wheelset; its reaction on the gearbox or
     the bogie frame) and ``<drive>/force`` (N, the tractive force the profile asks of the
     wheelset's share of the car) of each wheelset's drive at the output instants, a run along a
-    speed profile's (:class:`axlebox.mbs.elements.Drive`; none at a constant speed)."""
-    from axlebox.mbs.elements import Drive
+    speed profile's (:class:`axlebox.mbs.solver.elements.Drive`; none at a constant speed)."""
+    from axlebox.mbs.solver.elements import Drive
     out = {}
     for i, e in enumerate(model.system.elements):
         if isinstance(e, Drive) and e.radius > 0 and run.elements is not None:
@@ -247,7 +249,7 @@ def write(path, run: integrate.Run, model, cfg: vconfig.CarConfig,
         wr[f"{name}/contact_point"] = (o[:, ek.OUT_P:ek.OUT_P + 3], {"unit": "m"})
     br = {}
     for i, name in enumerate(model.bearing_names):
-        o = run.bearings[:, i]                      # mbs/kernel_bearings.py BR_ROWS
+        o = run.bearings[:, i]                      # mbs/kernel/bearings.py BR_ROWS
         rows = f"row 1, row {model.bearing_rows}"
         br[f"{name}/ring_loads"] = (o[:, [kb.BR_INNER, kb.BR_OUTER]],
                                     {"unit": "N, N m", "frame": "track", "rows": "inner ring, outer ring",
@@ -286,7 +288,7 @@ class Config:
 def load_config(config_path, duration: float | None = None,
                 overrides: dict | None = None) -> vconfig.CarConfig:
     """The config that will run: ``config_path`` (a TOML file, the name of a shipped config
-    (:mod:`axlebox.configs`), a :class:`Config` or a :class:`~axlebox.mbs.config.CarConfig`)
+    (:mod:`axlebox.configs`), a :class:`Config` or a :class:`~axlebox.mbs.vehicle.config.CarConfig`)
     with ``overrides`` (section -> {field: value}, or a list of entries for ``defects`` /
     ``wheel_defects``) and ``duration`` replacing its fields."""
     if isinstance(config_path, vconfig.CarConfig):
@@ -325,7 +327,7 @@ def partial_path(out) -> Path:
 
 
 def read_checkpoint(path: Path, text: str) -> dict:
-    """The snapshot in ``path`` (:func:`axlebox.mbs.integrate.simulate`'s ``resume``), or a
+    """The snapshot in ``path`` (:func:`axlebox.mbs.solver.integrate.simulate`'s ``resume``), or a
     ParameterError naming what changed when it was made by another config."""
     try:
         with h5py.File(path, "r") as f:
@@ -346,7 +348,7 @@ def read_checkpoint(path: Path, text: str) -> dict:
 def write_checkpoint(path: Path, text: str, snap: dict) -> None:
     """The snapshot to ``path``, through a temporary name (a kill leaves the last one whole): the
     config, the outputs done, the state and the bearings' ring motion at the last exchange
-    (mbs/exchange.py); the outputs themselves are in the stream (:mod:`.stream`)."""
+    (mbs/kernel/exchange.py); the outputs themselves are in the stream (:mod:`.stream`)."""
     resultfile.write_checkpoint(path, {"config": text, "k": snap["k"], "wall_s": snap["wall_s"]},
                                 {"y": snap["y"], "exchange": snap["exchange"]})
 

@@ -3,7 +3,7 @@ length (issue 32), and so that no kill, at any instant, makes what was written u
 (issue 50, item 5): the folder ``<out>.stream.d``, whose segments ``NNNNNNNNNNNN.h5`` (the first
 output they hold, twelve digits) each hold the outputs of one checkpoint interval, one resizable
 dataset per output (sensors one dataset each, so that the acquisition chain reads one sensor at
-a time), appended after every chunk of :func:`axlebox.mbs.integrate.simulate` (its ``sink``).
+a time), appended after every chunk of :func:`axlebox.mbs.solver.integrate.simulate` (its ``sink``).
 
 A segment is written as ``<segment>.tmp`` and committed (:meth:`Stream.commit`: closed, synced,
 renamed) just before each checkpoint is written and when the run ends; a committed segment is
@@ -33,7 +33,7 @@ import numpy as np
 
 from axlebox._files import tmp_path
 from axlebox._params import ParameterError
-from axlebox.mbs import integrate
+from axlebox.mbs.solver import integrate
 
 from . import sensor
 

@@ -57,7 +57,7 @@ LOCK = ".sweep.lock"                                 # held by the sweep that ow
 @dataclass(frozen=True)
 class Case:
     """One point of the matrix: ``config`` (a :class:`~axlebox.bearing.rig.RigConfig` or
-    :class:`~axlebox.mbs.config.CarConfig`) and ``toml``, its file: what its runner gets and
+    :class:`~axlebox.mbs.vehicle.config.CarConfig`) and ``toml``, its file: what its runner gets and
     stores in the result."""
 
     name: str
@@ -80,7 +80,7 @@ class Case:
 def load_config(path) -> tuple[str, dict]:
     """``(kind, parsed TOML)`` of a sweep's base config (a file, or the name of a shipped config),
     kind ``"rig"`` or ``"vehicle"``."""
-    from axlebox.mbs.config import SECTIONS
+    from axlebox.mbs.vehicle.config import SECTIONS
     path = configs.resolve(path)
     try:
         cfg = tomllib.loads(path.read_text())
@@ -113,7 +113,7 @@ def typed(kind: str, d: dict):
     if kind == "rig":
         from axlebox.bearing.rig import config_from_dict
         return config_from_dict(d)
-    from axlebox.mbs.config import validate
+    from axlebox.mbs.vehicle.config import validate
     return validate(d)
 
 
@@ -130,7 +130,7 @@ def _names(values, name: str, allowed: tuple[str, ...]) -> list[str]:
 
 def _place(defects: tuple, w, kind, sides) -> list:
     """The case's defects (the rig's :class:`~axlebox.bearing.defects.Defect` or the car's
-    :class:`~axlebox.mbs.config.BearingDefect` entries): width ``w`` mm (0: none, None: as they
+    :class:`~axlebox.mbs.vehicle.config.BearingDefect` entries): width ``w`` mm (0: none, None: as they
     are), ``kind`` and ``sides`` (None: as they are) set on every entry; ``LR`` gives each
     entry once per side."""
     if w == 0:

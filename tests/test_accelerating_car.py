@@ -7,7 +7,7 @@ import h5py
 import numpy as np
 import pytest
 
-from axlebox.mbs import config as vconfig
+from axlebox.mbs.vehicle import config as vconfig
 from axlebox import configs
 from axlebox.pipelines import simulate as psim
 from axlebox.pipelines.cageslip import cage_slip

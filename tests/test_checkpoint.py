@@ -19,7 +19,8 @@ import h5py
 import numpy as np
 import pytest
 
-from axlebox.mbs import comfort, integrate
+from axlebox.mbs.post import comfort
+from axlebox.mbs.solver import integrate
 from axlebox.pipelines import cli, sensor
 from axlebox.pipelines import simulate as psim
 from axlebox.pipelines.stream import stream_path

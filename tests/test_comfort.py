@@ -1,4 +1,4 @@
-"""Ride comfort (mbs/weighting.py, mbs/comfort.py) against the standards' tables and closed forms:
+"""Ride comfort (mbs/post/weighting.py, mbs/post/comfort.py) against the standards' tables and closed forms:
 the weighting filters against ISO 2631-1's tabulated gains, Sperling's index of a sinusoid
 against its closed form, N_MV of a weighted white noise against EN 12299's formula on its known
 r.m.s."""
@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from axlebox.mbs import comfort, weighting
+from axlebox.mbs.post import comfort, weighting
 
 # ISO 2631-1:1997, Table 3 (W_k, W_d) and Table 4 (W_c): weighting factors x 1000 at the
 # one-third-octave band centres, computed at the nominal frequencies (at the exact centres

@@ -1,4 +1,4 @@
-"""One declaration per config field (mbs/config.py, axlebox/_params.py) and the reference generated
+"""One declaration per config field (mbs/vehicle/config.py, axlebox/_params.py) and the reference generated
 from it (pipelines/config_reference.py): the page lists exactly the fields the loader accepts, with
 the defaults the code uses (one default per field: the config's and the classes the run is built
 from agree), every field documented, its tables well formed and a Sphinx build of it clean with
@@ -15,9 +15,9 @@ from axlebox._params import ParameterError
 from axlebox.bearing import models
 from axlebox.bearing.defects import Defect
 from axlebox.bearing.rig import RIG_SECTIONS, RigConfig
-from axlebox.mbs import config
+from axlebox.mbs.vehicle import config
 from axlebox.pipelines import config_reference
-from axlebox.mbs.config import SECTIONS, CarConfig, WheelDefect
+from axlebox.mbs.vehicle.config import SECTIONS, CarConfig, WheelDefect
 from axlebox.pipelines.config_reference import HEADER, reference_markdown
 from axlebox.pipelines.sweep import SWEEP_FIELDS
 
@@ -117,8 +117,8 @@ def test_one_default_per_field_the_config_and_the_run_classes_agree():
     """The issue-50 table, now empty: the config's default of each field the integrator, the
     track and the wheel-rail element also take is theirs (``like``), so building them from a
     config that leaves every field out gives their own defaults."""
-    from axlebox.mbs.integrate import Settings
-    from axlebox.mbs.track import IrregularityParams
+    from axlebox.mbs.solver.integrate import Settings
+    from axlebox.mbs.track.irregularity import IrregularityParams
     from axlebox.mbs.wheelrail.element import WheelRailParams
     from axlebox.mbs.wheelrail.geometry import TrackLayout
     c = CarConfig()
@@ -259,7 +259,8 @@ def test_sphinx_builds_the_page_with_warnings_as_errors(tmp_path, md):
 
 def test_the_declared_choices_are_the_codes():
     """Choice lists a section spells out itself must be the ones the code acts on."""
-    from axlebox.mbs import exchange, roughness
+    from axlebox.mbs.kernel import exchange
+    from axlebox.mbs.track import roughness
     from axlebox.mbs.wheelrail import element
 
     def choices(sec, key):
@@ -277,7 +278,7 @@ def test_the_declared_choices_are_the_codes():
 def test_only_bodies_with_an_fe_body_can_be_flexible(name, words):
     """The carbody and gearboxes are always rigid: naming them flexible was silently ignored."""
     from axlebox._params import ParameterError
-    from axlebox.mbs.config import validate
+    from axlebox.mbs.vehicle.config import validate
     with pytest.raises(ParameterError, match=rf"bodies.flexible = \['{name}'\] is not allowed: "
                                              rf"'{name}' {words}"):
         validate({"bodies": {"flexible": [name]}})

@@ -1,5 +1,5 @@
 """The car with its eight DTRBs as force elements with their own roller and cage states
-(mbs/kernel_bearings.py, mbs/bearings.py; ``joint.model = "dtrb"``, the old name of "bearing").
+(mbs/kernel/bearings.py, mbs/vehicle/bearings.py; ``joint.model = "dtrb"``, the old name of "bearing").
 
 Rigid bodies here (the coupled flexible car is the validation case's, and slower): the
 bearings are what is under test.
@@ -14,9 +14,10 @@ from axlebox._params import ParameterError
 from axlebox.bearing.diagnostics.channel import analyse
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.models.params import BearingParams
-from axlebox.mbs import config as vconfig
-from axlebox.mbs import exchange, integrate
-from axlebox.mbs.kernel_bearings import BR_ROWS
+from axlebox.mbs.vehicle import config as vconfig
+from axlebox.mbs.kernel import exchange
+from axlebox.mbs.solver import integrate
+from axlebox.mbs.kernel.bearings import BR_ROWS
 from axlebox.pipelines import simulate as psim
 
 G = 9.81
@@ -85,7 +86,7 @@ def test_galpha_and_defects_without_bearings_are_refused():
         coupled_config(integrator={"method": "galpha", "dt": 1e-5})
     with pytest.raises(ParameterError, match="integrator.dt"):
         coupled_config(integrator={"dt": 5e-5})
-    # the leapfrog's limit on the rollers' tilt mode is tighter than RK4's (mbs/config.py)
+    # the leapfrog's limit on the rollers' tilt mode is tighter than RK4's (mbs/vehicle/config.py)
     with pytest.raises(ParameterError, match="integrator.dt = 2e-05 .*'leapfrog'"):
         coupled_config(integrator={"method": "leapfrog", "dt": 2e-5})
     assert coupled_config(integrator={"method": "rk4", "dt": 2e-5}).integrator.dt == 2e-5
@@ -153,14 +154,14 @@ def test_leapfrog_matches_rk4(car):
 
 
 def test_one_substep_an_exchange_is_the_cars_single_rate_leapfrog(car):
-    """The car's leapfrog with its bearings behind the seam (mbs/exchange.py, one sub-step an
+    """The car's leapfrog with its bearings behind the seam (mbs/kernel/exchange.py, one sub-step an
     exchange) against the whole-system leapfrog written out here as it ran before the seam: one
     evaluation of every state's rate (bodies and bearings), the bodies' kick-drift, each
     bearing's kick-drift.  100 steps of 1e-5 s, an output every step: sensors, wheel-rail and
     element outputs (the bearings' rows among them) and the end state equal to the bit."""
     from axlebox.bearing.kernel.step import kick_drift
-    from axlebox.mbs import kernel_integrate as ki
-    from axlebox.mbs.kernel_bearings import BR_N, BR_OFF
+    from axlebox.mbs.kernel import integrate as ki
+    from axlebox.mbs.kernel.bearings import BR_N, BR_OFF
     cfg, model, y0 = car
     h, n = 1e-5, 100
     s = integrate.Settings(method="leapfrog", dt=h, output_rate_hz=1 / h, state_rate_hz=1 / h)
@@ -209,14 +210,14 @@ def _same_readings(model, y0, **settings):
 
 def test_bodies_stepping_at_the_exchange_step_follow_the_single_rate_run(car):
     """The bodies at 2e-5 s exchanging with bearings that take two sub-steps of 1e-5 s a step
-    (mbs/exchange.py) against everything at 1e-5 s, on the defect case as above.  (One thread
+    (mbs/kernel/exchange.py) against everything at 1e-5 s, on the defect case as above.  (One thread
     and two: tests/test_threads.py.)"""
     cfg, model, y0 = car
     _same_readings(model, y0, exchange_dt=(0.0, 2e-5))
 
 
 def test_a_co_simulation_with_a_short_exchange_follows_the_multirate_run(car):
-    """The paper's arrangement (mbs/exchange.py, "Co-simulation"): the bodies take two steps of
+    """The paper's arrangement (mbs/kernel/exchange.py, "Co-simulation"): the bodies take two steps of
     1e-5 s an exchange of 2e-5 s with the bearings' loads carried on the line through the last
     two exchanges ("linear"), against the bodies stepping at the exchange step itself (which
     the test above holds to the single-rate run).  (A zero-order hold lags the loads by half an
@@ -224,7 +225,7 @@ def test_a_co_simulation_with_a_short_exchange_follows_the_multirate_run(car):
     "The paper's co-simulation"; with the interface Jacobian, 35.6 / 19.5.)  And the held loads
     are the last exchange's, carried on that line, and the Jacobian's correction is -K times
     the rings' displacement since."""
-    from axlebox.mbs.kernel_bearings import BR_MIN, BR_MOUT, held_loads
+    from axlebox.mbs.kernel.bearings import BR_MIN, BR_MOUT, held_loads
     cfg, model, y0 = car
     _same_readings(model, y0, exchange_dt=(2e-5, 2e-5), body_substeps=(1, 2), hold=("linear", "linear"))
 
@@ -240,8 +241,8 @@ def test_a_co_simulation_with_a_short_exchange_follows_the_multirate_run(car):
             np.testing.assert_allclose(mkF[mk], want[:3], rtol=1e-13, atol=1e-15)
             np.testing.assert_allclose(mkM[mk], want[3:], rtol=1e-13, atol=1e-15)
     # the "jacobian" hold adds -K (r - r0) on the outer ring and its opposite on the inner, r the
-    # outer ring's displacement from the inner (mbs/exchange.py, Kuebler and Schiehlen 2000)
-    from axlebox.mbs.kernel_bearings import _ring_motion
+    # outer ring's displacement from the inner (mbs/kernel/exchange.py, Kuebler and Schiehlen 2000)
+    from axlebox.mbs.kernel.bearings import _ring_motion
     K = np.array([1e9, 2e8, 5e9])
     XJ = exchange.exchange(model, "leapfrog", 1e-5, 2, m=2, hold="jacobian",
                            K=np.tile(K, (len(model.bearing_names), 1)))

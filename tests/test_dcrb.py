@@ -18,7 +18,7 @@ from axlebox.bearing.models.dcrb import DcrbParams
 from axlebox.bearing.rig import RigConfig, load, simulate
 from axlebox.bearing.spectra import envelope_spectrum
 from axlebox.bearing.statics import equilibrium, loaddist, stiffness
-from axlebox.mbs import config as vconfig
+from axlebox.mbs.vehicle import config as vconfig
 
 from conftest import assert_sized, full_size
 

@@ -316,7 +316,7 @@ def test_file_kind_reads_the_content_not_the_name(tmp_path, reference_result):
 
 
 def test_vehicle_results_leave_out_the_track_fade_in(tmp_path):
-    """Vehicle runs fade the irregularity in over 0.5 s (mbs/system.py): left out of the record,
+    """Vehicle runs fade the irregularity in over 0.5 s (mbs/solver/system.py): left out of the record,
     also when the config as run leaves [track] at its defaults (configs/validation_48kmh.toml)."""
     n = int(2 * FS)
     acc = np.random.default_rng(0).standard_normal((n, 3))      # any signal (a constant one is refused)

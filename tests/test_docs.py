@@ -61,7 +61,7 @@ def test_the_gallery_ran_at_build_time(site):
 def test_the_references_are_generated_from_the_code(site):
     import dataclasses
 
-    from axlebox.mbs.config import SECTIONS
+    from axlebox.mbs.vehicle.config import SECTIONS
     from axlebox.pipelines.cli import parser
     _, out, src = site
     config = (src / "docs" / "reference" / "config.md").read_text()

@@ -177,10 +177,10 @@ def _exudyn_run(hdf5: Path, node: str, h: float, t_end: float) -> tuple[np.ndarr
 def _axlebox_run(path: Path, node: str, h: float, t_end: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The body file in axlebox's solver: the same history as Load elements (F0 + A sin(w t + ph) on
     [t_on, t_off)), by sin^2(pi t/T) sin(w t) = sin(w t)/2 - sin((w+W) t)/4 - sin((w-W) t)/4."""
-    from axlebox.mbs.body import flexible
-    from axlebox.mbs.elements import Load
-    from axlebox.mbs.integrate import Settings, simulate
-    from axlebox.mbs.system import System
+    from axlebox.mbs.solver.body import flexible
+    from axlebox.mbs.solver.elements import Load
+    from axlebox.mbs.solver.integrate import Settings, simulate
+    from axlebox.mbs.solver.system import System
     sysm = System(gravity=(0.0, 0.0, 0.0))
     sysm.add_body(flexible("ws", bodyfile.read(path, fields=False)))
     m = sysm.marker("ws", node=node)

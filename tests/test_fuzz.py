@@ -108,7 +108,7 @@ def test_vehicle_config(data):
     import dataclasses
 
     from axlebox.bearing.models.params import BearingParams
-    from axlebox.mbs.config import SECTIONS, validate
+    from axlebox.mbs.vehicle.config import SECTIONS, validate
     base = {"defects": {"wheelset": 2, "side": "R", "W": 2e-3}, "joint": {"model": "dtrb"},
             "integrator": {"method": "imex", "dt": 5e-6}}
     validate({**base, "defects": [base["defects"]]})             # the base runs
@@ -123,7 +123,7 @@ def test_vehicle_config(data):
 
 
 def _every_section():
-    from axlebox.mbs.config import SECTIONS
+    from axlebox.mbs.vehicle.config import SECTIONS
     return sorted(SECTIONS) + ["bearing", "defects"]
 
 
@@ -131,7 +131,7 @@ def _every_section():
 def test_vehicle_config_unknown_key_in_every_section(sec):
     """An unknown key in any section (``[bearing] model = 3`` once ended in a TypeError) is one
     line naming ``section.key`` and the fields allowed."""
-    from axlebox.mbs.config import validate
+    from axlebox.mbs.vehicle.config import validate
     base = {"joint": {"model": "dtrb"}, "integrator": {"method": "imex", "dt": 5e-6},
             "defects": [{"wheelset": 2, "side": "R", "W": 2e-3}]}
     d = {k: ([dict(v[0])] if isinstance(v, list) else dict(v)) for k, v in base.items()}

@@ -62,7 +62,7 @@ def test_the_kernel_key_covers_every_module_numba_reads(tmp_path):
     assert h0 == _numba.kernel_hash()                   # a copy hashes as the installation
     edits = [("bearing/kernel/layout.py", "REC_SPIN, REC = REC_ORBIT + 1, REC_ORBIT + 2",
               "REC_SPIN, REC = REC_ORBIT + 1, REC_ORBIT + 3"),          # the issue's edit
-             ("mbs/exchange.py", "THIS, LAST = 0, 1", "THIS, LAST = 1, 0"),
+             ("mbs/kernel/exchange.py", "THIS, LAST = 0, 1", "THIS, LAST = 1, 0"),
              ("_params.py", "class ParameterError", "# read by the kernels' modules\nclass ParameterError"),
              ("fem/bodyfile.py", "\nclass ReducedBody", "\n# imported by mbs\nclass ReducedBody")]
     for rel, old, new in edits:

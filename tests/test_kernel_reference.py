@@ -25,7 +25,7 @@ from axlebox.bearing.kernel.layout import CAGE_OUT
 
 REFERENCE = Path(__file__).parent / "data" / "kernel_reference.npz"
 RTOL = 1e-9
-# The car's model arrays (mbs/system.py ``Model.S``: the wheel-rail tables, the track, the
+# The car's model arrays (mbs/solver/system.py ``Model.S``: the wheel-rail tables, the track, the
 # bodies) with which this checkout meets the reference, and what made them: numpy's vectorised
 # transcendental functions give other last bits on other SIMD targets (measured: with numpy's
 # AVX-512 paths off the tables differ, and 0.01 s of chaos takes the states 5e-6 apart).
@@ -110,7 +110,7 @@ def test_the_car_gives_the_old_kernels_states(ref):
     residual of 5.6e-4 of the weight, where the linear algebra's threads move its last
     digits.)"""
     from axlebox import configs
-    from axlebox.mbs import integrate
+    from axlebox.mbs.solver import integrate
     from axlebox.pipelines import simulate as psim
     T = float(ref["duration"])
     cfg = psim.load_config(configs.path("validation_48kmh"), duration=T,

@@ -11,7 +11,7 @@ from axlebox._cache import package_dir
 BEARING = package_dir("bearing")
 MBS = package_dir("mbs")
 DECLARATIONS = {"layout.py", "vec.py"}        # the layout itself, and 3-vector components
-CAR_BEARING_CODE = ("kernel_bearings.py", "bearings.py", "exchange.py")
+CAR_BEARING_CODE = ("kernel/bearings.py", "vehicle/bearings.py", "kernel/exchange.py")
 
 
 def _bearing_modules():

@@ -7,11 +7,11 @@ from axlebox._params import ParameterError
 from axlebox.fem import assembly, interfaces
 from axlebox.fem.body import make_body
 from axlebox.geometry import beam, mesh
-from axlebox.mbs import ffrf_numpy as fn
-from axlebox.mbs import integrate
-from axlebox.mbs.body import add_point_masses, flexible, rigid
-from axlebox.mbs.elements import Bushing, Load
-from axlebox.mbs.system import System
+from axlebox.mbs.solver import ffrf_numpy as fn
+from axlebox.mbs.solver import integrate
+from axlebox.mbs.solver.body import add_point_masses, flexible, rigid
+from axlebox.mbs.solver.elements import Bushing, Load
+from axlebox.mbs.solver.system import System
 
 
 @pytest.fixture(scope="module")

@@ -154,7 +154,7 @@ def test_the_validation_car_runs_on_quasi_dynamic_bearings():
     other gives, less the rollers' weight and the solver's 30 N a roller), and the defect's side
     rings louder than the healthy side of its axle (the pseudo-fault's premise)."""
     from axlebox import configs
-    from axlebox.mbs import integrate
+    from axlebox.mbs.solver import integrate
     from axlebox.pipelines import simulate as psim
     over = {"bearing": {"model": "quasi-dynamic"}, "coupling": {"exchange_dt": 0.0},
             "integrator": {"method": "leapfrog", "dt": 5e-5, "output_rate_hz": 20000.0}}

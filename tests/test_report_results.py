@@ -17,7 +17,7 @@ import pytest
 from axlebox.bearing.diagnostics.synthetic import coaxial_pair
 from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.models.params import BearingParams
-from axlebox.mbs import comfort, weighting
+from axlebox.mbs.post import comfort, weighting
 from axlebox.pipelines import cli, report
 from axlebox.pipelines.diagnose import analyse_file
 

@@ -19,7 +19,7 @@ from axlebox.bearing import models, resultfile
 from axlebox.bearing.diagnostics.synthetic import coaxial_pair
 from axlebox.bearing.frequencies import shaft_hz
 from axlebox.bearing.rig import RigConfig, config_from_dict
-from axlebox.mbs import config as vconfig
+from axlebox.mbs.vehicle import config as vconfig
 from axlebox.pipelines import cli, readers
 from axlebox.pipelines import simulate as psim
 

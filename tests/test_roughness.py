@@ -1,4 +1,4 @@
-"""Wheel and rail roughness (mbs/roughness.py): the CNOSSOS-EU tables, the contact filter, the
+"""Wheel and rail roughness (mbs/track/roughness.py): the CNOSSOS-EU tables, the contact filter, the
 sampled records and the wheel-rail element reading a wheel's own roughness.
 
 Reference: Kephalopoulos, Paviotti, Anfosso-Ledee, CNOSSOS-EU, JRC EUR 25379 EN (2012), railway
@@ -10,10 +10,10 @@ from scipy.interpolate import CubicHermiteSpline
 
 from axlebox import configs
 from axlebox._params import ParameterError
-from axlebox.mbs import config as vconfig
-from axlebox.mbs import roughness as R
-from axlebox.mbs import track
-from axlebox.mbs.kernel_wheels import hermite_at
+from axlebox.mbs.vehicle import config as vconfig
+from axlebox.mbs.track import roughness as R
+from axlebox.mbs.track import irregularity as track
+from axlebox.mbs.kernel.wheels import hermite_at
 from axlebox.mbs.wheelrail import element_kernel as ek
 from axlebox.pipelines import simulate as psim
 

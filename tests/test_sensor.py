@@ -6,7 +6,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from axlebox.mbs import config as vconfig
+from axlebox.mbs.vehicle import config as vconfig
 from axlebox.pipelines import sensor
 
 S = vconfig.Sensors()

@@ -1,4 +1,4 @@
-"""The car along a speed profile (mbs/profile.py, the drives of mbs/vehicle.py): the profile's
+"""The car along a speed profile (mbs/vehicle/speed.py, the drives of mbs/vehicle/car.py): the profile's
 closed forms, the car's distance and its wheelsets' spin against them at a constant acceleration,
 a profile that never changes speed as the constant-speed run, bit for bit, and bad profiles."""
 
@@ -9,11 +9,11 @@ from scipy.integrate import quad
 
 from axlebox import configs
 from axlebox._params import ParameterError
-from axlebox.mbs import config as vconfig
-from axlebox.mbs import integrate
-from axlebox.mbs.kernel_body import BI_POS, BI_VEL, SPIN_ANGLE, SPIN_RATE
-from axlebox.mbs.kernel_profile import G_PROF, profile_at
-from axlebox.mbs.profile import SpeedProfile
+from axlebox.mbs.vehicle import config as vconfig
+from axlebox.mbs.solver import integrate
+from axlebox.mbs.kernel.body import BI_POS, BI_VEL, SPIN_ANGLE, SPIN_RATE
+from axlebox.mbs.kernel.speed import G_PROF, profile_at
+from axlebox.mbs.vehicle.speed import SpeedProfile
 from axlebox.pipelines import simulate as psim
 
 ROWS = ((0.0, 20.0), (0.5, 20.0), (20.5, 92.0))     # 1 m/s^2 from 0.5 s
@@ -77,7 +77,7 @@ def test_at_a_constant_acceleration_the_car_runs_the_closed_form(rigid_car, tmp_
     assert dist > 1.15 * prof.speed(0.0) * T         # it did accelerate (by 2.5 x 2.5 / 2 m)
     # issue 57: the drives' torques in the result file, each wheelset's share of the car's
     # inertia and its own spin inertia over the steady acceleration (1.5-3 s: a = 1 m/s^2),
-    # T = (M / 4) a r + J a / r (mbs/vehicle.py: the profile's feed-forward; its speed gain
+    # T = (M / 4) a r + J a / r (mbs/vehicle/car.py: the profile's feed-forward; its speed gain
     # adds the creep's share, ~1e-3 of the speed)
     path = psim.write(tmp_path / "profile.h5", run, model, cfg)
     steady = (run.time >= 1.5) & (run.time <= 3.0)

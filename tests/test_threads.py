@@ -2,8 +2,8 @@
 switched as it goes (axlebox/_threads.py: fitted to the cores free of other processes).
 
 The car's bodies and its eight bearings run in numba's parallel loops, each iteration writing only
-its own rows (mbs/kernel_system.py, mbs/kernel_bearings.py), and the bearings of an exchange
-advance with no synchronisation inside it (mbs/exchange.py): the thread count must not change a
+its own rows (mbs/kernel/system.py, mbs/kernel/bearings.py), and the bearings of an exchange
+advance with no synchronisation inside it (mbs/kernel/exchange.py): the thread count must not change a
 single bit.  The suite's workers have one thread each (tests/conftest.py), so the runs are made by
 a child process given two (this file run as a script): the car of tests/test_coupled.py (rigid
 bodies, eight DTRBs, the validation defect), 0.1 s from the same start, on one thread and on two,
@@ -57,7 +57,7 @@ def _runs(out: str) -> None:
     """The child: every case on one thread and on two, arrays saved to ``out``."""
     import numba
 
-    from axlebox.mbs import integrate
+    from axlebox.mbs.solver import integrate
     from axlebox.pipelines import simulate as psim
     from test_coupled import coupled_config
     cfg = coupled_config(track={"irregularity": False})

@@ -1,4 +1,4 @@
-"""Track irregularities from the FRA spectra (mbs/track.py).
+"""Track irregularities from the FRA spectra (mbs/track/irregularity.py).
 
 Outside references: the FRA PSD formulas and class table as given in
 ../shared/REFERENCE_DATA.md (Hamid et al., FRA DOT/FRA/ORD-83/03.1, 1983, in the k = 0.25 form),
@@ -11,8 +11,8 @@ import pytest
 from scipy import integrate, signal
 
 from axlebox._params import ParameterError
-from axlebox.mbs import track
-from axlebox.mbs.track import IrregularityParams, generate, psd
+from axlebox.mbs.track import irregularity as track
+from axlebox.mbs.track.irregularity import IrregularityParams, generate, psd
 
 
 @pytest.fixture(scope="module")

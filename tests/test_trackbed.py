@@ -1,12 +1,12 @@
-"""The ballasted track under each wheel (mbs/trackbed.py): the lumping against the beam on elastic
+"""The ballasted track under each wheel (mbs/track/bed.py): the lumping against the beam on elastic
 foundation, the car standing on it, a flat's impact on it against rigid rails."""
 
 
 import numpy as np
 import pytest
 
-from axlebox.mbs import trackbed
-from axlebox.mbs.config import Track
+from axlebox.mbs.track import bed as trackbed
+from axlebox.mbs.vehicle.config import Track
 
 ZHAI = dict(rail_mass=60.64, rail_EI=6.624e6, sleeper_spacing=0.6, pad_k=6.5e7, pad_c=7.5e4,
             sleeper_mass=125.5, ballast_mass=531.4, ballast_k=1.3775e8, ballast_c=5.88e4,
@@ -36,9 +36,9 @@ def ballasted_car():
     """The shipped car (row bushings) at 40 km/h on smooth ballasted track, with a 40 mm rounded
     flat on wheelset 2's right wheel; 0.4 s (the flat's first strike near 0.24 s)."""
     from axlebox import configs
-    from axlebox.mbs import config as vconfig
-    from axlebox.mbs import integrate
-    from axlebox.mbs.kernel_wheels import G_RAMP
+    from axlebox.mbs.vehicle import config as vconfig
+    from axlebox.mbs.solver import integrate
+    from axlebox.mbs.kernel.wheels import G_RAMP
     from axlebox.pipelines import simulate as psim
     cfg = vconfig.load(configs.path("vehicle")).replace(
         run={"speed_kmh": 40.0}, track={"irregularity": False, "model": "ballasted"},

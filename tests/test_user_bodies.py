@@ -267,7 +267,7 @@ def test_bad_geometry_is_refused_in_one_line(tmp_path, capsys):
 
 
 def test_each_car_body_kind_names_the_interfaces_the_car_attaches_to():
-    """The car (mbs/vehicle.py) attaches to these names; a user body of the kind must have them."""
+    """The car (mbs/vehicle/car.py) attaches to these names; a user body of the kind must have them."""
     assert set(car_interfaces("frame")) == {"primary_1_L", "primary_1_R", "primary_2_L", "primary_2_R",
                                             "secondary_L", "secondary_R", "traction_centre"}
     assert {"bore_row1", "bore_row2", "spring_front", "spring_rear"} <= set(car_interfaces("axlebox"))
@@ -300,7 +300,7 @@ def test_the_car_runs_on_a_frame_of_your_own(tmp_path, capsys):
     from axlebox import configs
     from axlebox._cache import cache_dir
     from axlebox.fem import bodyfile
-    from axlebox.mbs import integrate
+    from axlebox.mbs.solver import integrate
     from axlebox.pipelines import simulate as psim
     places = _frame_places()
     write_template("frame", tmp_path)               # its STEP; the spec here is a user's own boxes

@@ -5,8 +5,8 @@ import pytest
 from scipy.signal import find_peaks, welch
 
 from axlebox import configs
-from axlebox.mbs import config as vconfig
-from axlebox.mbs import integrate
+from axlebox.mbs.vehicle import config as vconfig
+from axlebox.mbs.solver import integrate
 from axlebox.mbs.wheelrail import element_kernel as ek
 from axlebox.pipelines import cli
 from axlebox.pipelines import simulate as psim

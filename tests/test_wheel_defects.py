@@ -1,4 +1,4 @@
-"""Wheel flats and polygons as radius deviations (mbs/wheel_defects.py): their geometry."""
+"""Wheel flats and polygons as radius deviations (mbs/vehicle/wheel_defects.py): their geometry."""
 
 import math
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from axlebox._params import ParameterError
-from axlebox.mbs import wheel_defects as wd
+from axlebox.mbs.vehicle import wheel_defects as wd
 
 R0 = 0.42
 
@@ -67,9 +67,9 @@ def car_run():
     gearbox-side wheel and a 20th-order polygon (50 um) on wheelset 3's left wheel, their
     fade-in shortened to 20 ms; 1 s."""
     from axlebox import configs
-    from axlebox.mbs import config as vconfig
-    from axlebox.mbs import integrate
-    from axlebox.mbs.kernel_wheels import G_RAMP
+    from axlebox.mbs.vehicle import config as vconfig
+    from axlebox.mbs.solver import integrate
+    from axlebox.mbs.kernel.wheels import G_RAMP
     from axlebox.pipelines import simulate as psim
     cfg = vconfig.load(configs.path("vehicle")).replace(
         run={"speed_kmh": 40.0}, track={"irregularity": False},

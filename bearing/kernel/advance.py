@@ -2,7 +2,7 @@
 sub-steps over the window of an exchange, returning its ring loads averaged over the window
 (numba).
 
-Whatever carries the rings (the car's journal and axle-box markers, mbs/kernel_bearings.py;
+Whatever carries the rings (the car's journal and axle-box markers, mbs/kernel/bearings.py;
 the rig's outer-ring mass, bearing/integrate.py) steps at its own step ``H = n h`` and calls
 :func:`advance` once a step, at its exchange ``t_b``, with the ring motion (bearing/kernel/layout.py:
 ``ring[0]`` the inner ring's, ``ring[1]`` the outer ring's, each displacement, tilt, velocity

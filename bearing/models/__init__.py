@@ -61,7 +61,7 @@ CONTRACT = (
                               "(statics/equilibrium.py)"),
     Part("orders", "callable", "orders(p): its fault orders (frequencies.FaultOrders)"),
     Part("ring_stiffness", "callable", "ring_stiffness(p, F): the rings' tangent stiffness (3,) in "
-                                       "N/m at the load F (mbs/exchange.py)"),
+                                       "N/m at the load F (mbs/kernel/exchange.py)"),
 )
 
 
@@ -199,5 +199,5 @@ def bore(p) -> float:
 
 def ring_stiffness(p, F):
     """The bearing's tangent stiffness (3,) along x, y, z (N/m) at the load ``F`` (N, on the
-    outer ring): the interface Jacobian of a co-simulation's "jacobian" hold (mbs/exchange.py)."""
+    outer ring): the interface Jacobian of a co-simulation's "jacobian" hold (mbs/kernel/exchange.py)."""
     return module(p).ring_stiffness(p, F)

@@ -19,7 +19,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from axlebox import configs
-from axlebox.mbs import integrate
+from axlebox.mbs.solver import integrate
 from axlebox.pipelines import simulate
 from axlebox.pipelines.bodies import build_user_body
 from axlebox.pipelines.render import render_modes

@@ -90,7 +90,7 @@ def main(out):
         print(name, "done", flush=True)
 
     from axlebox import configs
-    from axlebox.mbs import integrate
+    from axlebox.mbs.solver import integrate
     from axlebox.pipelines import simulate as psim
     cfg = psim.load_config(configs.path("validation_48kmh"), duration=DURATION,
                               overrides={"bodies": {"flexible": []}})

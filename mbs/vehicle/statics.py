@@ -17,7 +17,7 @@ from scipy.spatial.transform import Rotation
 
 from axlebox._params import ParameterError
 
-from .system import Model
+from ..solver.system import Model
 
 
 def _index(model: Model):

@@ -1,7 +1,7 @@
-"""The B-type metro motor car on tangent track, built from a validated config (:mod:`axlebox.mbs.config`).
+"""The B-type metro motor car on tangent track, built from a validated config (:mod:`.config`).
 
 Bodies: carbody; two bogie frames (``frame1`` front at x = 0, ``frame2`` at ``-bogie_distance``);
-four wheelsets ``ws1..ws4`` (spinning frames, see :mod:`axlebox.mbs.body`); eight axle-boxes
+four wheelsets ``ws1..ws4`` (spinning frames, see :mod:`axlebox.mbs.solver.body`); eight axle-boxes
 ``ab<i><L|R>``; four gearboxes ``gb<i>`` hung between the axle (bushing at the gear seat, free to
 turn about the axle) and the frame (a vertical hanger link).  Any of the frames, wheelsets and
 axle-boxes is flexible when named in ``bodies.flexible`` (then its reduced body's modes below
@@ -19,14 +19,14 @@ Track frame: x forward, y left, z up, z = 0 at the crown of the rails.  Suspensi
   lateral damper, an anti-roll bar (roll bushing), a traction rod (longitudinal link) and a
   lateral bump stop;
 * the static loads are preloads so the nominal geometry is near equilibrium;
-  :func:`axlebox.mbs.statics.equilibrium` removes the rest.
+  :func:`axlebox.mbs.vehicle.statics.equilibrium` removes the rest.
 
 Speed: the car starts at ``run.speed_kmh`` (every body at that speed, the wheelsets rolling
 freely) and, without a profile, coasts.  Along a speed profile that changes (``run.profile``,
-:mod:`axlebox.mbs.profile`) it is driven as a metro motor car is, by torques at its four
+:mod:`axlebox.mbs.vehicle.speed`) it is driven as a metro motor car is, by torques at its four
 wheelsets (traction, and electric braking the same way): each wheelset's torque reacts on its
 gearbox (on the frame where there is none), so the wheelsets' spin follows with the creep their
-contacts give and the car with the creep forces (:class:`~axlebox.mbs.elements.Drive`: the
+contacts give and the car with the creep forces (:class:`~axlebox.mbs.solver.elements.Drive`: the
 profile's acceleration times the car's mass, a quarter a wheelset, plus a gain on the
 wheelset's speed against the profile's, :data:`DRIVE_HZ`).  The gain is on the wheelset's own
 speed, where the torque acts through the stiff creep: on the carbody's, across the suspension,
@@ -45,11 +45,11 @@ import numpy as np
 from axlebox.fem.bodyfile import ReducedBody
 from axlebox.fem.damping import modal as modal_damping
 
-from .body import Body, add_point_masses, flexible, mode_count, rigid
-from .elements import BumpStop, Bushing, Drive, Spring
-from . import trackbed
-from .system import System
-from .wheelrail.element_kernel import COL_C0Z, COL_KH, COL_PZ, P_L0
+from ..solver.body import Body, add_point_masses, flexible, mode_count, rigid
+from ..solver.elements import BumpStop, Bushing, Drive, Spring
+from ..track import bed as trackbed
+from ..solver.system import System
+from ..wheelrail.element_kernel import COL_C0Z, COL_KH, COL_PZ, P_L0
 
 if TYPE_CHECKING:
     from .config import CarConfig
@@ -110,7 +110,7 @@ TRACK_FOLLOW_HZ = 5.0       # the ballasted track bodies' own following of the p
 
 
 def _track_under(s: System, cfg: CarConfig, name: str, x: float, y: float, V: float) -> int:
-    """The ballasted track under wheel ``name`` (:mod:`.trackbed`): rail, sleeper and ballast
+    """The ballasted track under wheel ``name`` (:mod:`axlebox.mbs.track.bed`): rail, sleeper and ballast
     bodies below the contact at ``(x, y)``, moving with the car, each spring preloaded with the
     weight above it so that the unloaded track rests as built; returns the rail's marker.  The
     ground springs hold nothing along the track (the bodies travel with the wheel); the layers
@@ -148,7 +148,7 @@ def static_wheel_load(cfg: CarConfig) -> float:
 
 def build(cfg: CarConfig, tables, track=None, reduced: dict[str, ReducedBody] | None = None,
           bearings: dict | None = None) -> System:
-    """The car as a :class:`~axlebox.mbs.system.System` (not yet in equilibrium: see mbs.statics).
+    """The car as a :class:`~axlebox.mbs.solver.system.System` (not yet in equilibrium: see mbs.statics).
 
     ``bearings``: ``(k, side) -> (tag, P, D, y0)`` (the model's kernel tag, parameters, defect
     table, roller and cage states) puts a bearing between wheelset k's journal and its axle-box

@@ -1,4 +1,4 @@
-"""Run a :class:`~axlebox.mbs.system.Model` in time: fixed-step RK4, leapfrog (explicit central
+"""Run a :class:`~axlebox.mbs.solver.system.Model` in time: fixed-step RK4, leapfrog (explicit central
 differences) or generalized-alpha, output at a
 fixed rate, divergence caught and named, results kept when a run stops early.
 
@@ -16,8 +16,8 @@ import numpy as np
 from axlebox._params import ParameterError, check_ranges, choice, param
 from axlebox._threads import Fitter
 
-from . import kernel_integrate as ki
-from .exchange import HOLDS, exchange
+from ..kernel import integrate as ki
+from ..kernel.exchange import HOLDS, exchange
 from .system import Model
 
 METHODS = ("rk4", "leapfrog", "imex", "imex2", "galpha")
@@ -26,7 +26,7 @@ METHODS = ("rk4", "leapfrog", "imex", "imex2", "galpha")
 @dataclass(frozen=True)
 class Settings:
     """Integrator settings: the car config's ``[integrator]`` and ``[coupling]`` fields (declared
-    here, once; mbs/config.py takes them over) and the Newton's; ``dt`` must divide the output
+    here, once; mbs/vehicle/config.py takes them over) and the Newton's; ``dt`` must divide the output
     period.  Their cross-field checks live here alone (a car config runs them by building its
     settings)."""
 
@@ -45,9 +45,9 @@ class Settings:
     rtol: float = param(1e-9, 0.0, 1e-2, unit="", doc="Newton relative tolerance on the state")
     vmax: float = param(1e3, 1.0, 1e9, unit="m/s", doc="a velocity state beyond this is a runaway")
     exchange_dt: float = param(0.0, 0.0, 1e-2, unit="s", doc="the bodies' step and their exchange "
-                               "with the bearings (mbs/exchange.py), a whole multiple of dt; 0: dt")
+                               "with the bearings (mbs/kernel/exchange.py), a whole multiple of dt; 0: dt")
     body_substeps: int = param(1, 1, 1000, unit="", doc="the bodies' steps an exchange, the bearings' "
-                               "loads held between (a co-simulation, mbs/exchange.py); 1: one")
+                               "loads held between (a co-simulation, mbs/kernel/exchange.py); 1: one")
     hold: str = choice("zoh", HOLDS, doc="how the co-simulation holds the bearings' loads between "
                        "exchanges: 'zoh', 'linear' or 'jacobian'")
 
@@ -112,8 +112,8 @@ class Run:
     state_time: np.ndarray
     states: np.ndarray               # (ts, n_states)
     y_end: np.ndarray
-    bearings: np.ndarray = None      # (t, n_bearings, 3, 6): mbs/kernel_bearings.py BR_ROWS
-    exchange: np.ndarray = None      # the bearings' ring motion at the last exchange (mbs/exchange.py)
+    bearings: np.ndarray = None      # (t, n_bearings, 3, 6): mbs/kernel/bearings.py BR_ROWS
+    exchange: np.ndarray = None      # the bearings' ring motion at the last exchange (mbs/kernel/exchange.py)
     status: str = "done"
     message: str = ""
     wall_s: float = 0.0
@@ -133,7 +133,7 @@ OUTPUTS = ("out_t", "out_sens", "out_wh", "out_el", "out_y")       # what a chec
 def split_outputs(model: Model, out_wh: np.ndarray, out_el: np.ndarray) -> dict:
     """A run's wheel-rail and element output rows as :class:`Run` holds them: ``wheels``,
     ``elements`` and ``bearings`` (the element rows after the model's own elements, three a
-    bearing: mbs/kernel_bearings.py BR_ROWS)."""
+    bearing: mbs/kernel/bearings.py BR_ROWS)."""
     nw, ne, nbr = len(model.wheel_names), model.S.el_i.shape[0], len(model.bearing_names)
     return {"wheels": out_wh[:, :nw], "elements": out_el[:, :ne],
             "bearings": out_el[:, ne:ne + 3 * nbr].reshape(out_el.shape[0], nbr, 3, 6)}

@@ -1,15 +1,15 @@
 """The system right-hand side ``y' = F(t, y)`` in numba, over the packed arrays of
-:class:`axlebox.mbs.system.Model`.
+:class:`axlebox.mbs.solver.system.Model`.
 
 ``S`` (:class:`Arrays`, static): the bodies, markers, elements, wheels, track and sensors
-packed; ``B`` the bearings (:class:`.kernel_bearings.Bearings`, or ``NoBearings``: the
+packed; ``B`` the bearings (:class:`.bearings.Bearings`, or ``NoBearings``: the
 kernels that take it are compiled for its model alone); ``W`` (:class:`Work`, overwritten
 every call): frame quantities per body,
 marker kinematics and loads, the generalised loads, element, wheel and sensor outputs (numba
 compiles these named tuples: fields by name, no positions to keep in step).
 Order of one evaluation: frames and position rates; marker kinematics; element and wheel-rail
 forces on markers; gravity and marker loads per body; body accelerations; sensor accelerations.
-The bearings (:mod:`.kernel_bearings`) and the bodies' accelerations (:func:`_accelerations`)
+The bearings (:mod:`axlebox.mbs.kernel.bearings`) and the bodies' accelerations (:func:`_accelerations`)
 run on numba's threads, each writing only its own rows, so any number of threads gives the same
 numbers; the rest runs on one.
 """
@@ -20,11 +20,11 @@ from collections import namedtuple
 import numpy as np
 from numba import njit, prange
 
-from .kernel_bearings import bearing_exchange, bearing_forces, held_loads
-from .kernel_body import BI_N, BI_VEL, body_accelerations, frame_kinematics, gravity_load, position_rates
-from .kernel_elements import element_forces
-from .kernel_markers import marker_acceleration, marker_kinematics, marker_loads
-from .kernel_wheels import G_GRAV, wheel_forces
+from .bearings import bearing_exchange, bearing_forces, held_loads
+from .body import BI_N, BI_VEL, body_accelerations, frame_kinematics, gravity_load, position_rates
+from .elements import element_forces
+from .markers import marker_acceleration, marker_kinematics, marker_loads
+from .wheels import G_GRAV, wheel_forces
 
 
 Arrays = namedtuple("Arrays", ["bi", "bf", "inv", "goff", "mk_i", "mk_f", "shp", "el_i", "el_f", "glob",
@@ -35,7 +35,7 @@ Work = namedtuple("Work", ["Ab", "rb", "vb", "omb", "omfb", "mku", "mkp", "mkv",
 
 @njit(cache=True)
 def rhs(t, y, dy, S, W, B):
-    """``dy = F(t, y)``, the bearings' rates included (:func:`.kernel_bearings.bearing_forces`)."""
+    """``dy = F(t, y)``, the bearings' rates included (:func:`.bearings.bearing_forces`)."""
     kinematics(t, y, dy, S, W)
     bearing_forces(B, t, y, dy, S.bi, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.elout)
     _dynamics(t, y, dy, S, W)
@@ -43,7 +43,7 @@ def rhs(t, y, dy, S, W, B):
 
 @njit(cache=True)
 def rhs_exchange(t, y, dy, S, W, B, X):
-    """The bodies' ``dy`` at ``t`` with the bearings exchanged (:func:`.kernel_bearings.bearing_exchange`:
+    """The bodies' ``dy`` at ``t`` with the bearings exchanged (:func:`.bearings.bearing_exchange`:
     their states advanced to ``t``, their mean ring loads on the markers); the bearings' rows
     of ``dy`` are left as they were."""
     kinematics(t, y, dy, S, W)
@@ -54,7 +54,7 @@ def rhs_exchange(t, y, dy, S, W, B, X):
 @njit(cache=True)
 def rhs_held(t, y, dy, S, W, B, X, u):
     """The bodies' ``dy`` at ``t`` between exchanges of a co-simulation: the bearings' loads
-    those of the last exchange, carried ``u`` exchange steps on (:func:`.kernel_bearings.held_loads`)."""
+    those of the last exchange, carried ``u`` exchange steps on (:func:`.bearings.held_loads`)."""
     kinematics(t, y, dy, S, W)
     held_loads(B, X, y, S.bi, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, u)
     _dynamics(t, y, dy, S, W)

@@ -1,4 +1,4 @@
-"""Fixed-step integrators over :func:`axlebox.mbs.kernel_system.rhs`, whole runs in numba.
+"""Fixed-step integrators over :func:`axlebox.mbs.kernel.system.rhs`, whole runs in numba.
 
 * ``run_rk4``: classical Runge-Kutta 4; ``run_leapfrog``: the explicit central-difference
   (leapfrog) step of explicit finite elements and discrete elements, one right-hand side a step (Belytschko,
@@ -31,7 +31,7 @@
 
 With bearings, the leapfrog exchanges with them once a step (:mod:`.exchange`): the step is the
 exchange step, and each bearing advances its own states in its own sub-steps inside the
-right-hand side (:func:`.kernel_system.rhs_exchange`); RK4 and generalized-alpha carry the
+right-hand side (:func:`.system.rhs_exchange`); RK4 and generalized-alpha carry the
 bearings' states in ``y`` with the bodies'.
 
 Both write outputs every ``n_sub`` steps: sensor accelerations, wheel and element outputs, and the
@@ -49,8 +49,8 @@ from axlebox._threads import fit_threads
 from axlebox.bearing.kernel.vec import copy1, copy2, copy3
 
 from .exchange import FIRST, LINEAR
-from .kernel_body import BI_N, BI_POS, BI_SPIN, BI_VEL, frame_kinematics, position_rates
-from .kernel_system import rhs, rhs_exchange, rhs_held
+from .body import BI_N, BI_POS, BI_SPIN, BI_VEL, frame_kinematics, position_rates
+from .system import rhs, rhs_exchange, rhs_held
 
 OK, NOT_FINITE, RUNAWAY, NO_CONVERGENCE = 0, 1, 2, 3
 

@@ -26,7 +26,7 @@ a 6 x 6 solve and products with the stored ``Me^-1`` instead of factorising the
 
 For a spinning body the frame turns with ``w_f = (w_x, 0, w_z)``; the rigid gyroscopic term
 uses the material rate ``J w`` with the frame rate ``w_f`` (Euler's equations in a Resal
-frame), the elastic terms use ``w_f`` (see :mod:`axlebox.mbs.body`).
+frame), the elastic terms use ``w_f`` (see :mod:`axlebox.mbs.solver.body`).
 """
 from __future__ import annotations
 

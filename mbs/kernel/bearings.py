@@ -2,7 +2,7 @@
 marker of a wheelset (inner ring) and the bore marker of an axle-box (outer ring), any bearing
 model (bearing/models/__init__.py).
 
-:class:`Bearings` holds them all (:func:`axlebox.mbs.system.System.assemble` packs it): the
+:class:`Bearings` holds them all (:func:`axlebox.mbs.solver.system.System.assemble` packs it): the
 kernels' ``tag`` of their model (one model for the car), a row of indices each (``idx``:
 :data:`BR_MIN` ..., the two markers, the wheelset body for its spin angle and rate, where its
 states start in ``y`` and how many, and its rows of the stacked defect table ``D``), a
@@ -43,7 +43,7 @@ from axlebox.bearing.kernel.step import cage_outputs
 from axlebox.bearing.kernel.vec import AX, AY, AZ, copy3
 
 from .exchange import FIRST, HELD, JACOBIAN, LAST, THIS
-from .kernel_body import BI_POS, BI_VEL, SPIN_ANGLE, SPIN_RATE
+from .body import BI_POS, BI_VEL, SPIN_ANGLE, SPIN_RATE
 
 BR_MIN, BR_MOUT, BR_BODY, BR_OFF, BR_N, BR_D0, BR_ND, BR_WIDTH = range(8)
 # output rows per bearing, after the elements' rows of ``elout``: the loads (force, moment) on the
@@ -70,7 +70,7 @@ def bearing_forces(B, t, y, dy, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout):
 @kernel
 def bearing_exchange(B, X, t, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout):
     """The exchange at ``t`` of a leapfrog run (module docstring): every bearing's states
-    advanced over the exchange's window (``X``: :class:`axlebox.mbs.exchange.Exchange`;
+    advanced over the exchange's window (``X``: :class:`axlebox.mbs.kernel.exchange.Exchange`;
     :func:`axlebox.bearing.kernel.advance.advance`), the ring motion on the line through the last
     exchange's (``X.ring``) and this one's, which then becomes the last; the mean ring loads go
     onto the markers and into the outputs as in :func:`bearing_forces`.  The bearings' rows of

@@ -4,9 +4,9 @@ a table of (time, speed), the speed held before the first point and after the la
 ``SpeedProfile(t, v)`` (s, m/s): the speed is linear between points, so the distance run is the
 exact integral, piecewise quadratic: ``x(t) = x_k + v_k (t - t_k) + a_k (t - t_k)^2 / 2`` with
 ``a_k = (v_{k+1} - v_k) / (t_{k+1} - t_k)``.  The kernels read it from the system's ``glob`` array
-(:meth:`SpeedProfile.pack`, :func:`axlebox.mbs.kernel_profile.profile_at`): the wheel-rail
+(:meth:`SpeedProfile.pack`, :func:`axlebox.mbs.kernel.speed.profile_at`): the wheel-rail
 contact's reference speed (the creepages' denominator) and the traction of
-:class:`axlebox.mbs.elements.Drive` follow it.
+:class:`axlebox.mbs.solver.elements.Drive` follow it.
 """
 from __future__ import annotations
 
@@ -80,6 +80,6 @@ class SpeedProfile:
         return self.at(time)[1]
 
     def pack(self) -> np.ndarray:
-        """The kernels' form: ``[n, t_0..t_{n-1}, v_0.., x_0..]`` (:mod:`.kernel_profile`)."""
+        """The kernels' form: ``[n, t_0..t_{n-1}, v_0.., x_0..]`` (:mod:`axlebox.mbs.kernel.speed`)."""
         t, v, _, x = self._arrays()
         return np.concatenate([[float(t.size)], t, v, x])

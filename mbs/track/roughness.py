@@ -15,7 +15,7 @@ in bands whose exact centre wavelength is ``10**(-n/10)`` m, n = 0..31 (nominal 
   the tables assign it to disc-braked urban subway cars too).  It turns with the wheel: a
   record periodic on the rolling circle 2 pi r0, read at the distance the wheel has rolled.
 * **Rail roughness** (:data:`RAIL_DB`): "iso3095", the ISO 3095:2013 limit (a smooth test
-  track; the same curve as :data:`axlebox.mbs.track.ISO3095_LIMIT_DB`, extended), and
+  track; the same curve as :data:`axlebox.mbs.track.irregularity.ISO3095_LIMIT_DB`, extended), and
   "network", the "average network, normally maintained smooth" rail of the 2012 report.  (The
   later revision in Directive (EU) 2015/996 changes this rail spectrum and the contact filters
   by 4-8 dB at 1-2 cm; the 2012 tables are the ones used here.)
@@ -28,18 +28,19 @@ in bands whose exact centre wavelength is ``10**(-n/10)`` m, n = 0..31 (nominal 
 
 Each band level L spreads a mean square (1 um)^2 10^(L/10) over the band's width in spatial
 angular frequency Omega = 2 pi / lambda; log S is interpolated linearly in log Omega between band
-centres (:func:`band_psd`, as :func:`axlebox.mbs.track.roughness_psd`).  The wheel's and the rail's
-roughness are independent, so filtering each by the contact filter equals the tables' rule of
-filtering their energetic sum.
+centres (:func:`band_psd`, as :func:`.irregularity.roughness_psd`).  The wheel's and the
+rail's roughness are independent, so filtering each by the contact filter equals the tables'
+rule of filtering their energetic sum.
 """
 from __future__ import annotations
 
 import math
 
 import numpy as np
-from scipy.fft import irfft
 
 from axlebox._params import ParameterError
+
+from . import sampling
 
 BANDS = np.arange(32)                                   # centre wavelength 10**(-n/10) m
 LAMBDA = 10.0 ** (-BANDS / 10)                           # m, 1.0 .. 7.9e-4
@@ -131,7 +132,6 @@ def wheel_record(name: str, r0: float, lambda_min: float, load: float | None,
     (``n ds = 2 pi r0`` exactly, so the record is periodic in a wheel turn), from the longest
     band that fits the circle down to ``lambda_min``.
     Each FFT bin carries sqrt(2 int_bin S) with a random phase from ``rng``."""
-    from .track import _harmonics                      # the rails' bin-wise sampling
     circle = 2 * np.pi * r0
     if not (LAMBDA_MIN <= lambda_min < LAMBDA_MAX):
         raise ParameterError(f"track.roughness_lambda_min = {lambda_min!r} is not allowed: expected "
@@ -141,12 +141,9 @@ def wheel_record(name: str, r0: float, lambda_min: float, load: float | None,
     ds = circle / n
     dW = 2 * np.pi / circle
     W_lo = max(2 * np.pi / LAMBDA_MAX, dW)
-    k, amp, phase = _harmonics(lambda W: band_psd(W, L, owner="wheel roughness"), W_lo,
-                               2 * np.pi / lambda_min, dW, rng)
-    X = np.zeros(n // 2 + 1, dtype=complex)
-    X[k] = 0.5 * n * amp * np.exp(1j * phase)
-    values = irfft(X, n)
-    slopes = irfft(1j * dW * np.arange(X.size) * X, n)
+    k, amp, phase = sampling.harmonics(lambda W: band_psd(W, L, owner="wheel roughness"), W_lo,
+                                       2 * np.pi / lambda_min, dW, rng)
+    values, slopes = sampling.record(k, amp, phase, n, dW)
     return values, slopes, ds
 
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .kernel_body import BI_N, BI_POS, BI_SPIN, BI_VEL, cross
+from .body import BI_N, BI_POS, BI_SPIN, BI_VEL, cross
 
 MK_BODY, MK_SHP = 0, 1
 

@@ -2,8 +2,8 @@
 
 A defect is the wheel's radius deviation ``dr(s)`` (m, negative where material is missing) at arc
 length ``s`` around the rolling circle of radius r0 (circumference ``C = 2 pi r0``), sampled with
-its slope on the grid of a wheel record (:func:`axlebox.mbs.roughness.wheel_record`), so the
-wheel-rail element reads it as it reads the wheel's roughness (mbs/kernel_wheels.py): a flat
+its slope on the grid of a wheel record (:func:`axlebox.mbs.track.roughness.wheel_record`), so the
+wheel-rail element reads it as it reads the wheel's roughness (mbs/kernel/wheels.py): a flat
 lifts the rail under the wheel by ``dr``, and where ``dr`` drops faster than the wheel can
 follow, the contact opens and closes again.
 

@@ -1,6 +1,6 @@
 """The exchange between the car's bodies and its bearings in a leapfrog run: the bodies step at
 the exchange step ``H``, each bearing in ``n`` sub-steps of ``h = H / n`` between two exchanges
-(:func:`axlebox.bearing.kernel.advance.advance`, :func:`.kernel_bearings.bearing_exchange`).
+(:func:`axlebox.bearing.kernel.advance.advance`, :func:`.bearings.bearing_exchange`).
 
 Why: the rollers' contact modes (21-23 kHz) hold the bearings' step near 5e-6 s, while the car
 without bearings is accurate at 5e-5 s; stepping everything at the rollers' step spends a third
@@ -25,7 +25,7 @@ hold, as a co-simulation interface holds its inputs between communication points
 on the line through the last two exchanges' ("linear", first-order extrapolation), or held
 with the interface Jacobian ("jacobian": the held loads plus ``-K`` times the outer ring's
 displacement from the inner since the exchange, ``K`` each bearing's tangent stiffness at its
-static load along x, y, z, :func:`axlebox.mbs.bearings.stiffness`; the remedy of Kuebler and
+static load along x, y, z, :func:`axlebox.mbs.vehicle.bearings.stiffness`; the remedy of Kuebler and
 Schiehlen, "Two methods of simulator coupling", Math. Comput. Model. Dyn. Syst. 6 (2000)
 93-113: the stiff linear part follows the bodies at their own step, only the rest is held).  The held
 loads come from a window centred on the exchange and act over the step after it, so a zero-order
@@ -40,7 +40,7 @@ frame, inner and outer ring, force and moment) holds an exchange, ``m`` and ``ho
 co-simulation's body steps and hold, ``h`` and ``n`` the bearings' sub-step and sub-steps an
 exchange, ``mode`` (bearing/kernel/step.py ``MODES``), ``K`` and ``r0`` the "jacobian" hold's
 stiffness and outer-ring places.  The bearings' own scratch is theirs
-(mbs/kernel_bearings.py ``Bearings``).
+(mbs/kernel/bearings.py ``Bearings``).
 """
 from __future__ import annotations
 
@@ -62,10 +62,11 @@ def exchange(model, method: str, h: float, n: int, ring=None, m: int = 1, hold: 
              K=None) -> Exchange:
     """The exchange of ``model``'s bearings for a leapfrog ``method`` ('leapfrog', 'imex',
     'imex2') with sub-step ``h`` and ``n`` sub-steps an exchange; ``ring``: the last exchange's
-    ring motion of a run this one continues (:attr:`axlebox.mbs.integrate.Run.exchange`),
+    ring motion of a run this one continues (:attr:`axlebox.mbs.solver.integrate.Run.exchange`),
     else the run starts.  ``m`` > 1: the bodies take ``m`` steps an exchange with the ring
     loads held (``hold``, :data:`HOLDS`; module docstring, "Co-simulation"); ``K`` (n_bearings,
-    3): the bearings' tangent stiffness the "jacobian" hold needs (:func:`axlebox.mbs.bearings.stiffness`)."""
+    3): the bearings' tangent stiffness the "jacobian" hold needs
+    (:func:`axlebox.mbs.vehicle.bearings.stiffness`)."""
     nbr = len(model.bearing_names)
     start = ring is None
     ring = np.zeros((nbr, RINGS, RING)) if start else np.array(ring, float).reshape(nbr, RINGS, RING)

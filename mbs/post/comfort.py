@@ -18,7 +18,7 @@ the spectral form on the analysis length).
 
 EN 12299:2009 mean comfort, standard method (clause 6.7.2), from the 95th percentiles
 (clause 6.6.3) of the r.m.s. over consecutive 5 s windows (clause 6.6.2) of the floor
-accelerations weighted by W_d (x, y) and W_b (z) (:mod:`axlebox.mbs.weighting`):
+accelerations weighted by W_d (x, y) and W_b (z) (:mod:`axlebox.mbs.post.weighting`):
 
     N_MV = 6 sqrt((a_XP95^Wd)^2 + (a_YP95^Wd)^2 + (a_ZP95^Wb)^2)               (EN 12299 6.7.2)
 

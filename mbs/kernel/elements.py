@@ -1,4 +1,4 @@
-"""Numba force laws of the force elements between markers (see :mod:`axlebox.mbs.elements`).
+"""Numba force laws of the force elements between markers (see :mod:`axlebox.mbs.solver.elements`).
 
 Each element row ``el_i = [kind, m1, m2, aux]`` and ``el_f`` (parameters) adds forces and moments
 (inertial) to its markers' accumulators ``mkF``, ``mkM``.  Action and reaction are exact: the
@@ -12,8 +12,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .kernel_body import cross
-from .kernel_profile import profile_at
+from .body import cross
+from .speed import profile_at
 
 BUSHING, SPRING, BUMPSTOP, LOAD, DRIVE = 1, 2, 3, 4, 5
 EL_KIND, EL_M1, EL_M2, EL_AUX = range(4)
@@ -57,7 +57,7 @@ def _table(x, tab, npt):
 
 @njit(cache=True)
 def _drive(t, m1, m2, aux, P, glob, mkv, mkR, mkF, mkM, out):
-    """Traction or braking along the speed profile (:class:`axlebox.mbs.elements.Drive`): the
+    """Traction or braking along the speed profile (:class:`axlebox.mbs.solver.elements.Drive`): the
     force ``F = M a(t) + kd (v(t) - v_aux)`` the profile asks of mass ``M`` (feed-forward, and
     a gain on marker ``aux``'s speed along the track against the profile's); with a radius
     ``r > 0`` a torque ``F r + J a / r`` about marker 1's y axis (the axle), its reaction on

@@ -1,9 +1,9 @@
 """The car's axle-box bearings, any model of bearing/models/__init__.py (``[bearing] type``): their
 kernel parameters, defect tables and a start in equilibrium, for
-:func:`axlebox.mbs.vehicle.build` (``joint.model = "bearing"``).
+:func:`axlebox.mbs.vehicle.car.build` (``joint.model = "bearing"``).
 
 The start: the car is first put in equilibrium with stiff row bushings in place of the bearings
-(:mod:`axlebox.mbs.statics`; the bearings' roller states would make that Newton solve forty times
+(:mod:`axlebox.mbs.vehicle.statics`; the bearings' roller states would make that Newton solve forty times
 larger); each bushing pair's load is then the load its bearing carries, and the bearing's own
 quasi-static solution (:func:`axlebox.bearing.statics.equilibrium.static_state`, of the healthy bearing, with
 the roller set turned half a pitch when a roller would sit in a defect) gives its roller and
@@ -32,10 +32,10 @@ from axlebox.bearing.statics.equilibrium import static_state
 from axlebox.bearing.kernel.layout import F_X, F_Z
 from axlebox.bearing.kernel.vec import AZ
 
-from .kernel_bearings import BR_MIN, BR_MOUT
-from .kernel_markers import MK_BODY
-from .kernel_body import BI_POS
-from .vehicle import SIDES
+from ..kernel.bearings import BR_MIN, BR_MOUT
+from ..kernel.markers import MK_BODY
+from ..kernel.body import BI_POS
+from .car import SIDES
 
 if TYPE_CHECKING:
     from .config import CarConfig
@@ -98,7 +98,7 @@ def start(cfg: CarConfig, loads: dict, omega_w: float, log=print) -> dict:
 def stiffness(cfg: CarConfig, loads: dict, names) -> np.ndarray:
     """Each named bearing's tangent stiffness (n, 3) along x, y (axial), z (N/m) at its static
     load (its model's ``ring_stiffness``): the interface Jacobian of a co-simulation's
-    "jacobian" hold (mbs/exchange.py)."""
+    "jacobian" hold (mbs/kernel/exchange.py)."""
     p = params(cfg)
     return np.array([models.ring_stiffness(p, loads[_key(name)]) for name in names]).reshape(-1, 3)
 

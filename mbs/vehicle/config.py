@@ -3,8 +3,9 @@
 Each ``[section]`` of the TOML file is a frozen dataclass here (:func:`axlebox._params.section`):
 every field's type, default, allowed range or choices, unit and one-line meaning are declared
 once, in the field.  Where the code below the config takes the same quantity (the integrator's
-:class:`~axlebox.mbs.integrate.Settings`, the track's
-:class:`~axlebox.mbs.track.IrregularityParams`, the wheel-rail
+:class:`~axlebox.mbs.solver.integrate.Settings`, the track's
+:class:`~axlebox.mbs.track.irregularity.IrregularityParams`, the track bed's
+:class:`~axlebox.mbs.track.bed.Seats`, the wheel-rail
 :class:`~axlebox.mbs.wheelrail.geometry.TrackLayout` and
 :class:`~axlebox.mbs.wheelrail.element.WheelRailParams`), the section's field is that class's
 field again (:func:`~axlebox._params.like`), so a default cannot differ between the two.  The
@@ -34,10 +35,11 @@ from axlebox._params import (ParameterError, choice, flag, from_table, like, mem
 from axlebox._params import check_ranges as _check_fields
 from axlebox.bearing import models
 from axlebox.bearing.defects import Defect
-from axlebox.mbs.integrate import Settings
-from axlebox.mbs.profile import SpeedProfile
-from axlebox.mbs.track import IrregularityParams
-from axlebox.mbs.trackbed import MODELS as TRACK_MODELS
+from axlebox.mbs.solver.integrate import Settings
+from axlebox.mbs.vehicle.speed import SpeedProfile
+from axlebox.mbs.track.irregularity import IrregularityParams
+from axlebox.mbs.track.bed import MODELS as TRACK_MODELS
+from axlebox.mbs.track.bed import Seats
 from axlebox.mbs.wheelrail.element import WheelRailParams
 from axlebox.mbs.wheelrail.geometry import TrackLayout
 
@@ -58,15 +60,15 @@ class Run:
     profile: tuple = rows((), (("time", 0.0, 10000.0, "s"), ("speed", 1.0, 200.0, "km/h")),
                           "speed profile: points (time, speed), the first at 0 s and speed_kmh, times "
                           "increasing; constant acceleration between points, the last speed held "
-                          "(mbs/profile.py); traction and braking torques at the wheelsets drive the "
-                          "car along it (mbs/vehicle.py); empty: the constant speed_kmh")
+                          "(mbs/vehicle/speed.py); traction and braking torques at the wheelsets drive the "
+                          "car along it (mbs/vehicle/car.py); empty: the constant speed_kmh")
     seed: int = like(IrregularityParams, "seed", doc="seed of the track irregularity's random phases and "
                      "the wheels' roughness")
 
 
 @section("integrator")
 class Integrator:
-    """The car's time integrator (mbs/integrate.py)."""
+    """The car's time integrator (mbs/solver/integrate.py)."""
 
     method: str = like(Settings, "method", doc="'leapfrog' (explicit central differences), 'imex' / "
                        "'imex2' (the leapfrog with the bearings' contact damping / stiffness implicit), "
@@ -85,7 +87,7 @@ class Integrator:
 
 @section("coupling")
 class Coupling:
-    """The bodies' step and their exchange with the DTRB bearings (mbs/exchange.py)."""
+    """The bodies' step and their exchange with the DTRB bearings (mbs/kernel/exchange.py)."""
 
     exchange_dt: float = like(Settings, "exchange_dt", doc="the bodies' step and their exchange with the "
                               "DTRBs, a whole multiple of integrator.dt (then the bearings' sub-step); 0: "
@@ -100,9 +102,10 @@ class Coupling:
 
 @section("track")
 class Track:
-    """Track irregularity (FRA spectra, mbs/track.py), roughness (mbs/roughness.py) and the track under
-    each wheel (mbs/trackbed.py; the ballasted seats per rail seat, assumed: Zhai, Wang and Lin, J.
-    Sound Vib. 270 (2004) 673-683, 60 kg/m rail, as tabulated by the open TTB-2D model)."""
+    """Track irregularity (FRA spectra, mbs/track/irregularity.py), roughness
+    (mbs/track/roughness.py) and the track under each wheel (mbs/track/bed.py; the ballasted seats
+    per rail seat, assumed: Zhai, Wang and Lin, J. Sound Vib. 270 (2004) 673-683, 60 kg/m rail, as
+    tabulated by the open TTB-2D model)."""
 
     fra_class: int = like(IrregularityParams, "grade", doc="American (FRA) track class of the irregularity, "
                           "1 (worst) to 6 (best)")
@@ -125,23 +128,17 @@ class Track:
     model: str = choice("rigid", TRACK_MODELS, "the track under each wheel: 'rigid' rails (the "
                         "paper's car, its calibration and field cases) or 'ballasted' (rail, sleeper and "
                         "ballast lumped under each wheel)")
-    rail_mass: float = param(60.64, 10.0, 200.0, "kg/m", "rail mass per metre, ballasted track (Zhai et al. "
-                             "2004, 60 kg/m rail)")
-    rail_EI: float = param(6.624e6, 1e5, 1e8, "N m^2", "rail bending stiffness, E 205.9 GPa, I 3217 cm^4 "
-                           "(Zhai et al. 2004)")
-    sleeper_spacing: float = param(0.6, 0.3, 1.5, "m", "rail seat (sleeper) spacing (Zhai et al. 2004)")
-    pad_k: float = param(6.5e7, 1e6, 1e10, "N/m", "rail pad stiffness, per rail seat (Zhai et al. 2004)")
-    pad_c: float = param(75000.0, 0.0, 1e7, "N s/m", "rail pad damping, per rail seat (Zhai et al. 2004)")
-    sleeper_mass: float = param(125.5, 10.0, 2000.0, "kg", "half a sleeper, per rail seat (Zhai et al. 2004)")
-    ballast_mass: float = param(531.4, 0.0, 5000.0, "kg", "the ballast block under a rail seat (Zhai et al. "
-                                "2004)")
-    ballast_k: float = param(1.3775e8, 1e6, 1e10, "N/m", "ballast stiffness, per rail seat (Zhai et al. "
-                             "2004)")
-    ballast_c: float = param(58800.0, 0.0, 1e7, "N s/m", "ballast damping, per rail seat (Zhai et al. 2004)")
-    subgrade_k: float = param(7.75e7, 1e6, 1e10, "N/m", "subgrade stiffness, per rail seat (Zhai et al. "
-                              "2004)")
-    subgrade_c: float = param(31150.0, 0.0, 1e7, "N s/m", "subgrade damping, per rail seat (Zhai et al. "
-                              "2004)")
+    rail_mass: float = like(Seats, "rail_mass")
+    rail_EI: float = like(Seats, "rail_EI")
+    sleeper_spacing: float = like(Seats, "sleeper_spacing")
+    pad_k: float = like(Seats, "pad_k")
+    pad_c: float = like(Seats, "pad_c")
+    sleeper_mass: float = like(Seats, "sleeper_mass")
+    ballast_mass: float = like(Seats, "ballast_mass")
+    ballast_k: float = like(Seats, "ballast_k")
+    ballast_c: float = like(Seats, "ballast_c")
+    subgrade_k: float = like(Seats, "subgrade_k")
+    subgrade_c: float = like(Seats, "subgrade_c")
 
 
 @section("wheelrail")
@@ -410,12 +407,13 @@ WHEEL_DEFECT_FIELDS = {"flat": ("wheelset", "side", "kind", "length", "shape", "
 @dataclass(frozen=True)
 class WheelDefect:
     """A ``[[wheel_defects]]`` entry: a wheel tread defect, a radius deviation turning with its
-    wheel (mbs/wheel_defects.py); each kind takes its fields of :data:`WHEEL_DEFECT_FIELDS`."""
+    wheel (mbs/vehicle/wheel_defects.py); each kind takes its fields of :data:`WHEEL_DEFECT_FIELDS`."""
 
     SECTION = "wheel_defects"
     wheelset: int = param(1, 1, 4, "-", "the wheelset")
     side: str = choice("R", SIDES, "its wheel")
-    kind: str = choice("flat", tuple(WHEEL_DEFECT_FIELDS), "'flat' or 'polygon' (mbs/wheel_defects.py)")
+    kind: str = choice("flat", tuple(WHEEL_DEFECT_FIELDS), "'flat' or 'polygon' "
+                       "(mbs/vehicle/wheel_defects.py)")
     length: float = param(0.04, 1e-4, 0.2, "m", "the flat's chord (depth about length^2 / (8 r0)); "
                           "below the wheel radius")
     shape: str = choice("rounded", ("rounded", "fresh"), "'rounded' (a worn flat's haversine) or "

@@ -25,13 +25,12 @@ the height of the left rail above the right one (m), not an angle (some sources 
 rail distance), and ``g`` is the gauge widening (m): positive g moves the left rail left and
 the right rail right.  So z_L = z_v + c/2, z_R = z_v - c/2, y_L = y_a + g/2, y_R = y_a - g/2.
 
-**Sampling.**  z(s) = sum_k sqrt(2 S_k dOmega) cos(Omega_k s + phi_k) with uniform random
-phases from a seeded numpy Generator, one independent stream per component.  The Omega_k are
-the bins of the FFT of the record, k dOmega with dOmega = 2 pi / P and P >= ``length`` the
-record's period, so the record does not repeat within its length and is synthesised exactly on
-its grid by one inverse FFT.  S_k is the mean of S over bin k cut to the band (4-point Gauss),
-not S at the bin centre: S falls as Omega^-2 to Omega^-4 and the centre value would miss the
-band's variance by several per cent on short records.  Between grid points :meth:`TrackIrregularity.at`
+**Sampling** (:mod:`.sampling`).  z(s) = sum_k sqrt(2 S_k dOmega) cos(Omega_k s + phi_k) with
+uniform random phases from a seeded numpy Generator, one independent stream per component.  The
+Omega_k are the bins of the FFT of the record, k dOmega with dOmega = 2 pi / P and P >=
+``length`` the record's period, so the record does not repeat within its length and is
+synthesised exactly on its grid by one inverse FFT; S_k is the mean of S over bin k cut to the
+band.  Between grid points :meth:`TrackIrregularity.at`
 interpolates with cubic Hermite polynomials on the exact slopes (also from the FFT), so the
 lookup is C1 and its error is ~4e-4 of the shortest wave's amplitude at 10 points per
 wavelength.
@@ -39,7 +38,7 @@ wavelength.
 **Rail roughness** (off by default) is the ISO 3095:2013 Figure 2 limit (the same curve as
 EN 15610:2009 Annex B.9.2 and the 2007 noise TSI): one-third-octave roughness levels, dB re
 1 um, from 40 cm to 0.315 cm wavelength, :data:`ISO3095_LIMIT_DB` (extended to 100-0.08 cm as
-the CNOSSOS-EU tables extend it, :mod:`axlebox.mbs.roughness`), or CNOSSOS-EU's average
+the CNOSSOS-EU tables extend it, :mod:`axlebox.mbs.track.roughness`), or CNOSSOS-EU's average
 network rail (``roughness_spectrum``); either through the contact filter at the static wheel
 load ``contact_load``.  The ISO limit is the upper limit for a smooth reference test track, not
 a typical rail: ``roughness_offset_db`` raises it.  It is sampled like the geometry and added
@@ -53,11 +52,12 @@ from dataclasses import dataclass, field
 from functools import partial
 
 import numpy as np
-from scipy.fft import irfft, next_fast_len
+from scipy.fft import next_fast_len
 
 from axlebox._params import ParameterError, check_ranges, param, require
 
 from . import roughness
+from . import sampling
 
 KINDS = ("vertical", "alignment", "crosslevel", "gauge")
 COMPONENTS = KINDS + ("roughness_L", "roughness_R")
@@ -75,7 +75,6 @@ ISO3095_BANDS = np.arange(4, 26)
 ISO3095_LIMIT_DB = np.array([17.1, 15.0, 13.0, 11.0, 9.0, 7.0, 4.9, 2.9, 0.9, -1.1, -3.2,
                              -5.0, -5.6, -6.2, -6.8, -7.4, -8.0, -8.6, -9.2, -9.8, -10.4, -11.0])
 MAX_POINTS = 2 ** 24                                       # ~130 MB per array
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(4)
 
 
 def _is_int(x) -> bool:
@@ -114,7 +113,7 @@ def psd(kind: str, Omega, grade: int = 5) -> np.ndarray:
 
 def roughness_psd(Omega, offset_db: float = 0.0) -> np.ndarray:
     """One-sided PSD (m^2/(rad/m)) of the ISO 3095 limit roughness raised by ``offset_db``,
-    over the limit's own bands (:func:`axlebox.mbs.roughness.band_psd`)."""
+    over the limit's own bands (:func:`axlebox.mbs.track.roughness.band_psd`)."""
     W = _positive(Omega, "roughness_psd.Omega")
     return roughness.band_psd(W, ISO3095_LIMIT_DB + offset_db, ISO3095_BANDS, owner="roughness_psd")
 
@@ -135,9 +134,9 @@ class IrregularityParams:
     roughness_offset_db: float = param(0.0, -40.0, 40.0, unit="dB", doc="level above the spectrum's")
     roughness_spectrum: str = field(default="iso3095", metadata={
         "doc": "rail roughness: 'iso3095' (the ISO 3095:2013 limit) or 'network' (CNOSSOS-EU's "
-               "average network), mbs/roughness.py"})
+               "average network), mbs/track/roughness.py"})
     contact_load: float = param(0.0, 0.0, 1e5, unit="N", doc="static wheel load of the contact "
-                                "filter (mbs/roughness.py); 0: no filter")
+                                "filter (mbs/track/roughness.py); 0: no filter")
 
     def __post_init__(self):
         _check_grade(self.grade, "IrregularityParams")
@@ -181,18 +180,6 @@ class IrregularityParams:
         return self.ds if self.ds is not None else self.shortest / 10
 
 
-def _harmonics(spectrum, W_lo: float, W_hi: float, dW: float, rng: np.random.Generator):
-    """FFT bins k overlapping [W_lo, W_hi], amplitudes sqrt(2 int_bin S) and random phases."""
-    k = np.arange(max(1, math.floor(W_lo / dW - 0.5)), math.ceil(W_hi / dW + 0.5) + 1)
-    lo = np.maximum((k - 0.5) * dW, W_lo)
-    hi = np.minimum((k + 0.5) * dW, W_hi)
-    keep = hi > lo
-    k, lo, hi = k[keep], lo[keep], hi[keep]
-    mid, half = 0.5 * (lo + hi), 0.5 * (hi - lo)
-    power = half * (spectrum(mid[:, None] + half[:, None] * _GL_X) @ _GL_W)
-    return k, np.sqrt(2 * power), rng.uniform(0.0, 2 * np.pi, k.size)
-
-
 def generate(p: IrregularityParams = IrregularityParams()) -> TrackIrregularity:
     """Sample the irregularities of ``p`` on the grid s_j = j ds (see the module docstring)."""
     ds = p.step
@@ -210,12 +197,9 @@ def generate(p: IrregularityParams = IrregularityParams()) -> TrackIrregularity:
     seeds = dict(zip(COMPONENTS, np.random.SeedSequence(int(p.seed)).spawn(len(COMPONENTS))))
     values, slopes, harmonics = {}, {}, {}
     for name, (spectrum, lam_long, lam_short) in bands.items():
-        k, amp, phase = _harmonics(spectrum, 2 * np.pi / lam_long, 2 * np.pi / lam_short, dW,
-                                   np.random.default_rng(seeds[name]))
-        X = np.zeros(n // 2 + 1, dtype=complex)
-        X[k] = 0.5 * n * amp * np.exp(1j * phase)    # irfft: x_j = (2/n) Re sum X_k e^(2 pi i jk/n)
-        values[name] = irfft(X, n)
-        slopes[name] = irfft(1j * dW * np.arange(X.size) * X, n)
+        k, amp, phase = sampling.harmonics(spectrum, 2 * np.pi / lam_long, 2 * np.pi / lam_short,
+                                           dW, np.random.default_rng(seeds[name]))
+        values[name], slopes[name] = sampling.record(k, amp, phase, n, dW)
         harmonics[name] = (k * dW, amp, phase)
     return TrackIrregularity(p, ds, values, slopes, harmonics)
 

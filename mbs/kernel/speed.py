@@ -1,4 +1,4 @@
-"""Numba: the car's speed profile (:class:`axlebox.mbs.profile.SpeedProfile`) read from ``glob``.
+"""Numba: the car's speed profile (:class:`axlebox.mbs.vehicle.speed.SpeedProfile`) read from ``glob``.
 
 From slot :data:`G_PROF` the profile packs ``[n, t_0..t_{n-1}, v_0..v_{n-1}, x_0..x_{n-1}]``
 (times s, speeds m/s, distances m at the points); ``n = 0``: no profile, the constant speed
@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from numba import njit
 
-G_V = 3          # the constant speed (m/s), glob's slot (kernel_wheels.py lists them all)
+G_V = 3          # the constant speed (m/s), glob's slot (wheels.py lists them all)
 G_PROF = 8       # the profile's point count, its points after it
 
 

@@ -20,10 +20,10 @@ from axlebox.bearing import defects
 
 from . import ffrf_numpy as fn
 from .body import Body
-from .kernel_body import BF_GRAV, BF_JINV, BF_M, BF_MC, BF_P0, BF_WIDTH
-from .kernel_elements import EL_WIDTH
-from .kernel_system import Arrays, Work
-from .wheelrail.element_kernel import N_OUT
+from ..kernel.body import BF_GRAV, BF_JINV, BF_M, BF_MC, BF_P0, BF_WIDTH
+from ..kernel.elements import EL_WIDTH
+from ..kernel.system import Arrays, Work
+from ..wheelrail.element_kernel import N_OUT
 
 #: s, the track irregularity fades in over this time from the start of a run (so a run's first
 #: TRACK_RAMP_S are left out of what is diagnosed and rated)
@@ -56,7 +56,7 @@ class System:
 
     def __init__(self, gravity=(0.0, 0.0, -9.81), speed: float = 0.0, profile=None):
         """``speed`` (m/s): the contact's reference speed; ``profile``: a
-        :class:`~axlebox.mbs.profile.SpeedProfile` that replaces it over time."""
+        :class:`~axlebox.mbs.vehicle.speed.SpeedProfile` that replaces it over time."""
         self.gravity = np.asarray(gravity, float)
         self.speed = float(speed)
         self.profile = profile
@@ -153,7 +153,7 @@ class System:
     def wheel(self, name: str, marker: int, side: int, r_c: float, track: int = -1) -> None:
         """A wheel-rail contact at the tread marker ``marker``; ``side`` 0 left, 1 right;
         ``r_c`` the height of the wheel centre above the marker (the rolling radius); ``track``:
-        the marker of the rail body under it (mbs/trackbed.py), whose height adds to the rail's
+        the marker of the rail body under it (mbs/track/bed.py), whose height adds to the rail's
         and which takes the contact's vertical force, or -1 for rigid rails."""
         self.wheels.append((name, marker, side, float(r_c), int(track)))
 
@@ -217,7 +217,7 @@ class System:
         el_i = np.array([r[0] for r in rows], np.int64).reshape(-1, 4)
         el_f = np.array([r[1] for r in rows]).reshape(-1, EL_WIDTH)
 
-        from .kernel_wheels import G_DS, G_GRAV, G_PROF, G_RAMP, G_S0, G_TRACK, G_V, N_GLOB
+        from ..kernel.wheels import G_DS, G_GRAV, G_PROF, G_RAMP, G_S0, G_TRACK, G_V, N_GLOB
         glob = np.zeros(N_GLOB)
         glob[G_RAMP] = self.track_ramp
         glob[G_GRAV:G_GRAV + 3] = self.gravity
@@ -260,14 +260,14 @@ class System:
         return Model(self, S, y0, nq, sens_names, [w[0] for w in self.wheels], B)
 
     def _pack_bearings(self, y0):
-        """The bearings (mbs/kernel_bearings.py ``Bearings``, with every array their kernels
+        """The bearings (mbs/kernel/bearings.py ``Bearings``, with every array their kernels
         write) and their states appended to ``y0``."""
         from axlebox.bearing.kernel import implicit
         from axlebox.bearing.kernel.evaluate import work
         from axlebox.bearing.kernel.layout import CAGE_OUT, LOAD, N_Q, N_ROWS, RING, RINGS, Z
         from axlebox.bearing.kernel.quasidynamic import QD_WIDTH
 
-        from .kernel_bearings import BR_WIDTH, TH, Bearings, NoBearings
+        from ..kernel.bearings import BR_WIDTH, TH, Bearings, NoBearings
         if not self.bearings:
             return NoBearings(), y0
         nbr = len(self.bearings)
@@ -313,11 +313,11 @@ class System:
 
 
 class Model:
-    """Packed arrays (``S``), the bearings (``B``, mbs/kernel_bearings.py), work arrays (``W``),
+    """Packed arrays (``S``), the bearings (``B``, mbs/kernel/bearings.py), work arrays (``W``),
     the initial state ``y0`` and helpers."""
 
     def __init__(self, system: System, S, y0, nq, sensors, wheels, B=None):
-        from .kernel_bearings import NoBearings
+        from ..kernel.bearings import NoBearings
         self.system = system
         self.S = S
         self.B = NoBearings() if B is None else B
@@ -328,7 +328,7 @@ class Model:
         bi = S.bi
         nb, nm, ne = bi.shape[0], S.mk_i.shape[0], S.el_i.shape[0]
         ngen = int(sum(6 + b.n_modes for b in system.bodies))
-        from .kernel_bearings import BR_ROWS
+        from ..kernel.bearings import BR_ROWS
         self.bearing_names = [x[0] for x in system.bearings]
         self.n_body_states = int(y0.size - sum(x[6].size for x in system.bearings))
         ne = ne + BR_ROWS * len(self.bearing_names)
@@ -353,7 +353,7 @@ class Model:
         return self.y0.size
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
-        from .kernel_system import rhs
+        from ..kernel.system import rhs
         dy = np.zeros_like(y)
         rhs(float(t), np.ascontiguousarray(y, float), dy, self.S, self.W, self.B)
         return dy
@@ -361,7 +361,7 @@ class Model:
     def kinematics(self, t: float, y: np.ndarray) -> None:
         """The frames, markers and element forces at ``(t, y)`` into ``self.W`` (the first part
         of :meth:`rhs`, without the bearings' rates or the bodies' accelerations)."""
-        from .kernel_system import kinematics
+        from ..kernel.system import kinematics
         kinematics(float(t), np.ascontiguousarray(y, float), np.zeros(y.size), self.S, self.W)
 
     def body_state(self, k: int, y: np.ndarray) -> dict:
@@ -389,7 +389,7 @@ class Model:
                 return f"body {b.name!r} ({what})"
         from axlebox.bearing.kernel.layout import N_CAGE, N_ROLLER
 
-        from .kernel_bearings import BR_N, BR_OFF
+        from ..kernel.bearings import BR_N, BR_OFF
         rows = self.bearing_rows
         for k, name in enumerate(self.bearing_names):
             off, n = int(self.B.idx[k, BR_OFF]), int(self.B.idx[k, BR_N])

@@ -1,21 +1,22 @@
 """Numba: the wheel-rail force elements of all wheels, on the markers at the wheel treads.
 
-Wheel ``w`` (``wh_i = [marker, side, body, track]``, ``wh_f = [r_c, ds_w]``) acts at a marker on the tread
-point of the nominal taping line (bottom of the wheel in the non-spinning frame).  The wheel
-centre is ``c = p + r_c R e_z`` (the marker frame's z axis), the axle direction ``e = R e_y``;
-the material angular velocity adds the body's spin to the frame rate.  The rails' irregularities
-at ``s = c_x`` come from the track table ``trk (8, ns)``: ``zL, zR, yL, yR`` and their slopes,
-cubic Hermite on a uniform periodic grid (C1, like :meth:`axlebox.mbs.track.TrackIrregularity.at`),
-faded in over the first ``glob[G_RAMP]`` seconds (half-cosine) so that a run can start from the
-equilibrium on smooth track without a jump.  A wheel's own roughness (``wrk[w] = values,
-slopes`` on the grid ``j ds_w`` around its rolling circle, :func:`axlebox.mbs.roughness.wheel_record`)
-adds to its rails' height, read at the arc ``beta r_c`` its spin angle beta has turned (on a
-body that does not spin, at the distance rolled, ``c_x``), and fades in with the track; its
-rate is taken as slope times the rolling speed, as the rails' (creep: 1e-3 of it).
-On a ballasted track (``track >= 0``, :mod:`axlebox.mbs.trackbed`) the rail body's height and
+Wheel ``w`` (``wh_i = [marker, side, body, track]``, ``wh_f = [r_c, ds_w]``) acts at a marker on
+the tread point of the nominal taping line (bottom of the wheel in the non-spinning frame).  The
+wheel centre is ``c = p + r_c R e_z`` (the marker frame's z axis), the axle direction ``e = R
+e_y``; the material angular velocity adds the body's spin to the frame rate.  The rails'
+irregularities at ``s = c_x`` come from the track table ``trk (8, ns)``: ``zL, zR, yL, yR`` and
+their slopes, cubic Hermite on a uniform periodic grid (C1, like
+:meth:`axlebox.mbs.track.irregularity.TrackIrregularity.at`), faded in over the first
+``glob[G_RAMP]`` seconds (half-cosine) so that a run can start from the equilibrium on smooth
+track without a jump.  A wheel's own roughness (``wrk[w] = values, slopes`` on the grid ``j
+ds_w`` around its rolling circle, :func:`axlebox.mbs.track.roughness.wheel_record`) adds to its
+rails' height, read at the arc ``beta r_c`` its spin angle beta has turned (on a body that does
+not spin, at the distance rolled, ``c_x``), and fades in with the track; its rate is taken as
+slope times the rolling speed, as the rails' (creep: 1e-3 of it).
+On a ballasted track (``track >= 0``, :mod:`axlebox.mbs.track.bed`) the rail body's height and
 vertical velocity add to the rail's, and the contact's vertical force acts on it (the track is
 rigid laterally and along the rail).
-The creepages' reference speed is the car's speed profile's at ``t`` (:mod:`.kernel_profile`).
+The creepages' reference speed is the car's speed profile's at ``t`` (:mod:`axlebox.mbs.kernel.speed`).
 The contact itself is :func:`axlebox.mbs.wheelrail.element_kernel.wheel_rail_force`.
 """
 from __future__ import annotations
@@ -27,11 +28,11 @@ from numba import njit
 
 from axlebox.mbs.wheelrail.element_kernel import wheel_rail_force
 
-from .kernel_body import BI_POS, BI_SPIN, cross
-from .kernel_profile import G_PROF, G_V, profile_at  # noqa: F401  (G_V: glob's slot, here with the rest)
+from .body import BI_POS, BI_SPIN, cross
+from .speed import G_PROF, G_V, profile_at  # noqa: F401  (G_V: glob's slot, here with the rest)
 
 # glob slots (G_V, the constant speed, and G_PROF, the speed profile's count with its points
-# after it, are kernel_profile.py's)
+# after it, are speed.py's)
 G_GRAV, G_S0, G_DS, G_TRACK, G_RAMP = 0, 4, 5, 6, 7
 N_GLOB = G_PROF + 1
 WH_MARKER, WH_SIDE, WH_BODY, WH_TRACK = 0, 1, 2, 3   # WH_TRACK: the rail body's marker, -1 none
@@ -116,7 +117,7 @@ def wheel_forces(t, y, bi, wh_i, wh_f, wtab, wpar, trk, wrk, glob, Ab, omb, mkp,
         mt = wh_i[w, WH_TRACK]
         zt = 0.0
         vt = 0.0
-        if mt >= 0:                               # the rail body under the wheel (trackbed.py)
+        if mt >= 0:                               # the rail body under the wheel (track/bed.py)
             zt = mkp[mt, 2]
             vt = mkv[mt, 2]
         out = whout[w]

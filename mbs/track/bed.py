@@ -33,14 +33,39 @@ rigid laterally and along the rail.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from dataclasses import dataclass
 
-if TYPE_CHECKING:
-    from .config import Track
+from axlebox._params import check_ranges, param
 
 MODELS = ("rigid", "ballasted")
+
+
+@dataclass(frozen=True)
+class Seats:
+    """The ballasted track per rail seat (SI; declared here, once: the car config's ``[track]``
+    takes these fields over).  Defaults: Zhai, Wang and Lin 2004, 60 kg/m rail (module
+    docstring)."""
+
+    rail_mass: float = param(60.64, 10.0, 200.0, "kg/m", "rail mass per metre, ballasted track (Zhai et al. "
+                             "2004, 60 kg/m rail)")
+    rail_EI: float = param(6.624e6, 1e5, 1e8, "N m^2", "rail bending stiffness, E 205.9 GPa, I 3217 cm^4 "
+                           "(Zhai et al. 2004)")
+    sleeper_spacing: float = param(0.6, 0.3, 1.5, "m", "rail seat (sleeper) spacing (Zhai et al. 2004)")
+    pad_k: float = param(6.5e7, 1e6, 1e10, "N/m", "rail pad stiffness, per rail seat (Zhai et al. 2004)")
+    pad_c: float = param(75000.0, 0.0, 1e7, "N s/m", "rail pad damping, per rail seat (Zhai et al. 2004)")
+    sleeper_mass: float = param(125.5, 10.0, 2000.0, "kg", "half a sleeper, per rail seat (Zhai et al. 2004)")
+    ballast_mass: float = param(531.4, 0.0, 5000.0, "kg", "the ballast block under a rail seat (Zhai et al. "
+                                "2004)")
+    ballast_k: float = param(1.3775e8, 1e6, 1e10, "N/m", "ballast stiffness, per rail seat (Zhai et al. "
+                             "2004)")
+    ballast_c: float = param(58800.0, 0.0, 1e7, "N s/m", "ballast damping, per rail seat (Zhai et al. 2004)")
+    subgrade_k: float = param(7.75e7, 1e6, 1e10, "N/m", "subgrade stiffness, per rail seat (Zhai et al. "
+                              "2004)")
+    subgrade_c: float = param(31150.0, 0.0, 1e7, "N s/m", "subgrade damping, per rail seat (Zhai et al. "
+                              "2004)")
+
+    def __post_init__(self):
+        check_ranges(self)
 
 
 @dataclass(frozen=True)
@@ -63,7 +88,7 @@ class Lumped:
     L: float
 
 
-def _foundation(t: Track) -> tuple[float, float]:
+def _foundation(t: Seats) -> tuple[float, float]:
     """``(k_f, beta)``: the Winkler modulus of the seats (three springs in series over the
     spacing, N/m^2) and the rail's wavenumber on it (1/m)."""
     k_s = 1.0 / (1.0 / t.pad_k + 1.0 / t.ballast_k + 1.0 / t.subgrade_k)
@@ -71,8 +96,9 @@ def _foundation(t: Track) -> tuple[float, float]:
     return k_f, (k_f / (4.0 * t.rail_EI)) ** 0.25
 
 
-def lumped(t: Track) -> Lumped:
-    """The lumped track of the ``[track]`` table ``t`` (module docstring)."""
+def lumped(t: Seats) -> Lumped:
+    """The lumped track of the seats ``t`` (:class:`Seats`, or the car config's ``[track]``,
+    which has their fields; module docstring)."""
     a = t.sleeper_spacing
     k_f, beta = _foundation(t)
     L = 3.0 / (2.0 * beta)
@@ -90,7 +116,7 @@ def static_stiffness(m: Lumped) -> float:
     return m.k_bend + 1.0 / (1.0 / m.k_pad + 1.0 / m.k_ballast + 1.0 / m.k_subgrade)
 
 
-def winkler_stiffness(t: dict) -> float:
+def winkler_stiffness(t: Seats) -> float:
     """Hetenyi's point stiffness ``2 k_f / beta`` of the continuous rail on its seats (N/m)."""
     k_f, beta = _foundation(t)
     return 2.0 * k_f / beta

@@ -1,5 +1,5 @@
 """The floating-frame equations of one body in plain numpy (einsum), the twin of
-:mod:`axlebox.mbs.kernel_body`: the mass matrix, the quadratic velocity vector, kinetic energy and
+:mod:`axlebox.mbs.kernel.body`: the mass matrix, the quadratic velocity vector, kinetic energy and
 momenta.  Used by the tests (energy and momentum invariants, a cross-check of the numba
 kernel) and by the benchmark's speed-up figure; the same equations as the kernel's docstring.
 """

@@ -1,9 +1,9 @@
 """Force elements between markers: what the user builds a system from.
 
-Each element names its markers by the integer handles :meth:`axlebox.mbs.system.System.marker` returns,
+Each element names its markers by the integer handles :meth:`axlebox.mbs.solver.system.System.marker` returns,
 checks its values (a bad one raises :class:`~axlebox._params.ParameterError` naming the element,
 the field and what is allowed) and packs itself into one row of the element table that
-:mod:`axlebox.mbs.kernel_elements` evaluates.
+:mod:`axlebox.mbs.kernel.elements` evaluates.
 
 =============  ==========================================================================
 ``Bushing``    6-DOF linear spring-damper in marker 1's frame: translations and small
@@ -29,7 +29,7 @@ import numpy as np
 
 from axlebox._params import ParameterError
 
-from . import kernel_elements as ke
+from ..kernel import elements as ke
 
 
 def _vec(name, what, value, n, *, nonneg=False):
@@ -149,7 +149,7 @@ class Load:
 @dataclass
 class Drive:
     """Traction or braking that drives marker ``aux`` along the speed profile
-    (:mod:`axlebox.mbs.profile`, kernel: :func:`axlebox.mbs.kernel_elements._drive`):
+    (:mod:`axlebox.mbs.vehicle.speed`, kernel: :func:`axlebox.mbs.kernel.elements._drive`):
     ``F = mass a(t) + kd (v(t) - v_aux)``; ``radius > 0``: the torque
     ``F radius + inertia a / radius`` about marker 1's y axis (a wheelset's axle; the spin's own
     inertia ``inertia``), its reaction on marker 2 (the gearbox or frame); ``radius = 0``: the
