@@ -55,34 +55,34 @@ def rhs_us(model, y0, n=200, repeats=5) -> float:
 
 
 @njit
-def _stage(which, nrep, t, y, dy, S, W):
+def _stage(which, nrep, t, y, dy, S, W, B):
     """``nrep`` calls of one stage of :func:`axlebox.mbs.kernel.system.rhs` (same order, same arrays)."""
-    bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f, wtab, wpar, trk, wrk, sens, \
-        br_i, br_P, br_D = S
-    Ab, rb, vb, omb, omfb, mku, mkp, mkv, mkR, mkw, mkF, mkM, gen, elout, whout, sensout = W
+    bi = S.bi
     nb = bi.shape[0]
     for _ in range(nrep):
         if which == 0:
             for b in range(nb):
-                frame_kinematics(b, y, bi, Ab[b], rb[b], vb[b], omb[b], omfb[b])
-                position_rates(b, y, bi, omfb[b], dy)
-            marker_kinematics(y, bi, mk_i, mk_f, shp, Ab, rb, vb, omfb, mku, mkp, mkv, mkR, mkw)
+                frame_kinematics(b, y, bi, W.Ab[b], W.rb[b], W.vb[b], W.omb[b], W.omfb[b])
+                position_rates(b, y, bi, W.omfb[b], dy)
+            marker_kinematics(y, bi, S.mk_i, S.mk_f, S.shp, W.Ab, W.rb, W.vb, W.omfb, W.mku, W.mkp,
+                              W.mkv, W.mkR, W.mkw)
         elif which == 1:
-            element_forces(t, el_i, el_f, glob, mkp, mkv, mkR, mkw, mkF, mkM, elout)
+            element_forces(t, S.el_i, S.el_f, S.glob, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.elout)
         elif which == 2:
-            bearing_forces(t, y, dy, bi, br_i, br_P, br_D, mkp, mkv, mkR, mkw, mkF, mkM, elout)
+            bearing_forces(B, t, y, dy, bi, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.elout)
         elif which == 3:
-            wheel_forces(t, y, bi, wh_i, wh_f, wtab, wpar, trk, wrk, glob, Ab, omb, mkp, mkv, mkR,
-                         mkw, mkF, mkM, whout)
+            wheel_forces(t, y, bi, S.wh_i, S.wh_f, S.wtab, S.wpar, S.trk, S.wrk, S.glob, W.Ab, W.omb,
+                         W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.whout)
         elif which == 4:
             for b in range(nb):
-                n, o = bi[b, BI_N], goff[b]
-                gravity_load(b, bi, bf, inv, y, Ab[b], glob[G_GRAV:G_GRAV + 3], gen[o:o + 6 + n])
-            marker_loads(bi, mk_i, shp, Ab, mku, mkF, mkM, gen, goff)
-            for s in range(sens.shape[0]):
-                marker_acceleration(sens[s], y, dy, bi, mk_i, mk_f, shp, Ab, omfb, mku, sensout[s])
+                n, o = bi[b, BI_N], S.goff[b]
+                gravity_load(b, bi, S.bf, S.inv, y, W.Ab[b], S.glob[G_GRAV:G_GRAV + 3], W.gen[o:o + 6 + n])
+            marker_loads(bi, S.mk_i, S.shp, W.Ab, W.mku, W.mkF, W.mkM, W.gen, S.goff)
+            for s in range(S.sens.shape[0]):
+                marker_acceleration(S.sens[s], y, dy, bi, S.mk_i, S.mk_f, S.shp, W.Ab, W.omfb, W.mku,
+                                    W.sensout[s])
         else:
-            _accelerations(y, dy, bi, bf, inv, goff, Ab, omb, omfb, gen)
+            _accelerations(y, dy, bi, S.bf, S.inv, S.goff, W.Ab, W.omb, W.omfb, W.gen)
 
 
 STAGES = ("frames and markers", "suspension elements", "eight DTRBs (parallel)",
@@ -95,11 +95,11 @@ def stages_us(model, y, t, n=2000) -> dict:
     model.rhs(t, y)
     out = {}
     for k, name in enumerate(STAGES):
-        _stage(k, 5, t, y, dy, model.S, model.W)
+        _stage(k, 5, t, y, dy, model.S, model.W, model.B)
         best = float("inf")
         for _ in range(5):
             t0 = time.perf_counter()
-            _stage(k, n, t, y, dy, model.S, model.W)
+            _stage(k, n, t, y, dy, model.S, model.W, model.B)
             best = min(best, (time.perf_counter() - t0) / n * 1e6)
         out[name] = best
     return out

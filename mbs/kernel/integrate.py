@@ -34,13 +34,17 @@ exchange step, and each bearing advances its own states in its own sub-steps ins
 right-hand side (:func:`.system.rhs_exchange`); RK4 and generalized-alpha carry the
 bearings' states in ``y`` with the bodies'.
 
-Both write outputs every ``n_sub`` steps: sensor accelerations, wheel and element outputs, and the
-whole state every ``state_every`` outputs.  They return a status (0 done, 1 not finite,
-2 runaway, 3 Newton failed), the number of outputs written, and the offending state index.
+Both write outputs every ``n_sub`` steps into :class:`Outputs`: sensor accelerations, wheel and
+element outputs, and the whole state every ``state_every`` outputs; :class:`Guard` says what
+stops a run.  They return a status (0 done, 1 not finite, 2 runaway, 3 Newton failed), the
+number of outputs written, and the offending state index.  (Named tuples numba compiles, as the
+system's ``S``, ``W``, ``B`` and ``X``: fields by name, no positions to keep in step; they cost
+nothing measurable, benchmarks/README.md "Grouped arguments".)
 """
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 import numpy as np
 from numba import njit
@@ -54,32 +58,45 @@ from .system import rhs, rhs_exchange, rhs_held
 
 OK, NOT_FINITE, RUNAWAY, NO_CONVERGENCE = 0, 1, 2, 3
 
+#: a chunk's output buffers: times ``t`` (k), sensor accelerations ``sens`` (k, n_sensors, 3),
+#: wheel-rail ``wh`` and element ``el`` outputs, state snapshots ``y`` every ``state_every``
+#: outputs; the buffers' first row holds output ``base`` (all of the run: 0, or a streamed chunk's)
+Outputs = namedtuple("Outputs", ["t", "sens", "wh", "el", "y", "state_every", "base"])
+#: what stops a run: a state not finite, or a body velocity (states ``nq .. nend``) beyond ``vmax``
+Guard = namedtuple("Guard", ["nq", "nend", "vmax"])
+#: generalized-alpha's modified Newton: ``rho_inf``; the Jacobian's column ``groups`` (``n_groups``)
+#: and coupling ``pattern``, the states' ``scale``; the tolerances ``atol`` (per state) and
+#: ``rtol``, ``max_iter`` iterations; ``stats`` its counters [steps, Newton iterations,
+#: Jacobians, RHS evaluations, halved steps]
+Newton = namedtuple("Newton", ["rho_inf", "groups", "n_groups", "pattern", "scale", "atol", "rtol",
+                               "max_iter", "stats"])
+
 
 @njit(cache=True)
-def _check(y, nq, nend, vmax):
-    """Non-finite anywhere, or a body velocity (states ``nq .. nend``) beyond ``vmax``."""
+def _check(y, G):
+    """Non-finite anywhere, or a body velocity beyond the :class:`Guard` ``G``'s limit."""
     for i in range(y.shape[0]):
         if not math.isfinite(y[i]):
             return NOT_FINITE, i
-    for i in range(nq, nend):
-        if abs(y[i]) > vmax:
+    for i in range(G.nq, G.nend):
+        if abs(y[i]) > G.vmax:
             return RUNAWAY, i
     return OK, -1
 
 
 @njit(cache=True)
-def _output(k, base, t, ys, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el, out_y,
-            state_every):
+def _output(k, t, ys, y, W, G, O):
     """Record output ``k`` from the evaluation just made at (t, ``ys``: the state it was made
-    at) in row ``k - base`` (the buffers hold outputs ``base ..``: all of the run, or one
-    streamed chunk); then check the state ``y``."""
-    out_t[k - base] = t
-    copy2(out_sens[k - base], W.sensout)
-    copy2(out_wh[k - base], W.whout)
-    copy2(out_el[k - base], W.elout)
-    if k % state_every == 0:
-        copy1(out_y[k // state_every - (base + state_every - 1) // state_every], ys)
-    return _check(y, nq, nend, vmax)
+    at) in row ``k - O.base`` of the :class:`Outputs` ``O``; then check the state ``y``."""
+    r = k - O.base
+    every = O.state_every
+    O.t[r] = t
+    copy2(O.sens[r], W.sensout)
+    copy2(O.wh[r], W.whout)
+    copy2(O.el[r], W.elout)
+    if k % every == 0:
+        copy1(O.y[k // every - (O.base + every - 1) // every], ys)
+    return _check(y, G)
 
 
 @njit(cache=True)
@@ -128,11 +145,10 @@ def _kick_drift(y, a, hk, h, S, W):
 
 
 @njit(cache=True, nogil=True)
-def run_rk4(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, nq, nend, vmax, out_t, out_sens, out_wh,
-            out_el, out_y, state_every, base, threads):
+def run_rk4(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, G, O, threads):
     """Advance ``y`` in place through outputs ``k0 .. n_out - 1`` by RK4; output ``k`` is at
-    ``t0 + (k - k0) n_sub h``, recorded from the step's first evaluation there; no step follows
-    the output ``k_last``.  ``base``: the output the buffers' first row holds (:func:`_output`).
+    ``t0 + (k - k0) n_sub h``, recorded from the step's first evaluation there into ``O``
+    (:class:`Outputs`); no step follows the output ``k_last``; ``G`` (:class:`Guard`) stops it.
     ``threads``: numba's thread count as a watcher fits it, applied at every output
     (:func:`axlebox._threads.fit_threads`; the GIL is released for the watcher to run).
     (Apart from :func:`run_leapfrog` so that a run compiles only its own method.)"""
@@ -144,8 +160,7 @@ def run_rk4(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, nq, nend, vmax, out_t, 
             t = t0 + ((k - k0) * n_sub + j) * h
             rhs(t, y, k1, S, W, B)
             if j == 0:
-                st, i = _output(k, base, t, y, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el,
-                                out_y, state_every)
+                st, i = _output(k, t, y, y, W, G, O)
                 if st != OK:
                     return st, k, i
                 if k == k_last:
@@ -156,8 +171,7 @@ def run_rk4(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, nq, nend, vmax, out_t, 
 
 
 @njit(cache=True, nogil=True)
-def run_leapfrog(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, X, nq, nend, vmax, out_t, out_sens,
-                 out_wh, out_el, out_y, state_every, start, base, threads):
+def run_leapfrog(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, X, G, O, start, threads):
     """:func:`run_rk4`'s contract by the leapfrog: with ``start`` the velocities in ``y`` are
     ``u_0`` and the first kick is by ``h / 2``; after that they are ``u_{n-1/2}``, half a step
     behind the positions, and a run continued from ``y`` (``start`` False) goes on exactly as if
@@ -172,14 +186,13 @@ def run_leapfrog(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, X, nq, nend, vmax,
         fit_threads(threads)
         for j in range(n_sub):
             t = t0 + ((k - k0) * n_sub + j) * h
-            if j == 0 and (k % state_every == 0 or k == k_last):
+            if j == 0 and (k % O.state_every == 0 or k == k_last):
                 copy1(ys, y)                  # the exchange moves the bearings' states on
                 copy3(rs, X.ring)
                 first = X.flags[FIRST]
             rhs_exchange(t, y, k1, S, W, B, X)
             if j == 0:
-                st, i = _output(k, base, t, ys, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el,
-                                out_y, state_every)
+                st, i = _output(k, t, ys, y, W, G, O)
                 if st != OK:
                     return st, k, i
                 if k == k_last:               # the run ends at the state this output was made
@@ -199,16 +212,18 @@ def run_leapfrog(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, X, nq, nend, vmax,
 
 
 @njit(cache=True)
-def jacobian_fd(t, y, f0, S, W, B, groups, n_groups, pattern, scale, J):
-    """``J = dF/dy`` by forward differences, one evaluation per column group."""
+def jacobian_fd(t, y, f0, S, W, B, nw, J):
+    """``J = dF/dy`` by forward differences, one evaluation per column group of ``nw``
+    (:class:`Newton`)."""
+    groups, pattern = nw.groups, nw.pattern
     N = y.shape[0]
     yp = y.copy()
     fp = np.empty(N)
     eps = np.empty(N)
     for j in range(N):
-        eps[j] = 1e-7 * max(abs(y[j]), scale[j])
+        eps[j] = 1e-7 * max(abs(y[j]), nw.scale[j])
     J[:, :] = 0.0
-    for g in range(n_groups):
+    for g in range(nw.n_groups):
         for j in range(N):
             if groups[j] == g:
                 yp[j] = y[j] + eps[j]
@@ -234,12 +249,14 @@ def _iteration_matrix(Jf, h, am, af, ga, Minv):
 
 
 @njit(cache=True)
-def _ga_newton(t, y, ydn, yd, h, am, af, ga, Minv, S, W, B, atol, rtol, max_iter, y1, ya, f, stats):
-    """Modified Newton for ``yd_{n+1}`` of one step; 0 converged, 1 slow (converged late),
+def _ga_newton(t, y, ydn, yd, h, am, af, ga, Minv, S, W, B, nw, y1, ya, f):
+    """Modified Newton (``nw``: :class:`Newton`) for ``yd_{n+1}`` of one step; 0 converged, 1
+    slow (converged late),
     -1 failed.  Converged when the estimated remaining error ``theta / (1 - theta) * |dy|``
     (theta: the observed contraction rate) is below the tolerance (Hairer and Wanner, Solving
     ODEs II, sec. IV.8); a rate theta >= 1 after the first iteration is divergence."""
     N = y.shape[0]
+    atol, rtol, max_iter, stats = nw.atol, nw.rtol, nw.max_iter, nw.stats
     for i in range(N):
         yd[i] = ydn[i]
     prev = 0.0
@@ -276,15 +293,14 @@ def _ga_newton(t, y, ydn, yd, h, am, af, ga, Minv, S, W, B, atol, rtol, max_iter
 
 
 @njit(cache=True, nogil=True)
-def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, nq, nend, vmax, out_t, out_sens, out_wh,
-               out_el, out_y, state_every, rho_inf, groups, n_groups, pattern, scale, atol, rtol,
-               max_iter, stats, base, threads):
-    """Generalized-alpha (first order) with modified Newton; ``stats`` gets
-    [steps, Newton iterations, Jacobians, RHS evaluations, halved steps].  The Jacobian is kept
+def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, G, O, nw, threads):
+    """:func:`run_rk4`'s contract by generalized-alpha (first order) with modified Newton
+    (``nw``: :class:`Newton`, whose ``stats`` it counts in).  The Jacobian is kept
     while Newton converges fast and rebuilt when it slows down or fails.  A step that fails with a
     fresh Jacobian is retried as 2, 4, ... 64 sub-steps (contact loss and return are the usual
     cause); only then does the run stop with NO_CONVERGENCE.  ``threads``: as :func:`run_rk4`'s."""
     N = y.shape[0]
+    rho_inf, stats = nw.rho_inf, nw.stats
     am = 0.5 * (3.0 - rho_inf) / (1.0 + rho_inf)
     af = 1.0 / (1.0 + rho_inf)
     ga = 0.5 + am - af
@@ -309,8 +325,7 @@ def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, nq, nend, vmax, out_
             if j == 0:
                 rhs(t, y, f, S, W, B)
                 stats[3] += 1
-                st, i = _output(k, base, t, y, y, W, nq, nend, vmax, out_t, out_sens, out_wh, out_el,
-                                out_y, state_every)
+                st, i = _output(k, t, y, y, W, G, O)
                 if st != OK:
                     return st, k, i
                 if k == k_last:
@@ -327,9 +342,9 @@ def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, nq, nend, vmax, out_
                     for attempt in range(2):
                         if not have or stale or attempt > 0:
                             rhs(tq, y, f, S, W, B)
-                            jacobian_fd(tq, y, f, S, W, B, groups, n_groups, pattern, scale, Jf)
+                            jacobian_fd(tq, y, f, S, W, B, nw, Jf)
                             stats[2] += 1
-                            stats[3] += 1 + n_groups
+                            stats[3] += 1 + nw.n_groups
                             have = True
                             stale = False
                             fresh = True
@@ -337,8 +352,7 @@ def run_galpha(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, nq, nend, vmax, out_
                         if hm != h_M:
                             _iteration_matrix(Jf, hm, am, af, ga, Minv)
                             h_M = hm
-                        r = _ga_newton(tq, y, ydn, yd, hm, am, af, ga, Minv, S, W, B, atol, rtol,
-                                       max_iter, y1, ya, f, stats)
+                        r = _ga_newton(tq, y, ydn, yd, hm, am, af, ga, Minv, S, W, B, nw, y1, ya, f)
                         if r >= 0:
                             stale = r == 1
                             break

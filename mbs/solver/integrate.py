@@ -203,6 +203,9 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
     if s.method == "galpha":
         pattern, groups, n_groups = model.coupling_pattern()
         scale, atol = model.state_scales()
+        newton = ki.Newton(rho_inf=s.rho_inf, groups=groups, n_groups=n_groups, pattern=pattern,
+                           scale=scale, atol=atol, rtol=s.rtol, max_iter=s.max_iter, stats=stats)
+    guard = ki.Guard(nq=model.nq, nend=nend, vmax=s.vmax)
     outs = {"out_t": out_t, "out_sens": out_sens, "out_wh": out_wh, "out_el": out_el, "out_y": out_y}
     k, status, bad, wall_before = 0, ki.OK, -1, 0.0
     if resume is not None:
@@ -228,23 +231,17 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
         while k < n_out:
             k1 = min(n_out, k + per)
             tk = t0 + k * s.n_sub * h
-            base = 0 if sink is None else k
+            O = ki.Outputs(t=out_t, sens=out_sens, wh=out_wh, el=out_el, y=out_y, state_every=se,
+                           base=0 if sink is None else k)
+            run_args = (y, tk, h, s.n_sub, k1, k, n_out - 1, S, W, model.B)
             try:
                 if s.method == "rk4":
-                    status, k_done, bad = ki.run_rk4(y, tk, h, s.n_sub, k1, k, n_out - 1, S, W, model.B,
-                                                     model.nq, nend, s.vmax, out_t, out_sens, out_wh,
-                                                     out_el, out_y, se, base, fitter.shared)
+                    status, k_done, bad = ki.run_rk4(*run_args, guard, O, fitter.shared)
                 elif s.method in ("leapfrog", "imex", "imex2"):
-                    status, k_done, bad = ki.run_leapfrog(y, tk, h, s.n_sub, k1, k, n_out - 1, S, W,
-                                                          model.B, X, model.nq, nend, s.vmax, out_t,
-                                                          out_sens, out_wh, out_el, out_y, se,
-                                                          k == 0 and not continued, base, fitter.shared)
+                    status, k_done, bad = ki.run_leapfrog(*run_args, X, guard, O,
+                                                          k == 0 and not continued, fitter.shared)
                 else:
-                    status, k_done, bad = ki.run_galpha(y, tk, h, s.n_sub, k1, k, n_out - 1, model.S,
-                                                        W, model.B, model.nq, nend, s.vmax, out_t,
-                                                        out_sens, out_wh, out_el, out_y, se, s.rho_inf,
-                                                        groups, n_groups, pattern, scale, atol, s.rtol,
-                                                        s.max_iter, stats, base, fitter.shared)
+                    status, k_done, bad = ki.run_galpha(*run_args, guard, O, newton, fitter.shared)
             except (ZeroDivisionError, FloatingPointError):
                 # a state blown up between two outputs can meet a division by zero in a kernel
                 # before the output's finiteness check: the same divergence, caught a little later

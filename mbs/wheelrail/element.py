@@ -334,8 +334,7 @@ def _law_reference(xi, eta, spin, a, b, N, par, col):
     if law == P.LAW_FASTSIM:
         L = (8 * a / (3 * C11 * G), 8 * a / (3 * C22 * G), math.pi * a * math.sqrt(a / b) / (4 * C23 * G))
         return fk._fastsim.py_func(xi, eta, spin, a, b, N, mu, *L, int(par[P.P_ELLIPTIC]),
-                                   int(par[P.P_ROTATE]), int(par[P.P_NX]), int(par[P.P_NY]),
-                                   None, None, None, None, None, None)
+                                   int(par[P.P_ROTATE]), int(par[P.P_NX]), int(par[P.P_NY]), None)
     # Kalker 1990 App. E linear law, c = sqrt(ab)
     cc = math.sqrt(a * b)
     lin = np.array([-G * cc ** 2 * C11 * xi, -G * cc ** 2 * C22 * eta - G * cc ** 3 * C23 * spin,

@@ -41,10 +41,16 @@ Outputs: ``Fx, Fy`` the force on the wheel along the rolling and lateral directi
 """
 from __future__ import annotations
 
+from collections import namedtuple
 from math import exp, sqrt
 
 import numpy as np
 from numba import njit
+
+#: the (ny, nx) maps of one contact patch (:func:`fastsim_traction`): element centres ``X``,
+#: ``Y``, tangential traction ``PX``, ``PY``, normal pressure ``PN`` and the slip flag ``SLIP``
+#: (1 = slip); a named tuple numba compiles, passed whole or as None (forces only)
+Maps = namedtuple("Maps", ["X", "Y", "PX", "PY", "PN", "SLIP"])
 
 
 @njit(cache=True, inline="always")
@@ -79,9 +85,9 @@ def _rotate(px, py, qx, qy, wx, wy, h, g, g_strip, u_mid, elliptic):
 
 
 @njit(cache=True)
-def _fastsim(xi, eta, phi, a, b, N, mu, L1, L2, L3, elliptic, rotate, nx, ny,
-             X, Y, PX, PY, PN, SLIP):
-    """The march over all strips; X ... SLIP are (ny, nx) outputs, or None (forces only)."""
+def _fastsim(xi, eta, phi, a, b, N, mu, L1, L2, L3, elliptic, rotate, nx, ny, maps):
+    """The march over all strips; ``maps`` the patch's :class:`Maps` to fill, or None (forces
+    only)."""
     dy = 2.0 * b / ny
     du = 2.0 / nx
     # pressure scale: the discrete sum of p_n dA is N exactly
@@ -141,13 +147,13 @@ def _fastsim(xi, eta, phi, a, b, N, mu, L1, L2, L3, elliptic, rotate, nx, ny,
             sx += px
             sy += py
             sm += x * py - y * px
-            if X is not None:
-                X[j, k] = x
-                Y[j, k] = y
-                PX[j, k] = px
-                PY[j, k] = py
-                PN[j, k] = P * (w if elliptic else w * w) * shape
-                SLIP[j, k] = slip
+            if maps is not None:
+                maps.X[j, k] = x
+                maps.Y[j, k] = y
+                maps.PX[j, k] = px
+                maps.PY[j, k] = py
+                maps.PN[j, k] = P * (w if elliptic else w * w) * shape
+                maps.SLIP[j, k] = slip
         dA = dx * dy
         Fx += sx * dA
         Fy += sy * dA
@@ -158,17 +164,14 @@ def _fastsim(xi, eta, phi, a, b, N, mu, L1, L2, L3, elliptic, rotate, nx, ny,
 @njit(cache=True)
 def fastsim_forces(xi, eta, phi, a, b, N, mu, L1, L2, L3, elliptic, rotate, nx, ny):
     """``(Fx, Fy, Mz)`` of one contact (module docstring); all arguments plain numbers."""
-    return _fastsim(xi, eta, phi, a, b, N, mu, L1, L2, L3, elliptic, rotate, nx, ny,
-                    None, None, None, None, None, None)
+    return _fastsim(xi, eta, phi, a, b, N, mu, L1, L2, L3, elliptic, rotate, nx, ny, None)
 
 
 @njit(cache=True)
-def fastsim_traction(xi, eta, phi, a, b, N, mu, L1, L2, L3, elliptic, rotate, nx, ny,
-                     X, Y, PX, PY, PN, SLIP):
-    """As :func:`fastsim_forces`, also filling the (ny, nx) arrays of element centres X, Y,
-    tangential traction PX, PY, normal pressure PN and the slip flag SLIP (1 = slip)."""
-    return _fastsim(xi, eta, phi, a, b, N, mu, L1, L2, L3, elliptic, rotate, nx, ny,
-                    X, Y, PX, PY, PN, SLIP)
+def fastsim_traction(xi, eta, phi, a, b, N, mu, L1, L2, L3, elliptic, rotate, nx, ny, maps):
+    """As :func:`fastsim_forces`, also filling the patch's :class:`Maps` ``maps``
+    (:func:`empty_traction`)."""
+    return _fastsim(xi, eta, phi, a, b, N, mu, L1, L2, L3, elliptic, rotate, nx, ny, maps)
 
 
 @njit(cache=True)
@@ -176,14 +179,13 @@ def fastsim_batch(xi, eta, phi, a, b, N, mu, L1, L2, L3, elliptic, rotate, nx, n
     """Many contacts: 1-D arrays of equal length in, ``out[i] = (Fx, Fy, Mz)`` of contact i."""
     for i in range(xi.shape[0]):
         fx, fy, mz = _fastsim(xi[i], eta[i], phi[i], a[i], b[i], N[i], mu[i], L1[i], L2[i],
-                              L3[i], elliptic, rotate, nx, ny,
-                              None, None, None, None, None, None)
+                              L3[i], elliptic, rotate, nx, ny, None)
         out[i, 0] = fx
         out[i, 1] = fy
         out[i, 2] = mz
     return out
 
 
-def empty_traction(nx: int, ny: int):
-    """Output arrays for :func:`fastsim_traction` (X, Y, PX, PY, PN float64; SLIP uint8)."""
-    return (*(np.zeros((ny, nx)) for _ in range(5)), np.zeros((ny, nx), dtype=np.uint8))
+def empty_traction(nx: int, ny: int) -> Maps:
+    """The :class:`Maps` :func:`fastsim_traction` fills (X, Y, PX, PY, PN float64; SLIP uint8)."""
+    return Maps(*(np.zeros((ny, nx)) for _ in range(5)), np.zeros((ny, nx), dtype=np.uint8))

@@ -177,10 +177,10 @@ def fastsim_traction(xi, eta, phi, a, b, N, mu, G, nu, bound="parabolic", nx=NX,
     a, b, N, mu, G, nu = (float(v) for v in _contact(a, b, N, mu, G, nu))
     L1, L2, L3 = (float(v) for v in flexibilities(
         a, b, G, nu, *((xi, eta, phi) if flex == "weighted" else ())))
-    arrays = _k.empty_traction(nx, ny)
+    maps = _k.empty_traction(nx, ny)
     Fx, Fy, Mz = _k.fastsim_traction(xi, eta, phi, a, b, N, mu, L1, L2, L3, elliptic, rotate,
-                                     nx, ny, *arrays)
-    X, Y, PX, PY, PN, SLIP = arrays
+                                     nx, ny, maps)
+    X, Y, PX, PY, PN, SLIP = maps
     return Traction(X, Y, PX, PY, PN, SLIP.astype(bool), Fx, Fy, Mz)
 
 
