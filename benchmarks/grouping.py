@@ -3,9 +3,10 @@ tuples, timed inside compiled loops, so that a call's overhead is not hidden beh
 
     python3 benchmarks/grouping.py [--calls 2000] [--repeats 7]
 
-* the car's right-hand side (``axlebox.mbs.kernel.system.rhs``, whose wheel-rail stage takes the
-  packed system and work whole), on the rigid car and with the front bogie flexible, at the
-  statics' state and 0.6 s into a run (the irregularity faded in, the contacts creeping);
+* the car's right-hand side (``axlebox.mbs.kernel.system.rhs``: its wheel-rail stage,
+  ``wheel_forces``, whose grouping was tried and dropped), on the rigid car and with the front
+  bogie flexible, at the statics' state and 0.6 s into a run (the irregularity faded in, the
+  contacts creeping);
 * FASTSIM's forces per contact (``fastsim_batch``: ``_fastsim`` with its maps None), the default
   grid, over the creepage sweep of benchmarks/fastsim.py;
 * the car's whole runs are benchmarks/vehicle.py's and benchmarks/exchange.py's.
@@ -16,10 +17,12 @@ Only interfaces that the tree before the grouping has as well, so that ``benchma
 
 ``--instructions``: instructions instead, counted by valgrind's callgrind (the same count run to
 run, whatever else the machine does): the cars' packed arrays saved, then one process that loads
-them and makes ``--calls`` right-hand sides of each in a compiled loop, and one kernel call of
-each integrator's run (its outputs, its guard, generalized-alpha's Newton: the grouped
-arguments) on the rigid car, each after a warm one, callgrind collecting around each alone (a
-toggle compiled from valgrind's callgrind.h).
+them and makes ``--calls`` and ``3 --calls`` right-hand sides of each in a compiled loop, and one
+kernel call of each integrator's run (its outputs, its guard, generalized-alpha's Newton: the
+grouped arguments) on the rigid car over ``n`` and ``3 n`` steps, each after a warm one,
+callgrind collecting around each alone (a toggle compiled from valgrind's callgrind.h).  The
+figure is the difference of the two lengths over the calls or steps between, so that what a
+call costs once (the dispatch, the first touch of memory) falls out.
 """
 from __future__ import annotations
 

@@ -84,8 +84,8 @@ def wheel_forces(t, y, bi, wh_i, wh_f, wtab, wpar, trk, wrk, glob, Ab, omb, mkp,
                  mkM, whout):
     """Every wheel's contact force and moment at ``t`` on its marker (and on its rail body's),
     its outputs in ``whout`` (module docstring).  The arrays one by one, not the system's ``S``
-    and ``W`` whole: those cost 470 instructions a call more (benchmarks/README.md, "Grouped
-    arguments")."""
+    and ``W`` whole: those cost 457-489 instructions a right-hand side more, 0.1-0.3 %
+    (benchmarks/README.md, "Grouped arguments")."""
     V = profile_at(glob, t)[1]        # the creepages' reference speed: the profile's at t
     c = np.empty(3)
     e = np.empty(3)
