@@ -30,7 +30,7 @@ from axlebox._files import tmp_path
 from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
 from axlebox.fem import bodyfile
-from axlebox.mbs.post import comfort
+from axlebox.mbs.post import comfort, safety
 from axlebox.mbs.vehicle import config as vconfig
 from axlebox.mbs.vehicle import bearings as car_bearings
 from axlebox.mbs.solver import integrate
@@ -232,6 +232,41 @@ def drives(run: integrate.Run, model) -> dict:
     return out
 
 
+def running_safety(run: integrate.Run, model, cfg: vconfig.CarConfig) -> dict:
+    """``<wheel>/YQ`` (columns Y, Q, Y/Q and its 2 m sliding mean, with Nadal's limit at the wheel
+    profile's flange angle and ``wheelrail.mu``) and ``ws<k>/sum_Y`` (the wheelset's net lateral
+    force on the track and its 2 m sliding mean, with Prud'homme's limit at the static wheel
+    load) at the output instants (:mod:`axlebox.mbs.post.safety`).  The distance each is
+    averaged over is its contact point's x, the distance its wheel has run."""
+    from axlebox.mbs.kernel.wheels import WH_SIDE
+    if run.time.size == 0 or run.wheels is None:
+        return {}
+    delta = safety.flange_angle(_profile(cfg.wheelrail.wheel, "wheel"))
+    nadal = float(safety.nadal(delta, cfg.wheelrail.mu))
+    Q0 = vehicle.static_wheel_load(cfg)
+    out, F, dist = {}, {}, {}
+    for i, name in enumerate(model.wheel_names):
+        o = np.asarray(run.wheels[:, i])
+        F[name] = o[:, ek.OUT_F:ek.OUT_F + 3]
+        dist[name] = np.maximum.accumulate(o[:, ek.OUT_P])        # never back: a record's distance
+        side = 1 if model.S.wh_i[i, WH_SIDE] == 0 else -1
+        w = safety.wheel_forces(F[name], side, dist[name])
+        out[f"{name}/YQ"] = (np.stack(w, axis=1), {
+            "unit": "N, N, 1, 1", "columns": "Y, Q, Y/Q, Y/Q 2 m sliding mean",
+            "nadal_limit": nadal, "flange_angle_rad": delta, "mu": cfg.wheelrail.mu,
+            "about": "Y on the rail towards its field side, Q on the rail downwards (Nadal; EN 14363)"})
+    for name in model.wheel_names:
+        ws, side = name.rsplit("_", 1)
+        if side == "L" and f"{ws}_R" in F:
+            sY = safety.sum_Y(F[name], F[f"{ws}_R"])
+            s = 0.5 * (dist[name] + dist[f"{ws}_R"])
+            out[f"{ws}/sum_Y"] = (np.stack([sY, safety.sliding_mean(sY, s)], axis=1), {
+                "unit": "N", "columns": "sum Y, its 2 m sliding mean",
+                "prudhomme_limit_N": float(safety.prudhomme(Q0)), "static_wheel_load_N": Q0,
+                "about": "the wheelset's lateral force on the track, track y (Prud'homme; EN 14363)"})
+    return out
+
+
 def write(path, run: integrate.Run, model, cfg: vconfig.CarConfig,
           ride: list[comfort.RideComfort] = ()) -> Path:
     """The result file, its config stored whole (every default filled in); ``ride``: the
@@ -247,6 +282,7 @@ def write(path, run: integrate.Run, model, cfg: vconfig.CarConfig,
         wr[f"{name}/creepage"] = (o[:, [ek.OUT_XI, ek.OUT_ETA, ek.OUT_SPIN]],
                                   {"unit": "1, 1, 1/m", "columns": "xi, eta, spin"})
         wr[f"{name}/contact_point"] = (o[:, ek.OUT_P:ek.OUT_P + 3], {"unit": "m"})
+    wr.update(running_safety(run, model, cfg))
     br = {}
     for i, name in enumerate(model.bearing_names):
         o = run.bearings[:, i]                      # mbs/kernel/bearings.py BR_ROWS

@@ -183,6 +183,37 @@ def test_a_car_result_stores_each_wheelsets_shaft_angle_and_speed(no_speed_run):
             assert np.max(np.abs(angle - integral)) < 2 * np.pi * 1e-6, k
 
 
+def test_a_car_result_stores_each_wheels_Y_Q_and_each_wheelsets_sum_Y(no_speed_run):
+    """Issue 69, item 4 (on tangent track): ``wheelrail/<wheel>/YQ`` and ``wheelrail/ws<k>/sum_Y``.
+    At the first output the car stands in its statics' equilibrium on smooth track: the eight Q
+    carry the car's weight (8 Q0, to the statics' tolerance, 1e-3 of it), each wheelset's two Y
+    balance (sum Y zero to 1e-3 of Q0: nothing pushes the car sideways; the gearbox side's Q is
+    the larger), each Y the push of its tread's contact angle (Y/Q about 0.008 on S1002 / 60E1
+    1:40, under 0.05); the limits are Nadal's at the S1002 flange (70 deg) and Prud'homme's at
+    Q0."""
+    from axlebox.mbs.post import safety
+    from axlebox.mbs.vehicle.car import static_wheel_load
+    from axlebox.mbs.wheelrail.standard import s1002
+    text, out = no_speed_run
+    cfg = vconfig.loads(text)
+    Q0 = static_wheel_load(cfg)
+    with h5py.File(out, "r") as f:
+        t = f["time"][()]
+        Q = 0.0
+        for k in range(1, 5):
+            L, R = f[f"wheelrail/ws{k}_L/YQ"], f[f"wheelrail/ws{k}_R/YQ"]
+            assert L.shape == (t.size, 4) and L.attrs["columns"] == "Y, Q, Y/Q, Y/Q 2 m sliding mean"
+            assert L.attrs["nadal_limit"] == pytest.approx(
+                float(safety.nadal(safety.flange_angle(s1002()), cfg.wheelrail.mu)), rel=1e-12)
+            yl, yr = L[0], R[0]
+            Q += yl[1] + yr[1]
+            assert 0.0 < yl[2] < 0.05 and 0.0 < yr[2] < 0.05
+            sY = f[f"wheelrail/ws{k}/sum_Y"]
+            assert abs(sY[0, 0]) < 1e-3 * Q0
+            assert sY.attrs["prudhomme_limit_N"] == pytest.approx(1e4 + 2 * Q0 / 3, rel=1e-12)
+        assert Q == pytest.approx(8 * Q0, rel=1e-3)
+
+
 def test_older_result_files_read_and_a_config_this_version_refuses_is_one_line(tmp_path):
     """A file from before issue 50 stores the user's text only (defaults left out): read as the
     run read it.  A stored config this version does not run is refused naming the field."""
