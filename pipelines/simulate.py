@@ -244,11 +244,12 @@ def running_safety(run: integrate.Run, model, cfg: vconfig.CarConfig) -> dict:
     delta = safety.flange_angle(_profile(cfg.wheelrail.wheel, "wheel"))
     nadal = float(safety.nadal(delta, cfg.wheelrail.mu))
     Q0 = vehicle.static_wheel_load(cfg)
+    # the columns needed, in one pass over a streamed run's outputs (not a pass a wheel)
+    cols = np.asarray(run.wheels[:, :, [ek.OUT_F, ek.OUT_F + 1, ek.OUT_F + 2, ek.OUT_P]])
     out, F, dist = {}, {}, {}
     for i, name in enumerate(model.wheel_names):
-        o = np.asarray(run.wheels[:, i])
-        F[name] = o[:, ek.OUT_F:ek.OUT_F + 3]
-        dist[name] = np.maximum.accumulate(o[:, ek.OUT_P])        # never back: a record's distance
+        F[name] = cols[:, i, :3]
+        dist[name] = np.maximum.accumulate(cols[:, i, 3])         # never back: a record's distance
         side = 1 if model.S.wh_i[i, WH_SIDE] == 0 else -1
         w = safety.wheel_forces(F[name], side, dist[name])
         out[f"{name}/YQ"] = (np.stack(w, axis=1), {
