@@ -185,6 +185,28 @@ def from_table(cls, fields, where: str, **objects):
         raise ParameterError(f"[{where}] {fields!r} is not allowed: {err}") from None
 
 
+def kinded_from_table(cls, d, where: str, kind_fields: dict, noun: str):
+    """An entry of a list of tables (``[[cls.SECTION]]``) whose ``kind`` decides the fields it
+    takes (``kind_fields``: kind -> its fields; a missing kind is the field's default), from the
+    table ``d`` at ``where`` (``section[i]``): a kind not known or a field its kind does not take
+    is refused naming ``where.key`` and what is allowed (``noun``: what an entry is, "wheel
+    defect"), and so is any value the dataclass refuses."""
+    if not isinstance(d, dict):
+        raise ParameterError(f"{where} = {d!r} is not allowed: expected a [[{cls.SECTION}]] table")
+    kind = d.get("kind", next(f.default for f in dataclasses.fields(cls) if f.name == "kind"))
+    if kind not in kind_fields:
+        raise ParameterError(f"{where}.kind = {kind!r} is not allowed: expected one of "
+                             f"{', '.join(kind_fields)}")
+    for key in d:
+        if key not in kind_fields[kind]:
+            raise ParameterError(f"{where}.{key} is not a field of a {kind} {noun}: expected one of "
+                                 f"{', '.join(kind_fields[kind])}")
+    try:
+        return from_table(cls, d, where)
+    except ParameterError as err:
+        raise ParameterError(str(err).replace(f"{cls.SECTION}.", f"{where}.", 1)) from None
+
+
 def number(name: str, value) -> float:
     """``value`` (text or a number) as a float, or a ParameterError naming ``name``."""
     try:

@@ -126,14 +126,16 @@ def test_bad_layouts_are_refused_in_one_line(layout, message):
 
 @pytest.mark.parametrize("table, message", [
     ({"kind": "tangent", "length": 50.0, "radius": 300.0},
-     "track.layout[3].radius does not apply to a tangent: its fields are kind, length, start"),
+     "track.layout[3].radius is not a field of a tangent segment: expected one of kind, length, "
+     "start"),
     ({"kind": "curve", "length": 50.0, "radius": 20.0},
      "track.layout[3].radius = 20.0 is not allowed: expected a number in [50, 100000] m"),
     ({"kind": "curve", "length": 50.0, "superelevation": 0.25},
      "track.layout[3].superelevation = 0.25 is not allowed: expected a number in [0, 0.18] m"),
     ({"kind": "bend"}, "track.layout[3].kind = 'bend' is not allowed: expected one of tangent, "
      "transition, curve"),
-    ({"kind": "curve", "lenght": 5.0}, "track.layout[3].lenght is not a field of [track.layout[3]]"),
+    ({"kind": "curve", "lenght": 5.0}, "track.layout[3].lenght is not a field of a curve segment: "
+     "expected one of kind, length, start, radius, hand, superelevation, widening"),
 ])
 def test_bad_segments_are_refused_in_one_line(table, message):
     with pytest.raises(ParameterError) as err:

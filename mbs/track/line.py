@@ -33,14 +33,13 @@ s0)``; the cant deficiency is ``I = s0 v^2 / (g R) - h`` (EN 13803).
 """
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
 
-from axlebox._params import ParameterError, check_ranges, choice, from_table, param
+from axlebox._params import ParameterError, check_ranges, choice, kinded_from_table, param
 
 G = 9.81                                  # m/s^2, as the car's gravity
 KINDS = ("tangent", "transition", "curve")
@@ -84,18 +83,7 @@ class Segment:
     def from_table(cls, d, where: str) -> Segment:
         """The entry of a config table ``d`` at ``where`` (``track.layout[i]``), refusing a field
         its kind does not take."""
-        if not isinstance(d, dict):
-            raise ParameterError(f"{where} = {d!r} is not allowed: expected a [[track.layout]] table")
-        kind = d.get("kind", "tangent")
-        if kind in KIND_FIELDS:
-            extra = [k for k in d if k not in KIND_FIELDS[kind] and k in _FIELDS]
-            if extra:
-                raise ParameterError(f"{where}.{extra[0]} does not apply to a {kind}: its fields are "
-                                     f"{', '.join(KIND_FIELDS[kind])}")
-        try:
-            return from_table(cls, d, where)
-        except ParameterError as err:
-            raise ParameterError(str(err).replace("track.layout.", f"{where}.", 1)) from None
+        return kinded_from_table(cls, d, where, KIND_FIELDS, "segment")
 
     def to_table(self) -> dict:
         return {k: getattr(self, k) for k in KIND_FIELDS[self.kind]
@@ -110,9 +98,6 @@ class Segment:
     def cant(self) -> float:
         """Signed superelevation of a curve, m: the right rail's over the left's."""
         return math.copysign(self.superelevation, self.curvature)
-
-
-_FIELDS = tuple(f.name for f in dataclasses.fields(Segment))
 
 
 class At(NamedTuple):

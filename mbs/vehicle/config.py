@@ -31,7 +31,7 @@ from pathlib import Path
 import tomli_w
 
 from axlebox._params import (ParameterError, choice, flag, from_table, like, members, numbers, param,
-                             rows, section, text, vector)
+                             rows, section, text, vector, kinded_from_table)
 from axlebox._params import check_ranges as _check_fields
 from axlebox.bearing import models
 from axlebox.bearing.defects import Defect
@@ -438,20 +438,7 @@ class WheelDefect:
 
     @classmethod
     def from_table(cls, d, where: str) -> WheelDefect:
-        if not isinstance(d, dict):
-            raise ParameterError(f"{where} = {d!r} is not allowed: expected a [[wheel_defects]] table")
-        kind = d.get("kind", "flat")
-        if kind not in WHEEL_DEFECT_FIELDS:
-            raise ParameterError(f"{where}.kind = {kind!r} is not allowed: expected one of "
-                                 f"{', '.join(WHEEL_DEFECT_FIELDS)}")
-        for key in d:
-            if key not in WHEEL_DEFECT_FIELDS[kind]:
-                raise ParameterError(f"{where}.{key} is not a field of a {kind} wheel defect: "
-                                     f"expected one of {', '.join(WHEEL_DEFECT_FIELDS[kind])}")
-        try:
-            return from_table(cls, d, where)
-        except ParameterError as err:
-            raise ParameterError(str(err).replace("wheel_defects.", f"{where}.", 1)) from None
+        return kinded_from_table(cls, d, where, WHEEL_DEFECT_FIELDS, "wheel defect")
 
     def to_table(self) -> dict:
         return {k: (list(v) if isinstance(v, tuple) else v)
