@@ -80,3 +80,16 @@ def test_a_lifted_wheel_has_no_quotient():
     w = safety.wheel_forces(F, +1, s)
     assert np.all(np.isnan(w.YQ[40:45])) and np.all(np.isfinite(w.YQ_2m))
     np.testing.assert_allclose(w.YQ_2m, 0.2, rtol=1e-12)
+
+
+def test_a_wheel_off_its_rail_through_a_whole_window_has_no_mean():
+    """Lifted over more than the 2 m window: its sliding mean there is NaN, never a 0 that reads
+    as safe; the rest of the record keeps its mean."""
+    s = np.linspace(0.0, 20.0, 2001)
+    F = np.tile([0.0, -10e3, 50e3], (2001, 1))
+    F[800:1200, 2] = 0.0                               # 8 m .. 12 m: off the rail
+    w = safety.wheel_forces(F, +1, s)
+    assert np.all(np.isnan(w.YQ_2m[950:1050]))
+    np.testing.assert_allclose(w.YQ_2m[:700], 0.2, rtol=1e-12)
+    np.testing.assert_allclose(safety.wheel_forces(np.tile([0.0, 0.0, -1.0], (5, 1)), 1,
+                                                   np.arange(5.0)).YQ_2m, np.nan)

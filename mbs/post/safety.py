@@ -103,20 +103,17 @@ def wheel_forces(F, side: int, s) -> WheelForces:
     """Y, Q, Y/Q and its sliding mean over :data:`WINDOW` of one wheel from its force ``F``
     (``(n, 3)``, on the wheel, track frame) on side ``side`` (+1 left, -1 right), ``s`` the
     distance run.  Where the wheel has lifted (Q <= 0), Y/Q is not defined: NaN, and the sliding
-    mean is taken over the rest."""
+    mean is taken over the rest of its window (NaN where the wheel is off its rail all through
+    the window: a lifted wheel is not a safe one)."""
     F = np.asarray(F, dtype=float)
     Y, Q = -side * F[:, 1], F[:, 2]
     lifted = Q <= 0.0
     YQ = np.where(lifted, np.nan, Y / np.where(lifted, 1.0, Q))
-    if lifted.any() and not lifted.all():
-        s = np.asarray(s, dtype=float)
-        YQ_2m = sliding_mean(np.where(lifted, 0.0, YQ), s) / np.maximum(
-            sliding_mean((~lifted).astype(float), s), 1e-12)
-    elif lifted.all():
-        YQ_2m = np.full_like(Y, np.nan)
-    else:
-        YQ_2m = sliding_mean(YQ, s)
-    return WheelForces(Y, Q, YQ, YQ_2m)
+    if not lifted.any():
+        return WheelForces(Y, Q, YQ, sliding_mean(YQ, s))
+    on = sliding_mean((~lifted).astype(float), s)               # the share of the window in contact
+    total = sliding_mean(np.where(lifted, 0.0, YQ), s)
+    return WheelForces(Y, Q, YQ, np.where(on > 0.0, total / np.where(on > 0.0, on, 1.0), np.nan))
 
 
 def sum_Y(F_left, F_right):
