@@ -238,7 +238,7 @@ def running_safety(run: integrate.Run, model, cfg: vconfig.CarConfig) -> dict:
     force on the track and its 2 m sliding mean, with Prud'homme's limit at the static wheel
     load) at the output instants (:mod:`axlebox.mbs.post.safety`).  The distance each is
     averaged over is its contact point's x, the distance its wheel has run."""
-    from axlebox.mbs.kernel.wheels import WH_SIDE
+    from axlebox.mbs.kernel.wheels import WH_BODY, WH_SIDE
     if run.time.size == 0 or run.wheels is None:
         return {}
     delta = safety.flange_angle(_profile(cfg.wheelrail.wheel, "wheel"))
@@ -246,22 +246,23 @@ def running_safety(run: integrate.Run, model, cfg: vconfig.CarConfig) -> dict:
     Q0 = vehicle.static_wheel_load(cfg)
     # the columns needed, in one pass over a streamed run's outputs (not a pass a wheel)
     cols = np.asarray(run.wheels[:, :, [ek.OUT_F, ek.OUT_F + 1, ek.OUT_F + 2, ek.OUT_P]])
-    out, F, dist = {}, {}, {}
+    out, by_body = {}, {}
     for i, name in enumerate(model.wheel_names):
-        F[name] = cols[:, i, :3]
-        dist[name] = np.maximum.accumulate(cols[:, i, 3])         # never back: a record's distance
-        side = 1 if model.S.wh_i[i, WH_SIDE] == 0 else -1
-        w = safety.wheel_forces(F[name], side, dist[name])
+        F = cols[:, i, :3]
+        dist = np.maximum.accumulate(cols[:, i, 3])               # never back: a record's distance
+        side = int(model.S.wh_i[i, WH_SIDE])                     # 0 left, 1 right
+        by_body.setdefault(int(model.S.wh_i[i, WH_BODY]), {})[side] = (F, dist)
+        w = safety.wheel_forces(F, 1 if side == 0 else -1, dist)
         out[f"{name}/YQ"] = (np.stack(w, axis=1), {
             "unit": "N, N, 1, 1", "columns": "Y, Q, Y/Q, Y/Q 2 m sliding mean",
             "nadal_limit": nadal, "flange_angle_rad": delta, "mu": cfg.wheelrail.mu,
             "about": "Y on the rail towards its field side, Q on the rail downwards (Nadal; EN 14363)"})
-    for name in model.wheel_names:
-        ws, side = name.rsplit("_", 1)
-        if side == "L" and f"{ws}_R" in F:
-            sY = safety.sum_Y(F[name], F[f"{ws}_R"])
-            s = 0.5 * (dist[name] + dist[f"{ws}_R"])
-            out[f"{ws}/sum_Y"] = (np.stack([sY, safety.sliding_mean(sY, s)], axis=1), {
+    for b, wheels in by_body.items():                            # a wheelset: its two wheels
+        if len(wheels) == 2:
+            (FL, sL), (FR, sR) = wheels[0], wheels[1]
+            sY = safety.sum_Y(FL, FR)
+            both = np.stack([sY, safety.sliding_mean(sY, 0.5 * (sL + sR))], axis=1)
+            out[f"{model.bodies[b].name}/sum_Y"] = (both, {
                 "unit": "N", "columns": "sum Y, its 2 m sliding mean",
                 "prudhomme_limit_N": float(safety.prudhomme(Q0)), "static_wheel_load_N": Q0,
                 "about": "the wheelset's lateral force on the track, track y (Prud'homme; EN 14363)"})
