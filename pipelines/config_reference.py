@@ -213,6 +213,19 @@ def wheel_defect_rows() -> list[tuple]:
     return rows
 
 
+def track_layout_rows() -> list[tuple]:
+    """``[[track.layout]]``: :class:`~axlebox.mbs.track.line.Segment`'s fields, each marked with the
+    kinds that take it."""
+    from axlebox.mbs.track.line import KIND_FIELDS, Segment
+    rows = []
+    for r in _dataclass_rows(Segment):
+        kinds = [kind for kind, names in KIND_FIELDS.items() if r[0] in names]
+        if len(kinds) < len(KIND_FIELDS):
+            r = r[:5] + (f"{' and '.join(kinds)} only: {r[5]}",)
+        rows.append(r)
+    return rows
+
+
 def rig_rows() -> list[tuple]:
     """``[rig]``: the :class:`~axlebox.bearing.rig.RigConfig` fields that are not sections."""
     method = next(f for f in dataclasses.fields(RigConfig) if f.name == "method")
@@ -246,6 +259,12 @@ def sections() -> list[tuple[str, str, list[tuple]]]:
         ("[[wheel_defects]]", "Wheel tread defects, each a radius deviation turning with its wheel "
                               "(vehicle config; axlebox.mbs.vehicle.config.WheelDefect).",
          wheel_defect_rows()),
+        ("[[track.layout]]", "The line the car runs on (vehicle config; "
+                             "axlebox.mbs.track.line.Segment): tangents, transitions (clothoids, "
+                             "curvature and cant linear from the segment before to the one after) "
+                             "and circular curves with their cant and gauge widening, one after "
+                             "another from chainage 0; track.start places the car on it. None: "
+                             "tangent track.", track_layout_rows()),
         ("[rig]", "The standalone bearing rig's config (configs/study_rig.toml; "
                   "axlebox.bearing.rig.RigConfig, SI): sections [rig], [bearing] and [[defects]]. "
                   "Defaults: F_r the carbody (rated load) and a frame on a bogie's four axle "

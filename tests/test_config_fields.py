@@ -17,6 +17,7 @@ from axlebox.bearing.defects import Defect
 from axlebox.bearing.rig import RIG_SECTIONS, RigConfig
 from axlebox.mbs.vehicle import config
 from axlebox.pipelines import config_reference
+from axlebox.mbs.track.line import Segment
 from axlebox.mbs.vehicle.config import SECTIONS, CarConfig, WheelDefect
 from axlebox.pipelines.config_reference import HEADER, reference_markdown
 from axlebox.pipelines.sweep import SWEEP_FIELDS
@@ -164,10 +165,12 @@ def test_every_range_and_choice_the_page_shows_is_what_the_loader_does(page):
     (config_reference.defect_rows, ["wheelset", "side"] + [f.name for f in dataclasses.fields(Defect)]
      + ["angle_deg"]),
     (config_reference.wheel_defect_rows, [f.name for f in dataclasses.fields(WheelDefect)]),
+    (config_reference.track_layout_rows, [f.name for f in dataclasses.fields(Segment)]),
     (config_reference.rig_rows, [f.name for f in dataclasses.fields(RigConfig)
                               if f.name not in RIG_SECTIONS]),
     (config_reference.sweep_rows, list(SWEEP_FIELDS)),
-], ids=[f"bearing_{name}" for name in models.MODELS] + ["defects", "wheel_defects", "rig", "sweep"])
+], ids=[f"bearing_{name}" for name in models.MODELS] + ["defects", "wheel_defects", "track_layout",
+                                                       "rig", "sweep"])
 def test_free_form_tables_document_every_field_the_code_takes(rows, expected):
     got = rows()
     assert [r[0] for r in got] == expected
@@ -216,7 +219,7 @@ def test_page_title_intro_and_headings(md, page):
     assert not any(line.startswith("###") for line in lines)
     assert "generated from the dataclasses that declare them" in md
     expected = [f"[{s}]" for s in SECTIONS] + [bearing_heading(name) for name in models.MODELS] \
-        + ["[[defects]]", "[[wheel_defects]]", "[rig]", "[sweep]"]
+        + ["[[defects]]", "[[wheel_defects]]", "[[track.layout]]", "[rig]", "[sweep]"]
     assert list(page) == expected
 
 

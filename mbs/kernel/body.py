@@ -39,6 +39,7 @@ BI_POS, BI_VEL, BI_N, BI_SPIN, BI_INV = range(5)
 # the axle among its velocities (after v and omega_x)
 SPIN_ANGLE, SPIN_RATE = 7, 4
 BF_M, BF_MC, BF_P0, BF_JINV, BF_GRAV = 0, 1, 4, 13, 22
+BF_X = 23          # on a line: the body's place along the car, m (its track frame's, trajectory.py)
 BF_WIDTH = 24
 
 

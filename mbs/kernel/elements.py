@@ -13,7 +13,7 @@ import numpy as np
 from numba import njit
 
 from .body import cross
-from .speed import profile_at
+from .speed import G_LINE, profile_at
 
 BUSHING, SPRING, BUMPSTOP, LOAD, DRIVE = 1, 2, 3, 4, 5
 EL_KIND, EL_M1, EL_M2, EL_AUX = range(4)
@@ -63,7 +63,13 @@ def _drive(t, m1, m2, aux, P, glob, mkv, mkR, mkF, mkM, out):
     ``r > 0`` a torque ``F r + J a / r`` about marker 1's y axis (the axle), its reaction on
     marker 2, else the force along x on marker 1 (reaction on the ground)."""
     _, v, a = profile_at(glob, t)
-    F = P[D_M] * a + P[D_KD] * (v - mkv[aux, 0])
+    if glob[G_LINE] != 0.0:
+        # on a line: along the track, the aux marker's forward axis (its body's heading)
+        Ra = mkR[aux]
+        F = P[D_M] * a + P[D_KD] * (v - (mkv[aux, 0] * Ra[0, 0] + mkv[aux, 1] * Ra[1, 0]
+                                         + mkv[aux, 2] * Ra[2, 0]))
+    else:
+        F = P[D_M] * a + P[D_KD] * (v - mkv[aux, 0])
     if P[D_R] > 0.0:
         T = F * P[D_R] + P[D_J] * a / P[D_R]
         R1 = mkR[m1]
@@ -71,6 +77,11 @@ def _drive(t, m1, m2, aux, P, glob, mkv, mkR, mkF, mkM, out):
             mkM[m1, c] += T * R1[c, 1]
             mkM[m2, c] -= T * R1[c, 1]
         out[0] = T
+    elif glob[G_LINE] != 0.0:
+        R1 = mkR[m1]
+        for c in range(3):
+            mkF[m1, c] += F * R1[c, 0]
+        out[0] = 0.0
     else:
         mkF[m1, 0] += F
         out[0] = 0.0

@@ -53,8 +53,8 @@ from axlebox._threads import fit_threads
 from axlebox.bearing.kernel.vec import copy1, copy2, copy3
 
 from .exchange import FIRST, LINEAR
-from .body import BI_N, BI_POS, BI_SPIN, BI_VEL, frame_kinematics, position_rates
-from .system import rhs, rhs_exchange, rhs_held
+from .body import BI_N, BI_POS, BI_SPIN, BI_VEL
+from .system import frames, rhs, rhs_exchange, rhs_held
 
 OK, NOT_FINITE, RUNAWAY, NO_CONVERGENCE = 0, 1, 2, 3
 
@@ -126,19 +126,19 @@ def _rk4_step(t, y, k1, k2, k3, k4, yt, h, S, W, B):
 
 
 @njit(cache=True)
-def _kick_drift(y, a, hk, h, S, W):
+def _kick_drift(y, a, hk, h, t, S, W):
     """One leapfrog step of the bodies from the accelerations ``a`` just evaluated at ``y``:
     velocities first (kick, by ``hk``: ``h``, or ``h / 2`` on the first step from ``u_0``), then
-    positions at the new velocities (drift, by ``h``); ``a``'s position rows are reused.  The
-    bearings' states are not touched: the exchange advanced them (:mod:`.exchange`)."""
+    positions at the new velocities (drift, by ``h``; on a line with the track frames at ``t``,
+    the step's middle); ``a``'s position rows are reused.  The bearings' states are not touched:
+    the exchange advanced them (:mod:`.exchange`)."""
     bi = S.bi
-    Ab, rb, vb, omb, omfb = W.Ab, W.rb, W.vb, W.omb, W.omfb
     for b in range(bi.shape[0]):
         iv = bi[b, BI_VEL]
         for i in range(iv, iv + 6 + bi[b, BI_N]):
             y[i] += hk * a[i]
-        frame_kinematics(b, y, bi, Ab[b], rb[b], vb[b], omb[b], omfb[b])
-        position_rates(b, y, bi, omfb[b], a)
+    frames(t, y, a, S, W)
+    for b in range(bi.shape[0]):
         ip = bi[b, BI_POS]
         for i in range(ip, ip + 7 + bi[b, BI_SPIN] + bi[b, BI_N]):
             y[i] += h * a[i]
@@ -202,11 +202,11 @@ def run_leapfrog(y, t0, h, n_sub, n_out, k0, k_last, S, W, B, X, G, O, start, th
                     break
             first = start and k == k0 and j == 0
             hb = h / X.m                      # the bodies' step (co-simulation: X.m > 1)
-            _kick_drift(y, k1, 0.5 * hb if first else hb, hb, S, W)
+            _kick_drift(y, k1, 0.5 * hb if first else hb, hb, t + 0.5 * hb, S, W)
             for i in range(1, X.m):
                 _normalise(y, S.bi)
                 rhs_held(t + i * hb, y, k1, S, W, B, X, i / X.m if X.hold == LINEAR else 0.0)
-                _kick_drift(y, k1, hb, hb, S, W)
+                _kick_drift(y, k1, hb, hb, t + (i + 0.5) * hb, S, W)
             _normalise(y, S.bi)
     return OK, n_out, -1
 

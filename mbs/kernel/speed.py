@@ -9,7 +9,8 @@ from __future__ import annotations
 from numba import njit
 
 G_V = 3          # the constant speed (m/s), glob's slot (wheels.py lists them all)
-G_PROF = 8       # the profile's point count, its points after it
+G_LINE = 8       # 1 on a line (the bodies on their track frames, :mod:`.trajectory`), else 0
+G_PROF = 9       # the profile's point count, its points after it
 
 
 @njit(cache=True)

@@ -21,23 +21,29 @@ import numpy as np
 from numba import njit, prange
 
 from .bearings import bearing_exchange, bearing_forces, held_loads
-from .body import BI_N, BI_VEL, body_accelerations, frame_kinematics, gravity_load, position_rates
+from .body import (BF_X, BI_N, BI_POS, BI_SPIN, BI_VEL, SPIN_ANGLE, body_accelerations,
+                   frame_kinematics, gravity_load, position_rates)
 from .elements import element_forces
-from .markers import marker_acceleration, marker_kinematics, marker_loads
+from .markers import MK_BODY, marker_acceleration, marker_kinematics, marker_loads
+from .speed import G_LINE, profile_at
+from .trajectory import (FR_DR, FR_O, FR_WB, FR_WR, L_START, body_on_line, frame_motion, ground_on_line,
+                         to_frame, to_inertial, velocity_rates)
 from .wheels import G_GRAV, wheel_forces
 
 
 Arrays = namedtuple("Arrays", ["bi", "bf", "inv", "goff", "mk_i", "mk_f", "shp", "el_i", "el_f", "glob",
-                               "wh_i", "wh_f", "wtab", "wpar", "trk", "wrk", "sens"])
+                               "wh_i", "wh_f", "wtab", "wpar", "trk", "wrk", "sens", "line", "brm"])
 Work = namedtuple("Work", ["Ab", "rb", "vb", "omb", "omfb", "mku", "mkp", "mkv", "mkR", "mkw", "mkF",
-                           "mkM", "gen", "elout", "whout", "sensout"])
+                           "mkM", "gen", "elout", "whout", "sensout", "frm", "fr", "brs"])
 
 
 @njit(cache=True)
 def rhs(t, y, dy, S, W, B):
     """``dy = F(t, y)``, the bearings' rates included (:func:`.bearings.bearing_forces`)."""
     kinematics(t, y, dy, S, W)
+    _rings_to_frames(S, W)
     bearing_forces(B, t, y, dy, S.bi, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.elout)
+    _ring_loads_to_inertial(S, W)
     _dynamics(t, y, dy, S, W)
 
 
@@ -47,7 +53,9 @@ def rhs_exchange(t, y, dy, S, W, B, X):
     their states advanced to ``t``, their mean ring loads on the markers); the bearings' rows
     of ``dy`` are left as they were."""
     kinematics(t, y, dy, S, W)
+    _rings_to_frames(S, W)
     bearing_exchange(B, X, t, y, S.bi, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.elout)
+    _ring_loads_to_inertial(S, W)
     _dynamics(t, y, dy, S, W)
 
 
@@ -56,19 +64,100 @@ def rhs_held(t, y, dy, S, W, B, X, u):
     """The bodies' ``dy`` at ``t`` between exchanges of a co-simulation: the bearings' loads
     those of the last exchange, carried ``u`` exchange steps on (:func:`.bearings.held_loads`)."""
     kinematics(t, y, dy, S, W)
+    _rings_to_frames(S, W)
     held_loads(B, X, y, S.bi, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, u)
+    _ring_loads_to_inertial(S, W)
     _dynamics(t, y, dy, S, W)
+
+
+@njit(cache=True)
+def _rings_to_frames(S, W):
+    """On a line: each bearing's two ring markers resolved in its wheelset's track frame, in
+    place, for the bearing models, which work in the track's axes (small ring angles); their
+    angular velocities stay inertial, so the rollers and cages feel the frame's rotation.  The
+    markers' loads so far are kept in ``W.brs``."""
+    if S.glob[G_LINE] == 0.0:
+        return
+    t = W.fr
+    for k in range(S.brm.shape[0]):
+        F = W.frm[S.brm[k, 2]]
+        for j in range(2):
+            m = S.brm[k, j]
+            for a in range(3):
+                W.brs[k, j, a] = W.mkF[m, a]
+                W.brs[k, j, 3 + a] = W.mkM[m, a]
+                t[a] = W.mkp[m, a] - F[FR_O + a]
+            to_frame(F, t, W.mkp[m])
+            for a in range(3):
+                t[a] = W.mkv[m, a]
+            to_frame(F, t, W.mkv[m])
+            for a in range(3):
+                t[a] = W.mkw[m, a]
+            to_frame(F, t, W.mkw[m])
+            for c in range(3):
+                for a in range(3):
+                    t[a] = W.mkR[m, a, c]
+                to_frame(F, t, W.mkR[m, :, c])
+
+
+@njit(cache=True)
+def _ring_loads_to_inertial(S, W):
+    """On a line: what the bearings added to their markers' loads, from the track frame's axes
+    back to the inertial (:func:`_rings_to_frames`)."""
+    if S.glob[G_LINE] == 0.0:
+        return
+    t = W.fr
+    for k in range(S.brm.shape[0]):
+        F = W.frm[S.brm[k, 2]]
+        for j in range(2):
+            m = S.brm[k, j]
+            for a in range(3):
+                t[a] = W.mkF[m, a] - W.brs[k, j, a]
+            to_inertial(F, t, W.mkF[m])
+            for a in range(3):
+                W.mkF[m, a] += W.brs[k, j, a]
+                t[a] = W.mkM[m, a] - W.brs[k, j, 3 + a]
+            to_inertial(F, t, W.mkM[m])
+            for a in range(3):
+                W.mkM[m, a] += W.brs[k, j, 3 + a]
+
+
+@njit(cache=True)
+def frames(t, y, dy, S, W):
+    """Every body's frame kinematics (inertial) and position rates.  On a line the bodies'
+    states are on their track frames (:mod:`.trajectory`): their rates come from those, the
+    kinematics handed on are inertial."""
+    bi = S.bi
+    if S.glob[G_LINE] == 0.0:
+        for b in range(bi.shape[0]):
+            frame_kinematics(b, y, bi, W.Ab[b], W.rb[b], W.vb[b], W.omb[b], W.omfb[b])
+            position_rates(b, y, bi, W.omfb[b], dy)
+        return
+    x, v, _ = profile_at(S.glob, t)
+    for b in range(bi.shape[0]):
+        frame_kinematics(b, y, bi, W.Ab[b], W.rb[b], W.vb[b], W.omb[b], W.omfb[b])
+        F = W.frm[b]
+        frame_motion(S.line, S.line[L_START] + x + S.bf[b, BF_X], v, F)
+        spin = bi[b, BI_SPIN] == 1
+        body_on_line(F, spin, W.Ab[b], W.rb[b], W.vb[b], W.omb[b], W.omfb[b])
+        position_rates(b, y, bi, F[FR_WR:FR_WR + 3], dy)
+        ip = bi[b, BI_POS]
+        for a in range(3):
+            dy[ip + a] = F[FR_DR + a]
+        if spin:                   # the spin against the non-spinning frame, which turns too
+            dy[ip + SPIN_ANGLE] -= F[FR_WB + 1]
 
 
 @njit(cache=True)
 def kinematics(t, y, dy, S, W):
     """Frames, position rates and marker kinematics; the element forces on the markers."""
     bi = S.bi
-    for b in range(bi.shape[0]):
-        frame_kinematics(b, y, bi, W.Ab[b], W.rb[b], W.vb[b], W.omb[b], W.omfb[b])
-        position_rates(b, y, bi, W.omfb[b], dy)
+    frames(t, y, dy, S, W)
     marker_kinematics(y, bi, S.mk_i, S.mk_f, S.shp, W.Ab, W.rb, W.vb, W.omfb, W.mku, W.mkp, W.mkv,
                       W.mkR, W.mkw)
+    if S.glob[G_LINE] != 0.0:
+        x, v, _ = profile_at(S.glob, t)
+        ground_on_line(S.line, x, v, S.mk_i, S.mk_f, W.fr, W.mkp, W.mkv, W.mkR, W.mkw)
     W.mkF[:, :] = 0.0
     W.mkM[:, :] = 0.0
     element_forces(t, S.el_i, S.el_f, S.glob, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.elout)
@@ -80,8 +169,8 @@ def _dynamics(t, y, dy, S, W):
     accelerations."""
     bi, goff, Ab = S.bi, S.goff, W.Ab
     if S.wh_i.shape[0] > 0:
-        wheel_forces(t, y, bi, S.wh_i, S.wh_f, S.wtab, S.wpar, S.trk, S.wrk, S.glob, Ab, W.omb, W.mkp,
-                     W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.whout)
+        wheel_forces(t, y, bi, S.wh_i, S.wh_f, S.wtab, S.wpar, S.trk, S.wrk, S.glob, Ab, W.omb,
+                     W.omfb, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.whout, S.line, W.frm, W.fr)
     g = S.glob[G_GRAV:G_GRAV + 3]
     for b in range(bi.shape[0]):
         n = bi[b, BI_N]
@@ -92,6 +181,26 @@ def _dynamics(t, y, dy, S, W):
     for s in range(S.sens.shape[0]):
         marker_acceleration(S.sens[s], y, dy, bi, S.mk_i, S.mk_f, S.shp, Ab, W.omfb, W.mku,
                             W.sensout[s])
+    if S.glob[G_LINE] != 0.0:
+        _on_line(y, dy, S, W)
+
+
+@njit(cache=True)
+def _on_line(y, dy, S, W):
+    """On a line: the sensors' accelerations in their body's track axes (forward, lateral in the
+    canted plane, normal: what an accelerometer on the axle box reads, less gravity, in a curve
+    whose heading turns), and the bodies' inertial accelerations turned into their velocity
+    states' rates (:func:`.trajectory.velocity_rates`)."""
+    bi = S.bi
+    for s in range(S.sens.shape[0]):
+        b = S.mk_i[S.sens[s], MK_BODY]
+        if b >= 0:
+            for a in range(3):
+                W.fr[a] = W.sensout[s, a]
+            to_frame(W.frm[b], W.fr, W.sensout[s])
+    for b in range(bi.shape[0]):
+        iv = bi[b, BI_VEL]
+        velocity_rates(W.frm[b], y, iv, dy[iv:iv + 3])
 
 
 @njit(cache=True)

@@ -29,10 +29,11 @@ from numba import njit
 from axlebox.mbs.wheelrail.element_kernel import wheel_rail_force
 
 from .body import BI_POS, BI_SPIN, cross
-from .speed import G_PROF, G_V, profile_at  # noqa: F401  (G_V: glob's slot, here with the rest)
+from .speed import G_LINE, G_PROF, G_V, profile_at  # noqa: F401  (glob's slots, here with the rest)
+from .trajectory import FR_A, FR_O, FR_S, FR_WID, L_START, frame_pose, to_frame, to_inertial
 
-# glob slots (G_V, the constant speed, and G_PROF, the speed profile's count with its points
-# after it, are speed.py's)
+# glob slots (G_V, the constant speed, G_LINE, 1 on a line, and G_PROF, the speed profile's
+# count with its points after it, are speed.py's)
 G_GRAV, G_S0, G_DS, G_TRACK, G_RAMP = 0, 4, 5, 6, 7
 N_GLOB = G_PROF + 1
 WH_MARKER, WH_SIDE, WH_BODY, WH_TRACK = 0, 1, 2, 3   # WH_TRACK: the rail body's marker, -1 none
@@ -80,19 +81,54 @@ def track_at(trk, row, s, glob, t):
 
 
 @njit(cache=True)
-def wheel_forces(t, y, bi, wh_i, wh_f, wtab, wpar, trk, wrk, glob, Ab, omb, mkp, mkv, mkR, mkw, mkF,
-                 mkM, whout):
+def _on_rails(line, s_b, c, e, vc, om, mkp, mkv, mt, fr, loc):
+    """A wheel on a line: the track frame at its contact's chainage into ``fr`` (the frame at its
+    body's chainage ``s_b`` moved on by the centre's lead along it, then taken there again), and
+    in that frame's axes the wheel centre ``loc[0]``, axle ``loc[1]``, centre velocity ``loc[2]``
+    and angular velocity ``loc[3]``, the rail body's (``mt``) height and vertical rate
+    ``loc[4, :2]``.  The rails are at rest, so the contact is the tangent track's there (cant and
+    curvature enter through the frame's axes and the wheelset's own motion: the creepages'
+    curvature terms, ``b / R`` in ``xi`` and the yaw rate in the spin).  Returns the chainage
+    from the run's start."""
+    frame_pose(line, s_b, fr)
+    for _ in range(2):
+        lead = 0.0
+        for a in range(3):
+            lead += fr[FR_A + 3 * a] * (c[a] - fr[FR_O + a])
+        frame_pose(line, fr[FR_S] + lead, fr)
+    for a in range(3):
+        loc[4, a] = c[a] - fr[FR_O + a]
+    to_frame(fr, loc[4], loc[0])
+    to_frame(fr, e, loc[1])
+    to_frame(fr, vc, loc[2])
+    to_frame(fr, om, loc[3])
+    loc[4, 0] = 0.0
+    loc[4, 1] = 0.0
+    if mt >= 0:
+        for a in range(3):
+            loc[4, 0] += fr[FR_A + 3 * a + 2] * (mkp[mt, a] - fr[FR_O + a])
+            loc[4, 1] += fr[FR_A + 3 * a + 2] * mkv[mt, a]
+    return fr[FR_S] - line[L_START]
+
+
+@njit(cache=True)
+def wheel_forces(t, y, bi, wh_i, wh_f, wtab, wpar, trk, wrk, glob, Ab, omb, omfb, mkp, mkv, mkR,
+                 mkw, mkF, mkM, whout, line, frm, fr):
     """Every wheel's contact force and moment at ``t`` on its marker (and on its rail body's),
     its outputs in ``whout`` (module docstring).  The arrays one by one, not the system's ``S``
     and ``W`` whole: those cost 457-489 instructions a right-hand side more, 0.1-0.3 %
-    (benchmarks/README.md, "Grouped arguments")."""
+    (benchmarks/README.md, "Grouped arguments").  On a line (``glob[G_LINE]``) each wheel meets
+    its rails in the track frame at its contact's chainage (:func:`_on_rails`), ``frm`` the
+    bodies' frames and ``fr`` scratch."""
     V = profile_at(glob, t)[1]        # the creepages' reference speed: the profile's at t
+    on = glob[G_LINE] != 0.0
     c = np.empty(3)
     e = np.empty(3)
     vc = np.empty(3)
     om = np.empty(3)
     d = np.empty(3)
     tmp = np.empty(3)
+    loc = np.empty((5, 3))
     for w in range(wh_i.shape[0]):
         m, side, b = wh_i[w, WH_MARKER], wh_i[w, WH_SIDE], wh_i[w, WH_BODY]
         R = mkR[m]
@@ -107,32 +143,52 @@ def wheel_forces(t, y, bi, wh_i, wh_f, wtab, wpar, trk, wrk, glob, Ab, omb, mkp,
         for a in range(3):
             vc[a] = mkv[m, a] + tmp[a]
         if bi[b, BI_SPIN] == 1:
+            # the spin against the body's frame (off a line that frame does not turn about y)
             A = Ab[b]
             for a in range(3):
-                om[a] += A[a, 1] * omb[b, 1]
-        z_r, dz = track_at(trk, side, c[0], glob, t)
-        y_r, dyr = track_at(trk, 2 + side, c[0], glob, t)
+                om[a] += A[a, 1] * (omb[b, 1] - omfb[b, 1])
+        mt = wh_i[w, WH_TRACK]
+        ch = c[0]                                 # the chainage from the run's start
+        sy = 0.0
+        if on:
+            ch = _on_rails(line, frm[b, FR_S], c, e, vc, om, mkp, mkv, mt, fr, loc)
+            sy = (0.5 if side == 0 else -0.5) * fr[FR_WID]
+        z_r, dz = track_at(trk, side, ch, glob, t)
+        y_r, dyr = track_at(trk, 2 + side, ch, glob, t)
+        y_r += sy                                 # the gauge widening moves each rail out
         if wh_f[w, WF_DS] > 0.0 and t > 0.0:      # the wheel's own roughness, turning with it
             fade = _fade(glob, t)
-            s_w = y[bi[b, BI_POS] + 7] * rc if bi[b, BI_SPIN] == 1 else c[0]
+            s_w = y[bi[b, BI_POS] + 7] * rc if bi[b, BI_SPIN] == 1 else ch
             r, dr = hermite_at(wrk[w, 0], wrk[w, 1], s_w, wh_f[w, WF_DS])
             z_r += fade * r
             dz += fade * dr
-        mt = wh_i[w, WH_TRACK]
         zt = 0.0
         vt = 0.0
         if mt >= 0:                               # the rail body under the wheel (track/bed.py)
-            zt = mkp[mt, 2]
-            vt = mkv[mt, 2]
+            zt = loc[4, 0] if on else mkp[mt, 2]
+            vt = loc[4, 1] if on else mkv[mt, 2]
         out = whout[w]
-        wheel_rail_force(side, c, e, vc, om, V, z_r + zt, y_r, dz * vc[0] + vt, dyr * vc[0], wtab,
-                         wpar, out)
-        if mt >= 0:                               # its vertical force on the rail
-            mkF[mt, 2] -= out[2]
-        # out[0:3] force on the wheel, out[3:6] moment about c: move to the marker
+        if on:
+            wheel_rail_force(side, loc[0], loc[1], loc[2], loc[3], V, z_r + zt, y_r,
+                             dz * loc[2, 0] + vt, dyr * loc[2, 0], wtab, wpar, out)
+        else:
+            wheel_rail_force(side, c, e, vc, om, V, z_r + zt, y_r, dz * vc[0] + vt, dyr * vc[0],
+                             wtab, wpar, out)
+        # out[0:3] force on the wheel, out[3:6] moment about c (on a line in the track frame's
+        # axes, as the outputs keep them): move to the marker
         for a in range(3):
             tmp[a] = out[a]
+            om[a] = out[3 + a]
+        if on:
+            to_inertial(fr, out[0:3], tmp)
+            to_inertial(fr, out[3:6], om)
+        if mt >= 0:                               # its normal force on the rail
+            if on:
+                for a in range(3):
+                    mkF[mt, a] -= out[2] * fr[FR_A + 3 * a + 2]
+            else:
+                mkF[mt, 2] -= out[2]
         cross(d, tmp, e)
         for a in range(3):
-            mkF[m, a] += out[a]
-            mkM[m, a] += out[3 + a] + e[a]
+            mkF[m, a] += tmp[a]
+            mkM[m, a] += om[a] + e[a]

@@ -23,6 +23,7 @@ from .body import Body
 from ..kernel.body import BF_GRAV, BF_JINV, BF_M, BF_MC, BF_P0, BF_WIDTH
 from ..kernel.elements import EL_WIDTH
 from ..kernel.system import Arrays, Work
+from ..kernel.trajectory import FR_N
 from ..wheelrail.element_kernel import N_OUT
 
 #: s, the track irregularity fades in over this time from the start of a run (so a run's first
@@ -72,6 +73,17 @@ class System:
         self.track_ramp = TRACK_RAMP_S
         self.bearings: list[tuple] = []
         self.bearing_tag = None
+        self.line = None
+        self.line_start = 0.0
+
+    def on_line(self, line, start: float) -> None:
+        """Run on ``line`` (:class:`axlebox.mbs.track.line.Line`), the body frame's origin ``x = 0``
+        starting at chainage ``start`` (m).  The system is built as on tangent track (x forward
+        along the car, every body at the running speed); assembled, each body is then described
+        from its track frame at its own ``x`` (:mod:`axlebox.mbs.kernel.trajectory`), at rest on
+        it but for what the build gave beyond the running speed, and a ground marker is the
+        track's point at its ``x``."""
+        self.line, self.line_start = line, float(start)
 
     # -- building -------------------------------------------------------------------------
     def index(self, name: str) -> int:
@@ -197,6 +209,9 @@ class System:
             ip += npos[k]
             iv += nvel[k]
         inv = np.concatenate(inv_parts) if inv_parts else np.zeros(1)
+        line = np.zeros(1)
+        if self.line is not None:
+            line = self._to_line(y0, bi, bf)
 
         mk_i = np.zeros((len(self.markers), 2), np.int64)
         mk_f = np.zeros((max(len(self.markers), 1), 12))
@@ -217,7 +232,7 @@ class System:
         el_i = np.array([r[0] for r in rows], np.int64).reshape(-1, 4)
         el_f = np.array([r[1] for r in rows]).reshape(-1, EL_WIDTH)
 
-        from ..kernel.wheels import G_DS, G_GRAV, G_PROF, G_RAMP, G_S0, G_TRACK, G_V, N_GLOB
+        from ..kernel.wheels import G_DS, G_GRAV, G_LINE, G_PROF, G_RAMP, G_S0, G_TRACK, G_V, N_GLOB
         glob = np.zeros(N_GLOB)
         glob[G_RAMP] = self.track_ramp
         glob[G_GRAV:G_GRAV + 3] = self.gravity
@@ -255,9 +270,33 @@ class System:
         sens_names = list(self.sensors)
         sens = np.array([self.sensors[s] for s in sens_names], np.int64)
         B, y0 = self._pack_bearings(y0)
+        if self.line is not None:
+            glob[G_LINE] = 1.0
         S = Arrays(bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f,
-                   np.ascontiguousarray(wtab, float), np.ascontiguousarray(wpar, float), trk, wrk, sens)
+                   np.ascontiguousarray(wtab, float), np.ascontiguousarray(wpar, float), trk, wrk, sens,
+                   line, np.array([(x[1], x[2], x[3]) for x in self.bearings], np.int64).reshape(-1, 3))
         return Model(self, S, y0, nq, sens_names, [w[0] for w in self.wheels], B)
+
+    def _to_line(self, y0: np.ndarray, bi: np.ndarray, bf: np.ndarray) -> np.ndarray:
+        """The bodies' built states turned into states on their track frames (:meth:`on_line`),
+        in place; their places along the car into ``bf``; returns the packed line."""
+        from ..kernel.body import BF_X
+        from ..kernel.trajectory import FR_N, FR_W, frame_motion, pack
+        v0 = self.profile.speed(0.0) if self.profile is not None else self.speed
+        line = pack(self.line, self.line_start)
+        F = np.zeros(FR_N)
+        for k in range(bi.shape[0]):
+            ip, iv = int(bi[k, 0]), int(bi[k, 1])
+            bf[k, BF_X] = y0[ip]
+            frame_motion(line, self.line_start + y0[ip], v0, F)
+            w = F[FR_W:FR_W + 3]
+            r = np.array([0.0, y0[ip + 1], y0[ip + 2]])
+            y0[ip] = 0.0
+            # at rest on the frame but for what the build gave beyond the running speed (the
+            # wheelsets' spin): the frame point's velocity and the frame's rate added
+            y0[iv:iv + 3] += np.cross(w, r)
+            y0[iv + 3:iv + 6] += fn.quat_to_A(y0[ip + 3:ip + 7]).T @ w
+        return line
 
     def _pack_bearings(self, y0):
         """The bearings (mbs/kernel/bearings.py ``Bearings``, with every array their kernels
@@ -336,7 +375,8 @@ class Model:
         self.W = Work(z((nb, 3, 3)), z((nb, 3)), z((nb, 3)), z((nb, 3)), z((nb, 3)),
                       z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3, 3)),
                       z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3)), z(ngen),
-                      z((max(ne, 1), 6)), z((max(len(wheels), 1), N_OUT)), z((max(len(sensors), 1), 3)))
+                      z((max(ne, 1), 6)), z((max(len(wheels), 1), N_OUT)), z((max(len(sensors), 1), 3)),
+                      z((nb, FR_N)), z(FR_N), z((max(len(system.bearings), 1), 2, 6)))
 
     @property
     def bodies(self) -> list[Body]:
@@ -363,6 +403,15 @@ class Model:
         of :meth:`rhs`, without the bearings' rates or the bodies' accelerations)."""
         from ..kernel.system import kinematics
         kinematics(float(t), np.ascontiguousarray(y, float), np.zeros(y.size), self.S, self.W)
+
+    def inertial(self, k: int, t: float, y: np.ndarray) -> dict:
+        """Body ``k``'s inertial kinematics at ``(t, y)``: position ``r``, axes ``A``, velocity
+        ``v`` (inertial axes), angular velocity ``omega`` (body axes; a spinning body's with its
+        spin) - on a line, from its states on its track frame (mbs/kernel/trajectory.py)."""
+        self.kinematics(t, y)
+        W = self.W
+        return {"r": W.rb[k].copy(), "A": W.Ab[k].copy(), "v": W.vb[k].copy(),
+                "omega": W.omb[k].copy()}
 
     def body_state(self, k: int, y: np.ndarray) -> dict:
         """Unpacked state of body ``k``: r, p, A, beta, q, v, omega, qd."""

@@ -1,4 +1,6 @@
-"""The B-type metro motor car on tangent track, built from a validated config (:mod:`.config`).
+"""The B-type metro motor car, built from a validated config (:mod:`.config`): on tangent track,
+or on the line of ``[[track.layout]]``, each body then described from its track frame
+(:mod:`axlebox.mbs.kernel.trajectory`; the car is built as on tangent track, x along it).
 
 Bodies: carbody; two bogie frames (``frame1`` front at x = 0, ``frame2`` at ``-bogie_distance``);
 four wheelsets ``ws1..ws4`` (spinning frames, see :mod:`axlebox.mbs.solver.body`); eight axle-boxes
@@ -270,6 +272,9 @@ def build(cfg: CarConfig, tables, track=None, reduced: dict[str, ReducedBody] | 
                 s.add(Spring(f"hanger{k}", fh, hm, k=gb.hanger_k, c=gb.hanger_c, preload=-F_h))
     if profile.accelerates:
         _drives(s, z_ws - float(tables.tab[ic, COL_PZ]))
+    line = cfg.line(s0=2 * l0)           # the cant measured between the nominal contact lines
+    if line is not None:
+        s.on_line(line, cfg.track.start)
     return s
 
 

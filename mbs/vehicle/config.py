@@ -40,6 +40,7 @@ from axlebox.mbs.vehicle.speed import SpeedProfile
 from axlebox.mbs.track.irregularity import IrregularityParams
 from axlebox.mbs.track.bed import MODELS as TRACK_MODELS
 from axlebox.mbs.track.bed import Seats
+from axlebox.mbs.track.line import Line, Segment
 from axlebox.mbs.wheelrail.element import WheelRailParams
 from axlebox.mbs.wheelrail.geometry import TrackLayout
 
@@ -133,6 +134,9 @@ class Track:
     sleeper_spacing: float = like(Seats, "sleeper_spacing")
     pad_k: float = like(Seats, "pad_k")
     pad_c: float = like(Seats, "pad_c")
+    start: float = param(0.0, 0.0, 1e6, "m", "with [[track.layout]]: where on the line (chainage "
+                         "from its start) the front bogie's centre starts; the rear bogie's wheels "
+                         "must be on the line too")
     sleeper_mass: float = like(Seats, "sleeper_mass")
     ballast_mass: float = like(Seats, "ballast_mass")
     ballast_k: float = like(Seats, "ballast_k")
@@ -483,6 +487,9 @@ class CarConfig:
     bearing: object = field(default_factory=_default_bearing)
     defects: tuple[BearingDefect, ...] = ()
     wheel_defects: tuple[WheelDefect, ...] = ()
+    #: ``[[track.layout]]``: the line's segments (mbs/track/line.py); none: tangent track, the
+    #: bodies described from the inertial frame
+    segments: tuple[Segment, ...] = ()
 
     def __post_init__(self):
         _cross_checks(self)
@@ -525,6 +532,11 @@ class CarConfig:
             return SpeedProfile.from_kmh(self.run.profile)
         return SpeedProfile.constant(self.run.speed_kmh / 3.6)
 
+    def line(self, s0: float = 1.5) -> Line | None:
+        """The line of ``[[track.layout]]`` (None without one: tangent track); ``s0`` the
+        distance between the rails' contact points its cant is measured over, m."""
+        return Line(self.segments, s0=s0) if self.segments else None
+
     def track_needed(self, duration: float | None = None) -> float:
         """Metres of track the car covers in ``duration`` s (default: the run's): the distance
         run plus its length (the bogie distance and 5 m)."""
@@ -538,6 +550,9 @@ class CarConfig:
         ``wheel_defects`` -> their entries (tables or objects)."""
         new = {}
         for name, value in changes.items():
+            if name == "track" and "layout" in value:
+                value = dict(value)
+                new["segments"] = _segments(value.pop("layout"))
             if name in SECTIONS:
                 new[name] = _section(name, {**_table(getattr(self, name)), **value})
             elif name == "bearing":
@@ -552,6 +567,8 @@ class CarConfig:
     def to_dict(self) -> dict:
         """Every table and field, defaults filled in, as plain TOML data."""
         out = {name: _table(getattr(self, name)) for name in SECTIONS}
+        if self.segments:
+            out["track"]["layout"] = [g.to_table() for g in self.segments]
         out["bearing"] = models.to_table(self.bearing)
         if self.defects:
             out["defects"] = [d.to_table() for d in self.defects]
@@ -576,6 +593,14 @@ def _table(obj) -> dict:
 
 def _section(name: str, fields):
     return from_table(SECTIONS[name], fields, name)
+
+
+def _segments(items) -> tuple:
+    if not isinstance(items, (list, tuple)):
+        raise ParameterError(f"track.layout = {items!r} is not allowed: expected [[track.layout]] "
+                             "tables")
+    return tuple(g if isinstance(g, Segment) else Segment.from_table(g, f"track.layout[{i}]")
+                 for i, g in enumerate(items))
 
 
 def _entries(name: str, items) -> tuple:
@@ -618,6 +643,7 @@ def _cross_checks(c: CarConfig) -> None:
                              "track.irregularity = false: expected 'none' (the rails' roughness "
                              "rides on their irregular record)")
     need = c.track_needed()
+    _check_line(c)
     if t.irregularity and t.length < need:
         raise ParameterError(f"track.length = {t.length:g} is not allowed: the car runs "
                              f"{need:.0f} m (distance plus its length); expected at least that")
@@ -646,6 +672,29 @@ def _cross_checks(c: CarConfig) -> None:
                              f"gearbox.hanger_arm = {g.hanger_arm:g} (the hanger carries the far end)")
 
 
+def _check_line(c: CarConfig) -> None:
+    """The line must hold the whole run: the rear wheelset at the start, the front one at the
+    end."""
+    line = c.line()
+    if line is None:
+        if c.track.start != 0.0:
+            raise ParameterError(f"track.start = {c.track.start:g} is not allowed without "
+                                 "[[track.layout]]: expected 0 (tangent track has no chainage)")
+        return
+    g = c.geometry
+    rear = g.bogie_distance + g.wheelbase / 2
+    if c.track.start < rear:
+        raise ParameterError(f"track.start = {c.track.start:g} is not allowed: the rear wheelset "
+                             f"stands {rear:g} m behind the front bogie's centre; expected at least "
+                             f"{rear:g} m (the car on the line)")
+    end = c.track.start + float(c.speed_profile().distance(c.run.duration)) + g.wheelbase / 2
+    if end > line.length:
+        raise ParameterError(f"run.duration = {c.run.duration:g} is not allowed on this line: the "
+                             f"front wheelset would reach {end:.1f} m, the line ends at "
+                             f"{line.length:g} m; expected a shorter run, a later end of "
+                             "[[track.layout]] or an earlier track.start")
+
+
 def validate(user: dict) -> CarConfig:
     """The config of a parsed TOML dict: defaults overridden by what it names, every value
     checked."""
@@ -656,6 +705,9 @@ def validate(user: dict) -> CarConfig:
         if name in SECTIONS:
             if not isinstance(fields, dict):
                 raise ParameterError(f"{name} = {fields!r} is not allowed: expected a [{name}] table")
+            if name == "track" and "layout" in fields:
+                fields = dict(fields)
+                out["segments"] = _segments(fields.pop("layout"))
             out[name] = _section(name, fields)
         elif name == "bearing":
             out[name] = models.from_table(fields, "bearing")
