@@ -6,7 +6,10 @@ signals.
 
 Unknowns per body: translation, a small rotation (applied to the quaternion) and the modal
 coordinates; a spinning body's frame pitch and spin are left out (its frame does not pitch, and
-free rolling sets the spin).  Newton's method on the accelerations with a finite-difference
+free rolling sets the spin).  On a line (mbs/kernel/trajectory.py) the equilibrium is the steady
+running of the car on its track frames, at rest on them: a body moved there keeps the inertial
+velocity of its new place on its frame, and each wheelset's spin is an unknown too (in a curve
+the wheels' rolling radii differ, and the spin that rolls them freely with them).  Newton's method on the accelerations with a finite-difference
 Jacobian; least squares takes care of the neutral directions (the car's position along the
 track).
 """
@@ -17,41 +20,73 @@ from scipy.spatial.transform import Rotation
 
 from axlebox._params import ParameterError
 
+from ..kernel.speed import G_LINE
+from ..kernel.trajectory import FR_W
 from ..solver.system import Model
 
 
+def _on_line(model: Model) -> bool:
+    return model.S.glob[G_LINE] != 0.0
+
+
 def _index(model: Model):
-    """Columns (position perturbations) and rows (acceleration equations) kept."""
+    """Columns (position perturbations; on a line the spin rates too) and rows (acceleration
+    equations) kept."""
     bi = model.S.bi
     cols, rows = [], []
+    line = _on_line(model)
     for k in range(bi.shape[0]):
         ip, iv, n, s = (int(x) for x in bi[k, :4])
         rot = [0, 2] if s else [0, 1, 2]
-        cols += [(k, "r", a) for a in range(3)] + [(k, "th", a) for a in rot] + \
-            [(k, "q", j) for j in range(n)]
+        # on a line the first body stays where it is along its frame: there the place along
+        # the track is not quite neutral (a body ahead of its frame's origin is off its curve),
+        # and the spins balance the longitudinal forces
+        cols += [(k, "r", a) for a in range(3) if not (line and k == 0 and a == 0)] + \
+            [(k, "th", a) for a in rot] + [(k, "q", j) for j in range(n)]
         rows += [iv + a for a in range(3)] + [iv + 3 + a for a in rot] + [iv + 6 + j for j in range(n)]
+        if s and line:                 # a curve's radius difference asks its own spin
+            cols.append((k, "spin", 0))
+            rows.append(iv + 4)
     return cols, np.array(rows)
 
 
-def _apply(model: Model, y: np.ndarray, cols, dx: np.ndarray) -> np.ndarray:
+def _frame_rates(model: Model, y) -> np.ndarray:
+    """Each body's track frame's angular velocity at t = 0 (its own axes), (nb, 3)."""
+    model.kinematics(0.0, y)
+    return model.W.frm[:, FR_W:FR_W + 3].copy()
+
+
+def _apply(model: Model, y: np.ndarray, cols, dx: np.ndarray, wF=None) -> np.ndarray:
+    """``y`` moved by ``dx`` along ``cols``; on a line (``wF`` the frames' rates) with the
+    velocities that keep each body at rest on its track frame as it was (its inertial velocity
+    and angular velocity follow its place and axes there)."""
     y = y.copy()
     bi = model.S.bi
     rotv = {}
     for (k, what, a), d in zip(cols, dx):
-        ip, s = int(bi[k, 0]), int(bi[k, 3])
+        ip, iv, s = int(bi[k, 0]), int(bi[k, 1]), int(bi[k, 3])
         if what == "r":
             y[ip + a] += d
+            if wF is not None:         # u = v_0 + omega_F x r + r'
+                e = np.zeros(3)
+                e[a] = d
+                y[iv:iv + 3] += np.cross(wF[k], e)
         elif what == "q":
             y[ip + 7 + s + a] += d
+        elif what == "spin":
+            y[iv + 4] += d
         else:
             rotv.setdefault(k, np.zeros(3))[a] += d
     for k, th in rotv.items():
-        ip = int(bi[k, 0])
+        ip, iv = int(bi[k, 0]), int(bi[k, 1])
         # A <- A exp(th~): a rotation about body axes
         w, x, yy, z = y[ip + 3:ip + 7]
-        rot = Rotation.from_quat([x, yy, z, w]) * Rotation.from_rotvec(th)
+        old = Rotation.from_quat([x, yy, z, w])
+        rot = old * Rotation.from_rotvec(th)
         x, yy, z, w = rot.as_quat()
         y[ip + 3:ip + 7] = (w, x, yy, z)
+        if wF is not None:             # omega = omega_rel + A_rel^T omega_F
+            y[iv + 3:iv + 6] += rot.inv().apply(wF[k]) - old.inv().apply(wF[k])
     return y
 
 
@@ -64,6 +99,7 @@ def equilibrium(model: Model, y0=None, *, tol: float = 1e-6, accept: float = 1e-
     taken (0.1 % of the weight, far below the dynamic loads) and logged; above it is an error."""
     y = np.array(model.y0 if y0 is None else y0, float)
     cols, rows = _index(model)
+    wF = _frame_rates(model, y) if _on_line(model) else None
     n = len(cols)
     h = np.full(n, 1e-7)
     wmass = np.zeros(model.n_states)
@@ -96,12 +132,12 @@ def equilibrium(model: Model, y0=None, *, tol: float = 1e-6, accept: float = 1e-
         for j in range(n):
             dx = np.zeros(n)
             dx[j] = h[j]
-            J[:, j] = (res(_apply(model, y, cols, dx)) - r) / h[j]
+            J[:, j] = (res(_apply(model, y, cols, dx, wF)) - r) / h[j]
         dx = np.linalg.lstsq(J, -r, rcond=1e-12)[0]
         # damped step: the Hertz contact stiffens with load, a full step can lift a wheel
         lam = 1.0
         for _ in range(12):
-            yt = _apply(model, y, cols, lam * dx)
+            yt = _apply(model, y, cols, lam * dx, wF)
             rt = res(yt)
             if np.isfinite(rt).all() and np.abs(rt).max() < err:
                 break
