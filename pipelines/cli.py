@@ -569,8 +569,10 @@ def parser() -> argparse.ArgumentParser:
     bsim.add_argument("--out", required=True, help="result file (.h5)")
     bsim.set_defaults(func=_cmd_bearing_simulate)
 
-    sm = sub.add_parser("simulate", help="the metro car on tangent track from a config "
-                                         "(e.g. vehicle, validation_48kmh); writes an axlebox-result file")
+    sm = sub.add_parser("simulate", help="the metro car on tangent track, or on the line of its "
+                                         "[[track.layout]], from a config (e.g. vehicle, "
+                                         "validation_48kmh, curve_300m_left_unbalanced); writes an "
+                                         "axlebox-result file")
     sm.add_argument("config", help="vehicle config: a TOML file or a shipped config's name (axlebox configs)")
     sm.add_argument("--duration", type=float, default=None, metavar="S",
                     help="simulated time (default: the config's run.duration)")

@@ -1,4 +1,5 @@
-"""``axlebox simulate CONFIG.toml``: the metro car on tangent track, from config to result file.
+"""``axlebox simulate CONFIG.toml``: the metro car on tangent track or on a line's curves
+(``[[track.layout]]``), from config to result file.
 
 Steps: validate the config; read (or build at the coarse mesh, cached) the reduced bodies the
 config makes flexible; wheel-rail tables; track irregularity; the vehicle; static equilibrium on

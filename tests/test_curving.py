@@ -84,7 +84,7 @@ def _free_wheelset(R, V, gamma=0.05):
     from axlebox.mbs.track.line import Line, Segment
     from axlebox.mbs.vehicle.statics import equilibrium
     from axlebox.mbs.wheelrail.element import WheelRailParams, build_tables
-    from axlebox.mbs.wheelrail.element_kernel import COL_C0Z, COL_KH, COL_PZ, COL_R, P_L0
+    from axlebox.mbs.wheelrail.element_kernel import COL_C0Z, COL_KH, COL_PZ, P_L0
     from axlebox.mbs.wheelrail.geometry import TrackLayout
     from axlebox.mbs.wheelrail.profile import Profile
     y = np.linspace(-0.07, 0.07, 701)

@@ -9,9 +9,10 @@ coordinates; a spinning body's frame pitch and spin are left out (its frame does
 free rolling sets the spin).  On a line (mbs/kernel/trajectory.py) the equilibrium is the steady
 running of the car on its track frames, at rest on them: a body moved there keeps the inertial
 velocity of its new place on its frame, and each wheelset's spin is an unknown too (in a curve
-the wheels' rolling radii differ, and the spin that rolls them freely with them).  Newton's method on the accelerations with a finite-difference
-Jacobian; least squares takes care of the neutral directions (the car's position along the
-track).
+the wheels' rolling radii differ, and the spin that rolls them freely with them).
+
+Newton's method on the accelerations with a finite-difference Jacobian; least squares takes
+care of the neutral directions (the car's position along the track).
 """
 from __future__ import annotations
 
