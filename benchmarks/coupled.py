@@ -72,7 +72,8 @@ def _stage(which, nrep, t, y, dy, S, W, B):
             bearing_forces(B, t, y, dy, bi, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.elout)
         elif which == 3:
             wheel_forces(t, y, bi, S.wh_i, S.wh_f, S.wtab, S.wpar, S.trk, S.wrk, S.glob, W.Ab, W.omb,
-                         W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.whout)
+                         W.omfb, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.whout, S.line, W.frm,
+                         W.fr)
         elif which == 4:
             for b in range(nb):
                 n, o = bi[b, BI_N], S.goff[b]
