@@ -176,7 +176,7 @@ def test_one_substep_an_exchange_is_the_cars_single_rate_leapfrog(car):
         if i == n:
             break
         hk = 0.5 * h if i == 0 else h
-        ki._kick_drift(y, dy, hk, h, model.S, model.W)
+        ki._kick_drift(y, dy, hk, h, (i + 0.5) * h, model.S, model.W)
         for k, (off, nb) in enumerate(model.B.idx[:, [BR_OFF, BR_N]]):
             kick_drift(y[off:off + nb], dy[off:off + nb], model.B.P[k], hk, h, True)
         ki._normalise(y, model.S.bi)

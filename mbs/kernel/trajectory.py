@@ -4,7 +4,7 @@ states measured from them.
 On a line (:class:`axlebox.mbs.track.line.Line`, packed by :meth:`~axlebox.mbs.track.line.Line.pack`
 into ``line``) each body ``b`` is described from its own track frame, the frame of the line at
 ``s_b(t) = s_start + x(t) + X_b``: ``s_start`` where the car's reference point (the front bogie's
-centre) starts, ``x(t)`` the distance the speed profile has run (:mod:`.speed`), ``X_b`` the body's
+centre) starts, ``x(t)`` the distance the speed profile has run (:mod:`axlebox.mbs.kernel.speed`), ``X_b`` the body's
 place along the car (``bf[b, BF_X]``).  The frame's axes ``A_F = Rz(psi) Rx(phi)`` (forward, left
 in the canted plane, its normal), origin ``O`` on the centre line at rail level; it turns at
 ``omega_F = v (phi', kappa sin phi, kappa cos phi)`` in its own axes
@@ -22,7 +22,7 @@ line; the modal coordinates as they are.  So::
     u' = A_F^T a_abs - omega_F x u
 
 with ``omega_f`` the body frame's inertial rate (a spinning body's without its spin) and
-``a_abs`` the inertial acceleration the equations of motion (:mod:`.body`) give from the
+``a_abs`` the inertial acceleration the equations of motion (:mod:`axlebox.mbs.kernel.body`) give from the
 inertial kinematics, which the markers, force elements and bearings see as off a line.  The
 moving frame's inertial terms are all there and exact: seen from the frame, ``-omega_F x u``
 holds the centrifugal forces (steady in a curve, ``u = v_0 + omega_F x r`` and ``u' = 0``: the
