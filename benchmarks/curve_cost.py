@@ -43,7 +43,7 @@ def main() -> None:
     runs = {name: _model(on, a.bearings, a.duration) for name, on in (("tangent", False),
                                                                         ("curve", True))}
     best = {name: float("inf") for name in runs}
-    for name, (cfg, model, y0) in runs.items():          # compile both before timing
+    for cfg, model, y0 in runs.values():                 # compile both before timing
         ps.integrate.simulate(model, 0.01, cfg.settings(), y0=y0)
     for _ in range(a.repeat):
         for name, (cfg, model, y0) in runs.items():
