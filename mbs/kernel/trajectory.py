@@ -5,7 +5,8 @@ On a line (:class:`axlebox.mbs.track.line.Line`, packed by :meth:`~axlebox.mbs.t
 into ``line``) each body ``b`` is described from its own track frame, the frame of the line at
 ``s_b(t) = s_start + x(t) + X_b``: ``s_start`` where the car's reference point (the front bogie's
 centre) starts, ``x(t)`` the distance the speed profile has run
-(:mod:`axlebox.mbs.kernel.speed`), ``X_b`` the body's place along the car (``bf[b, BF_X]``).  The frame's axes ``A_F = Rz(psi) Rx(phi)`` (forward, left
+(:mod:`axlebox.mbs.kernel.speed`), ``X_b`` the body's place along the car (``bf[b, BF_X]``).
+The frame's axes ``A_F = Rz(psi) Rx(phi)`` (forward, left
 in the canted plane, its normal), origin ``O`` on the centre line at rail level; it turns at
 ``omega_F = v (phi', kappa sin phi, kappa cos phi)`` in its own axes
 (:func:`axlebox.mbs.track.line.frame_motion`, tested against finite differences).
