@@ -76,6 +76,20 @@ def wheelset_fe():
     return p, fe, eigen.free_free_modes(fe, 30)
 
 
+def craig_bampton_bar(n_modes: int):
+    """A 1 m steel bar 40 x 60 mm, Craig-Bampton with ``n_modes`` fixed-interface modes, undamped:
+    end_a clamped-ready (RBE2), end_b loaded (RBE3); ``(fe, interfaces, reduced body)``."""
+    from axlebox.fem import assembly, interfaces
+    from axlebox.fem.body import make_body
+    from axlebox.geometry import beam, mesh
+    p = beam.BeamParams(length=1.0, width=0.04, height=0.06)
+    fe = assembly.assemble(mesh.mesh_model("beam", beam.build, p, 0.02))
+    itf = interfaces.make_interfaces(fe, {"end_a": "rbe2", "end_b": "rbe3"},
+                                     {"end_a": (-0.5, 0, 0), "end_b": (0.5, 0, 0)})
+    rb, _ = make_body("bar", fe, itf, method="craig-bampton", n_modes=n_modes, damping=("modal", 0.0))
+    return fe, itf, rb
+
+
 def write_pair_result(path, left, right, config_toml: str, fs: float, seed: int = 0, more=None):
     """Two axle-box signals as a vehicle result file (vertical column of ws2_L / ws2_R);
     ``more``: further sensors, name -> (n, 3) accelerations."""

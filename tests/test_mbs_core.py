@@ -1,12 +1,11 @@
 """The floating-frame multibody core against invariants and closed forms."""
 import numpy as np
 import pytest
+from conftest import craig_bampton_bar
 from scipy.integrate import solve_ivp
 
 from axlebox._params import ParameterError
-from axlebox.fem import assembly, interfaces
-from axlebox.fem.body import make_body
-from axlebox.geometry import beam, mesh
+from axlebox.fem import interfaces
 from axlebox.mbs.solver import ffrf_numpy as fn
 from axlebox.mbs.solver import integrate
 from axlebox.mbs.solver.body import add_point_masses, flexible, rigid
@@ -17,12 +16,7 @@ from axlebox.mbs.solver.system import System
 @pytest.fixture(scope="module")
 def bar():
     """A 1 m steel bar, Craig-Bampton: end_a clamped-ready (RBE2), end_b loaded (RBE3)."""
-    p = beam.BeamParams(length=1.0, width=0.04, height=0.06)
-    fe = assembly.assemble(mesh.mesh_model("beam", beam.build, p, 0.02))
-    itf = interfaces.make_interfaces(fe, {"end_a": "rbe2", "end_b": "rbe3"},
-                                     {"end_a": (-0.5, 0, 0), "end_b": (0.5, 0, 0)})
-    rb, _ = make_body("bar", fe, itf, method="craig-bampton", n_modes=8, damping=("modal", 0.0))
-    return fe, itf, rb
+    return craig_bampton_bar(8)
 
 
 def _spinning_bar(rb, n_modes):

@@ -12,6 +12,7 @@ position rates step there, and a fixed step straddling it makes a first-order er
 ``h |d omega_F| (|r| + |u| T)``.  The run through the transition is held to that bound."""
 import numpy as np
 import pytest
+from conftest import craig_bampton_bar
 
 from axlebox.mbs.solver import integrate
 from axlebox.mbs.solver.body import flexible, rigid
@@ -138,15 +139,7 @@ def test_through_a_transition_the_kink_costs_what_one_step_across_it_does():
 
 @pytest.fixture(scope="module")
 def bar():
-    from axlebox.fem import assembly, interfaces
-    from axlebox.fem.body import make_body
-    from axlebox.geometry import beam, mesh
-    p = beam.BeamParams(length=1.0, width=0.04, height=0.06)
-    fe = assembly.assemble(mesh.mesh_model("beam", beam.build, p, 0.02))
-    itf = interfaces.make_interfaces(fe, {"end_a": "rbe2", "end_b": "rbe3"},
-                                     {"end_a": (-0.5, 0, 0), "end_b": (0.5, 0, 0)})
-    rb, _ = make_body("bar", fe, itf, method="craig-bampton", n_modes=4, damping=("modal", 0.0))
-    return rb
+    return craig_bampton_bar(4)[2]
 
 
 def test_a_free_flexible_body_moves_and_deforms_the_same_from_the_track_frames(bar):

@@ -78,7 +78,6 @@ def _rings_to_frames(S, W):
     markers' loads so far are kept in ``W.brs``."""
     if S.glob[G_LINE] == 0.0:
         return
-    t = W.fr
     for k in range(S.brm.shape[0]):
         F = W.frm[S.brm[k, 2]]
         for j in range(2):
@@ -86,18 +85,12 @@ def _rings_to_frames(S, W):
             for a in range(3):
                 W.brs[k, j, a] = W.mkF[m, a]
                 W.brs[k, j, 3 + a] = W.mkM[m, a]
-                t[a] = W.mkp[m, a] - F[FR_O + a]
-            to_frame(F, t, W.mkp[m])
-            for a in range(3):
-                t[a] = W.mkv[m, a]
-            to_frame(F, t, W.mkv[m])
-            for a in range(3):
-                t[a] = W.mkw[m, a]
-            to_frame(F, t, W.mkw[m])
+                W.mkp[m, a] -= F[FR_O + a]
+            to_frame(F, W.mkp[m], W.mkp[m])
+            to_frame(F, W.mkv[m], W.mkv[m])
+            to_frame(F, W.mkw[m], W.mkw[m])
             for c in range(3):
-                for a in range(3):
-                    t[a] = W.mkR[m, a, c]
-                to_frame(F, t, W.mkR[m, :, c])
+                to_frame(F, W.mkR[m, :, c], W.mkR[m, :, c])
 
 
 @njit(cache=True)
@@ -106,19 +99,17 @@ def _ring_loads_to_inertial(S, W):
     back to the inertial (:func:`_rings_to_frames`)."""
     if S.glob[G_LINE] == 0.0:
         return
-    t = W.fr
     for k in range(S.brm.shape[0]):
         F = W.frm[S.brm[k, 2]]
         for j in range(2):
             m = S.brm[k, j]
             for a in range(3):
-                t[a] = W.mkF[m, a] - W.brs[k, j, a]
-            to_inertial(F, t, W.mkF[m])
+                W.mkF[m, a] -= W.brs[k, j, a]
+                W.mkM[m, a] -= W.brs[k, j, 3 + a]
+            to_inertial(F, W.mkF[m], W.mkF[m])
+            to_inertial(F, W.mkM[m], W.mkM[m])
             for a in range(3):
                 W.mkF[m, a] += W.brs[k, j, a]
-                t[a] = W.mkM[m, a] - W.brs[k, j, 3 + a]
-            to_inertial(F, t, W.mkM[m])
-            for a in range(3):
                 W.mkM[m, a] += W.brs[k, j, 3 + a]
 
 
@@ -195,9 +186,7 @@ def _on_line(y, dy, S, W):
     for s in range(S.sens.shape[0]):
         b = S.mk_i[S.sens[s], MK_BODY]
         if b >= 0:
-            for a in range(3):
-                W.fr[a] = W.sensout[s, a]
-            to_frame(W.frm[b], W.fr, W.sensout[s])
+            to_frame(W.frm[b], W.sensout[s], W.sensout[s])
     for b in range(bi.shape[0]):
         iv = bi[b, BI_VEL]
         velocity_rates(W.frm[b], y, iv, dy[iv:iv + 3])

@@ -180,16 +180,18 @@ def frame_motion(line, s, v, F):
 
 @njit(cache=True)
 def to_frame(F, g, out):
-    """``out = A_F^T g``: an inertial vector in the frame's axes."""
+    """``out = A_F^T g``: an inertial vector in the frame's axes (``out`` may be ``g``)."""
+    g0, g1, g2 = g[0], g[1], g[2]
     for a in range(3):
-        out[a] = F[FR_A + a] * g[0] + F[FR_A + 3 + a] * g[1] + F[FR_A + 6 + a] * g[2]
+        out[a] = F[FR_A + a] * g0 + F[FR_A + 3 + a] * g1 + F[FR_A + 6 + a] * g2
 
 
 @njit(cache=True)
 def to_inertial(F, g, out):
-    """``out = A_F g``: a vector in the frame's axes, inertial."""
+    """``out = A_F g``: a vector in the frame's axes, inertial (``out`` may be ``g``)."""
+    g0, g1, g2 = g[0], g[1], g[2]
     for a in range(3):
-        out[a] = F[FR_A + 3 * a] * g[0] + F[FR_A + 3 * a + 1] * g[1] + F[FR_A + 3 * a + 2] * g[2]
+        out[a] = F[FR_A + 3 * a] * g0 + F[FR_A + 3 * a + 1] * g1 + F[FR_A + 3 * a + 2] * g2
 
 
 @njit(cache=True)

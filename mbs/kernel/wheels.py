@@ -168,20 +168,17 @@ def wheel_forces(t, y, bi, wh_i, wh_f, wtab, wpar, trk, wrk, glob, Ab, omb, omfb
             zt = loc[4, 0] if on else mkp[mt, 2]
             vt = loc[4, 1] if on else mkv[mt, 2]
         out = whout[w]
-        if on:
-            wheel_rail_force(side, loc[0], loc[1], loc[2], loc[3], V, z_r + zt, y_r,
-                             dz * loc[2, 0] + vt, dyr * loc[2, 0], wtab, wpar, out)
-        else:
-            wheel_rail_force(side, c, e, vc, om, V, z_r + zt, y_r, dz * vc[0] + vt, dyr * vc[0],
-                             wtab, wpar, out)
+        cw, ew, vw, ow = (loc[0], loc[1], loc[2], loc[3]) if on else (c, e, vc, om)
+        wheel_rail_force(side, cw, ew, vw, ow, V, z_r + zt, y_r, dz * vw[0] + vt, dyr * vw[0], wtab,
+                         wpar, out)
         # out[0:3] force on the wheel, out[3:6] moment about c (on a line in the track frame's
         # axes, as the outputs keep them): move to the marker
         for a in range(3):
             tmp[a] = out[a]
             om[a] = out[3 + a]
         if on:
-            to_inertial(fr, out[0:3], tmp)
-            to_inertial(fr, out[3:6], om)
+            to_inertial(fr, tmp, tmp)
+            to_inertial(fr, om, om)
         if mt >= 0:                               # its normal force on the rail
             if on:
                 for a in range(3):

@@ -281,7 +281,7 @@ class System:
         """The bodies' built states turned into states on their track frames (:meth:`on_line`),
         in place; their places along the car into ``bf``; returns the packed line."""
         from ..kernel.body import BF_X
-        from ..kernel.trajectory import FR_N, FR_W, frame_motion, pack
+        from ..kernel.trajectory import FR_W, frame_motion, pack
         v0 = self.profile.speed(0.0) if self.profile is not None else self.speed
         line = pack(self.line, self.line_start)
         F = np.zeros(FR_N)
