@@ -33,7 +33,7 @@ from axlebox.bearing.diagnostics.channel import jsonable
 from axlebox.bearing.diagnostics.pair import PairResult
 from axlebox.mbs.post.comfort import RideComfort, floor_comfort, nmv_words, sperling_words
 
-from . import conclusions
+from . import conclusions, curving
 from . import report_figures as figs
 from axlebox.bearing.diagnostics.size import size_columns
 
@@ -290,7 +290,7 @@ def _comfort_html(cases: list[Case]) -> str:
 
 
 def write_html(cases, figures: list[tuple[str, Path]], modes: list[Path], out: Path,
-               claims=()) -> Path:
+               claims=(), curves=()) -> Path:
     esc = html.escape
     diagnosed = [c for c in cases if c.pair is not None]
     criterion = ""
@@ -317,6 +317,13 @@ def write_html(cases, figures: list[tuple[str, Path]], modes: list[Path], out: P
                   "N_MV (standard method: W_d on x and y, W_b on z, 95th percentile of 5 s r.m.s.) "
                   "of each floor sensor after the irregularity's fade-in. The standard evaluates "
                   "5 min; a shorter record's N_MV is an indication.</p>", _comfort_html(cases)]
+    if curves:
+        parts += ["<h2>Curving</h2>",
+                  "<p>Each run on a line: its wheels' Y and Q, Y/Q against Nadal's flange-climb "
+                  "limit, each wheelset's sum Y against Prud'homme's, lateral displacement and "
+                  "angle of attack, and each bearing's rows (EN 14363; the plot along the line is "
+                  "among the figures).</p>"]
+        parts += [f"<h3>{esc(name)}</h3>{body}" for name, body in curves]
     if claims:
         parts += ["<h2>The paper's conclusions beside ours</h2>",
                   "<p>Each claim of the paper's conclusions (1)-(3) and of its Fig. 11, checked "
@@ -376,6 +383,11 @@ def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
                         figs.comfort_indices(all_cases, out / "fig_comfort_speed.png")))
     for path in files:                  # runs along a speed profile: read window by window too
         figures += _windows_figures(path, out, log, left=left, right=right, **diagnose_kw)
+    curves = []
+    for path in files:                  # runs on a line: the curving table and the plot along it
+        if (fig := curving.figure(path, out / f"curving_{path.stem}.png")) is not None:
+            curves.append((path.name, curving.table_html(curving.table(path))))
+            figures.append((f"Curving along the line - {path.name}", fig))
     figures.sort(key=lambda t: t[1].name)
     pictures = mode_pictures(source, modes_dir)
     if pictures:
@@ -386,7 +398,7 @@ def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
     claims = conclusions.claims(cases) if any(c.defect_side for c in cases) else []
     if claims:
         write_csv(out / "conclusions.csv", conclusions.as_rows(claims))
-    page = write_html(all_cases, figures, pictures, out, claims)
+    page = write_html(all_cases, figures, pictures, out, claims, curves)
     log(f"report: {len(all_cases)} case(s), {len(figures)} figures, {len(pictures)} mode pictures "
         f"-> {page}")
     return page

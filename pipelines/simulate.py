@@ -270,6 +270,30 @@ def running_safety(run: integrate.Run, model, cfg: vconfig.CarConfig) -> dict:
     return out
 
 
+def wheelset_attitude(run: integrate.Run, model) -> dict:
+    """``ws<k>/attitude`` of each wheelset at the output instants: its lateral displacement on
+    the track (m, track y: the mean of its two wheel centres' places in their track frames, so
+    0 centred between the rails) and its angle of attack (rad, the axle's yaw against the track
+    frame about z, the mean of its two wheels'; positive turns the axle's left end back: in a
+    left-hand curve a leading wheelset whose flange runs into the outer rail yaws negative), from
+    the wheels' outputs (:mod:`axlebox.mbs.kernel.wheels` ``WO_YC``, ``WO_YAW``)."""
+    from axlebox.mbs.kernel.wheels import WH_BODY, WO_YAW, WO_YC
+    if run.time.size == 0 or run.wheels is None or run.wheels.shape[2] <= WO_YAW:
+        return {}
+    cols = np.asarray(run.wheels[:, :, [WO_YC, WO_YAW]])
+    by_body = {}
+    for i in range(len(model.wheel_names)):
+        by_body.setdefault(int(model.S.wh_i[i, WH_BODY]), []).append(i)
+    out = {}
+    for b, wheels in by_body.items():
+        if len(wheels) == 2:
+            both = cols[:, wheels].mean(1)
+            out[f"{model.bodies[b].name}/attitude"] = (both, {
+                "unit": "m, rad", "columns": "lateral displacement, angle of attack",
+                "about": "on the track frame at the contacts: y to the left, yaw about z"})
+    return out
+
+
 def write(path, run: integrate.Run, model, cfg: vconfig.CarConfig,
           ride: list[comfort.RideComfort] = ()) -> Path:
     """The result file, its config stored whole (every default filled in); ``ride``: the
@@ -286,6 +310,7 @@ def write(path, run: integrate.Run, model, cfg: vconfig.CarConfig,
                                   {"unit": "1, 1, 1/m", "columns": "xi, eta, spin"})
         wr[f"{name}/contact_point"] = (o[:, ek.OUT_P:ek.OUT_P + 3], {"unit": "m"})
     wr.update(running_safety(run, model, cfg))
+    wr.update(wheelset_attitude(run, model))
     br = {}
     for i, name in enumerate(model.bearing_names):
         o = run.bearings[:, i]                      # mbs/kernel/bearings.py BR_ROWS
@@ -297,6 +322,12 @@ def write(path, run: integrate.Run, model, cfg: vconfig.CarConfig,
                                            {"unit": "N", "columns": rows})
         br[f"{name}/cage"] = (o[:, kb.BR_MORE, kb.BR_ANGLE:kb.BR_RATE + 2],
                               {"unit": "rad, rad, rad/s, rad/s", "columns": f"angle {rows}; rate {rows}"})
+        br[f"{name}/row_loads"] = (o[:, kb.BR_ROW], {
+            "unit": "N, N, N, N, rad, rad",
+            "columns": f"axial {rows}; radial {rows}; load zone centre {rows}",
+            "about": "each row's rollers' load on the outer ring, track frame: axial along y (to "
+                     "the left), radial in x-z, the load zone's centre atan2(F_x, F_z) from the top "
+                     "towards the front; at the exchange's last evaluation"})
     dr = drives(run, model)
     ride_attrs = {"columns": ", ".join(comfort.RideComfort.COLUMNS), "unit": "1, 1, 1, m/s^2, m/s^2, "
                   "m/s^2", "standards": "Sperling (W_z, W_y); EN 12299:2009 6.7.2 (N_MV: W_d on x, y, "
@@ -460,6 +491,9 @@ def run(config_path, out, duration: float | None = None, log=print,
         f"simulated s per wall s)")
     for rc in ride:
         log("ride comfort, " + rc.summary())
+    if cfg.segments and res.time.size:
+        from .curving import summary, table as curving_table
+        log(summary(curving_table(out)))
     if cfg.has_bearings:
         from .cageslip import cage_slip, table
         log(table(cage_slip(out)))

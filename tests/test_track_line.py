@@ -178,3 +178,29 @@ def test_the_frame_motion_is_the_derivative_of_the_frame(s_mid, hand):
     np.testing.assert_allclose((omega(h) - omega(-h)) / (2 * h), m.alpha, rtol=1e-3, atol=1e-7)
     np.testing.assert_allclose(A.T @ (O[2] - 2 * O[1] + O[0]) / h ** 2, m.a0, rtol=1e-5, atol=1e-7)
     np.testing.assert_allclose(m.gravity, A.T @ np.array([0.0, 0.0, -9.81]), rtol=0, atol=1e-15)
+
+
+def _car_on(radius, h, speed_kmh=48.0):
+    from axlebox.pipelines import simulate as ps
+    layout = [{"kind": "tangent", "length": 20.0}, {"kind": "transition", "length": 30.0},
+              {"kind": "curve", "length": 200.0, "radius": radius, "superelevation": h}]
+    return ps.load_config("validation_48kmh", 1.0, {"run": {"speed_kmh": speed_kmh},
+                                                     "track": {"layout": layout, "start": 15.0}})
+
+
+@pytest.mark.parametrize("radius, h, speed, message", [
+    (120.0, 0.12, 30.0, "track.layout[2].radius = 120 is not allowed for this car: expected at least "
+     "150 m, the smallest radius a B-type metro car's bogies and couplers are built for "
+     "(GB 50157-2013, Table 6.2.2"),
+    (300.0, 0.015, 80.0, "track.layout[2] at 80 km/h is not allowed: its cant deficiency would be "
+     "237 mm (1.55 m/s^2 unbalanced); expected at most 150 mm (EN 13803:2017's largest limit)"),
+])
+def test_a_curve_the_car_cannot_take_is_refused_in_one_line(radius, h, speed, message):
+    """Issue 69, item 7: a radius below what the car is built for, and a cant deficiency beyond
+    the published limit at the run's highest speed; the limits each name their source."""
+    with pytest.raises(ParameterError) as err:
+        _car_on(radius, h, speed)
+    assert str(err.value).startswith(message), str(err.value)
+    assert "\n" not in str(err.value)
+    _car_on(150.0, 0.12, 30.0)                        # at the limits: accepted
+    _car_on(300.0, 0.015, 48.0)

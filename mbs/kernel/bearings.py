@@ -30,6 +30,8 @@ from __future__ import annotations
 
 from collections import namedtuple
 
+from math import atan2, sqrt
+
 from numba import prange
 from numba.extending import overload
 
@@ -37,8 +39,9 @@ from axlebox._numba import kernel
 from axlebox.bearing.kernel import evaluate as bev
 from axlebox.bearing.kernel import implicit
 from axlebox.bearing.kernel.advance import advance
-from axlebox.bearing.kernel.layout import (CAGE_ANGLE, CAGE_RATE, F_X, INNER, LOAD, M_X, OUTER, Q_O,
-                                           TH_X, TH_Y, TH_Z, U_X, U_Y, U_Z, V_X, W_X, W_Y)
+from axlebox.bearing.kernel.layout import (C_LOAD, CAGE_ANGLE, CAGE_RATE, F_X, INNER, LOAD, M_X,
+                                           OUTER, OUTER_SLOTS, Q_O, REC_LOAD, TH_X, TH_Y, TH_Z, U_X,
+                                           U_Y, U_Z, V_X, W_X, W_Y)
 from axlebox.bearing.kernel.step import cage_outputs
 from axlebox.bearing.kernel.vec import AX, AY, AZ, copy3
 
@@ -49,9 +52,13 @@ BR_MIN, BR_MOUT, BR_BODY, BR_OFF, BR_N, BR_D0, BR_ND, BR_WIDTH = range(8)
 # output rows per bearing, after the elements' rows of ``elout``: the loads (force, moment) on the
 # inner ring and on the outer ring; then roller 1's outer-raceway contact force in the first row
 # and in the last (the same row in a single-row bearing), the cage angle of those two rows and
-# their rates (BR_ANGLE + 0 the first row's, + 1 the last's; so BR_RATE)
-BR_INNER, BR_OUTER, BR_MORE, BR_ROWS = range(4)
+# their rates (BR_ANGLE + 0 the first row's, + 1 the last's; so BR_RATE); then each of those two
+# rows' load on the outer ring at the last evaluation (its rollers' raceway and rib contacts):
+# axial (track y), radial, and the load zone's centre (the radial load's direction, from the top
+# towards the front)
+BR_INNER, BR_OUTER, BR_MORE, BR_ROW, BR_ROWS = range(5)
 BR_Q1, BR_QN, BR_ANGLE, BR_RATE = 0, 1, 2, 4
+BR_AXIAL, BR_RADIAL, BR_ZONE = 0, 2, 4
 TH_IN, TH_OUT, TH = 0, 3, 6            # the markers' small angles: the inner's, the outer's
 
 Bearings = namedtuple("Bearings", ["tag", "idx", "P", "D", "ring", "th", "F", "Qc", "cages", "work",
@@ -178,6 +185,7 @@ def _ring_motions(B, y, bi, mkp, mkv, mkR, mkw):
 def _all_loads_back(B, mkF, mkM, elout):
     for k in range(B.idx.shape[0]):
         _loads_back(k, B.idx, mkF, mkM, elout, B.F[k], B.Qc[k], B.th[k], B.cages[k])
+        _row_loads(k, B.idx, elout, B.work.rec[k], B.Qc.shape[2], B.th[k])
 
 
 # the parallel loops take their arguments flat (numba's parallel loops take arrays, numbers, an
@@ -269,3 +277,28 @@ def _loads_back(k, idx, mkF, mkM, elout, F, Qc, th, cages):
     for i, j in enumerate((first, last)):
         elout[r + BR_MORE, BR_ANGLE + i] = cages[j, CAGE_ANGLE]
         elout[r + BR_MORE, BR_RATE + i] = cages[j, CAGE_RATE]
+
+
+@kernel
+def _row_loads(k, idx, elout, rec, nz, th):
+    """Bearing k's :data:`BR_ROW` outputs from its rollers' records ``rec`` (rows of ``nz``
+    rollers; bearing/kernel/evaluate.py): of its first and last row the load on the outer ring
+    from that row's raceway and rib contacts, turned to the track frame by the inner ring's tilt
+    as the ring loads are, as axial (y), radial (in x-z) and the load zone's centre
+    ``atan2(F_x, F_z)`` (0 at the top, positive towards the front)."""
+    nbr = idx.shape[0]
+    r = elout.shape[0] - BR_ROWS * (nbr - k) + BR_ROW
+    tx, ty, tz = th[TH_IN + AX], th[TH_IN + AY], th[TH_IN + AZ]
+    last = rec.shape[0] // nz - 1
+    for i, j in enumerate((0, last)):
+        f0 = f1 = f2 = 0.0
+        for jk in range(j * nz, (j + 1) * nz):
+            for c in OUTER_SLOTS:
+                o = REC_LOAD + C_LOAD * c
+                f0 += rec[jk, o + AX]
+                f1 += rec[jk, o + AY]
+                f2 += rec[jk, o + AZ]
+        fx, fy, fz = f0 + ty * f2 - tz * f1, f1 + tz * f0 - tx * f2, f2 + tx * f1 - ty * f0
+        elout[r, BR_AXIAL + i] = fy
+        elout[r, BR_RADIAL + i] = sqrt(fx * fx + fz * fz)
+        elout[r, BR_ZONE + i] = atan2(fx, fz)

@@ -52,11 +52,15 @@ from numba import njit
 from axlebox._threads import fit_threads
 from axlebox.bearing.kernel.vec import copy1, copy2, copy3
 
+from axlebox.mbs.wheelrail.element_kernel import OUT_CLAMP
+
 from .exchange import FIRST, LINEAR
 from .body import BI_N, BI_POS, BI_SPIN, BI_VEL
 from .system import frames, rhs, rhs_exchange, rhs_held
 
-OK, NOT_FINITE, RUNAWAY, NO_CONVERGENCE = 0, 1, 2, 3
+OK, NOT_FINITE, RUNAWAY, NO_CONVERGENCE, DERAILED = 0, 1, 2, 3, 4
+#: the stops after which the output that showed them is kept
+KEEP_LAST = (NOT_FINITE, RUNAWAY, DERAILED)
 
 #: a chunk's output buffers: times ``t`` (k), sensor accelerations ``sens`` (k, n_sensors, 3),
 #: wheel-rail ``wh`` and element ``el`` outputs, state snapshots ``y`` every ``state_every``
@@ -96,6 +100,11 @@ def _output(k, t, ys, y, W, G, O):
     copy2(O.el[r], W.elout)
     if k % every == 0:
         copy1(O.y[k // every - (O.base + every - 1) // every], ys)
+    # a wheel off its contact table has climbed its flange past where the profiles' geometry
+    # was computed (or left the rail): what follows would be extrapolation, so the run stops
+    for w in range(W.whout.shape[0]):
+        if W.whout[w, OUT_CLAMP] > 0.0:
+            return DERAILED, w
     return _check(y, G)
 
 

@@ -17,7 +17,13 @@ On a ballasted track (``track >= 0``, :mod:`axlebox.mbs.track.bed`) the rail bod
 vertical velocity add to the rail's, and the contact's vertical force acts on it (the track is
 rigid laterally and along the rail).
 The creepages' reference speed is the car's speed profile's at ``t`` (:mod:`axlebox.mbs.kernel.speed`).
-The contact itself is :func:`axlebox.mbs.wheelrail.element_kernel.wheel_rail_force`.
+The contact itself is :func:`axlebox.mbs.wheelrail.element_kernel.wheel_rail_force`; after its
+outputs (``N_OUT`` of them) a wheel's row of ``whout`` has two of the car's: the wheel centre's
+lateral place in the track frame at its contact (``WO_YC``, m; off a line the tangent track's y)
+and the axle's yaw against that frame (``WO_YAW``, rad, about the frame's z: the angle of attack
+with its sign), which the result file turns into each wheelset's lateral displacement and angle of
+attack.  On a line the contact point's x (``OUT_P``) is its chainage from where the car's
+reference started (the line's ``L_START``), as off a line it is the distance along the track.
 """
 from __future__ import annotations
 
@@ -26,7 +32,7 @@ import math
 import numpy as np
 from numba import njit
 
-from axlebox.mbs.wheelrail.element_kernel import wheel_rail_force
+from axlebox.mbs.wheelrail.element_kernel import N_OUT, OUT_P, wheel_rail_force
 
 from .body import BI_POS, BI_SPIN, cross
 from .speed import G_LINE, G_PROF, G_V, profile_at  # noqa: F401  (glob's slots, here with the rest)
@@ -38,6 +44,7 @@ G_GRAV, G_S0, G_DS, G_TRACK, G_RAMP = 0, 4, 5, 6, 7
 N_GLOB = G_PROF + 1
 WH_MARKER, WH_SIDE, WH_BODY, WH_TRACK = 0, 1, 2, 3   # WH_TRACK: the rail body's marker, -1 none
 WF_RC, WF_DS = 0, 1                    # wh_f columns: r_c; the wheel record's grid step (0: none)
+WO_YC, WO_YAW, N_WHOUT = N_OUT, N_OUT + 1, N_OUT + 2     # whout's columns after the contact's
 
 
 @njit(cache=True)
@@ -171,6 +178,10 @@ def wheel_forces(t, y, bi, wh_i, wh_f, wtab, wpar, trk, wrk, glob, Ab, omb, omfb
         cw, ew, vw, ow = (loc[0], loc[1], loc[2], loc[3]) if on else (c, e, vc, om)
         wheel_rail_force(side, cw, ew, vw, ow, V, z_r + zt, y_r, dz * vw[0] + vt, dyr * vw[0], wtab,
                          wpar, out)
+        out[WO_YC] = cw[1]
+        out[WO_YAW] = math.atan2(-ew[0], ew[1])
+        if on:
+            out[OUT_P] += ch                      # the contact's x: its chainage from the start
         # out[0:3] force on the wheel, out[3:6] moment about c (on a line in the track frame's
         # axes, as the outputs keep them): move to the marker
         for a in range(3):

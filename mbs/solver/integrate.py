@@ -112,7 +112,7 @@ class Run:
     state_time: np.ndarray
     states: np.ndarray               # (ts, n_states)
     y_end: np.ndarray
-    bearings: np.ndarray = None      # (t, n_bearings, 3, 6): mbs/kernel/bearings.py BR_ROWS
+    bearings: np.ndarray = None      # (t, n_bearings, BR_ROWS, 6): mbs/kernel/bearings.py
     exchange: np.ndarray = None      # the bearings' ring motion at the last exchange (mbs/kernel/exchange.py)
     status: str = "done"
     message: str = ""
@@ -124,7 +124,8 @@ class Run:
         return self.status == "done"
 
 
-_STATUS = {ki.NOT_FINITE: "not finite", ki.RUNAWAY: "runaway", ki.NO_CONVERGENCE: "no convergence"}
+_STATUS = {ki.NOT_FINITE: "not finite", ki.RUNAWAY: "runaway", ki.NO_CONVERGENCE: "no convergence",
+           ki.DERAILED: "derailed"}
 
 
 OUTPUTS = ("out_t", "out_sens", "out_wh", "out_el", "out_y")       # what a checkpoint holds, with y
@@ -132,11 +133,12 @@ OUTPUTS = ("out_t", "out_sens", "out_wh", "out_el", "out_y")       # what a chec
 
 def split_outputs(model: Model, out_wh: np.ndarray, out_el: np.ndarray) -> dict:
     """A run's wheel-rail and element output rows as :class:`Run` holds them: ``wheels``,
-    ``elements`` and ``bearings`` (the element rows after the model's own elements, three a
-    bearing: mbs/kernel/bearings.py BR_ROWS)."""
+    ``elements`` and ``bearings`` (the element rows after the model's own elements,
+    mbs/kernel/bearings.py ``BR_ROWS`` a bearing)."""
+    from ..kernel.bearings import BR_ROWS
     nw, ne, nbr = len(model.wheel_names), model.S.el_i.shape[0], len(model.bearing_names)
     return {"wheels": out_wh[:, :nw], "elements": out_el[:, :ne],
-            "bearings": out_el[:, ne:ne + 3 * nbr].reshape(out_el.shape[0], nbr, 3, 6)}
+            "bearings": out_el[:, ne:ne + BR_ROWS * nbr].reshape(out_el.shape[0], nbr, BR_ROWS, 6)}
 
 
 def simulate(model: Model, duration: float, settings: Settings | None = None, *, y0=None,
@@ -248,7 +250,7 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
                 status, k_done, bad = ki.NOT_FINITE, k, -1
             if status != ki.OK:
                 # the output that showed the divergence is kept too (as the kept run's n_keep)
-                flush(k, min(n_out, k_done + (1 if status in (ki.NOT_FINITE, ki.RUNAWAY) else 0)))
+                flush(k, min(n_out, k_done + (1 if status in ki.KEEP_LAST else 0)))
                 k = k_done
                 break
             flush(k, k1)
@@ -266,7 +268,7 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
                 checkpoint(snap)
                 k_saved = k
     wall = wall_before + time.perf_counter() - wall0
-    n_keep = k + (1 if status in (ki.NOT_FINITE, ki.RUNAWAY) else 0)
+    n_keep = k + (1 if status in ki.KEEP_LAST else 0)
     n_keep = min(n_keep, n_out)
     msg = ""
     st = "done"
@@ -277,6 +279,10 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
         if status == ki.NO_CONVERGENCE:
             msg = (f"Newton did not converge at t = {tbad:.6f} s (step {h:g} s); try a smaller dt "
                    f"or method 'rk4'")
+        elif status == ki.DERAILED:
+            msg = (f"wheel {model.wheel_names[bad]!r} left its contact table at t = {tbad:.6f} s: "
+                   "flange climb or derailment (the wheel beyond the lateral range the profiles' "
+                   "contact was computed for, wheelrail y_max); what was computed is kept")
         else:
             msg = f"the run diverged at t = {tbad:.6f} s: {st} in {where}"
     ks = (n_keep - 1) // se + 1 if n_keep else 0

@@ -24,7 +24,7 @@ from ..kernel.body import BF_GRAV, BF_JINV, BF_M, BF_MC, BF_P0, BF_WIDTH
 from ..kernel.elements import EL_WIDTH
 from ..kernel.system import Arrays, Work
 from ..kernel.trajectory import FR_N
-from ..wheelrail.element_kernel import N_OUT
+from ..kernel.wheels import N_WHOUT
 
 #: s, the track irregularity fades in over this time from the start of a run (so a run's first
 #: TRACK_RAMP_S are left out of what is diagnosed and rated)
@@ -375,7 +375,7 @@ class Model:
         self.W = Work(z((nb, 3, 3)), z((nb, 3)), z((nb, 3)), z((nb, 3)), z((nb, 3)),
                       z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3, 3)),
                       z((max(nm, 1), 3)), z((max(nm, 1), 3)), z((max(nm, 1), 3)), z(ngen),
-                      z((max(ne, 1), 6)), z((max(len(wheels), 1), N_OUT)), z((max(len(sensors), 1), 3)),
+                      z((max(ne, 1), 6)), z((max(len(wheels), 1), N_WHOUT)), z((max(len(sensors), 1), 3)),
                       z((nb, FR_N)), z(FR_N), z((max(len(system.bearings), 1), 2, 6)))
 
     @property

@@ -64,8 +64,9 @@ class Segment:
     length: float = param(100.0, 0.1, 1e5, "m", "length along the line")
     start: float = param(-1.0, -1.0, 1e6, "m", "where on the line it begins (chainage), to check the "
                          "layout against a line's table; -1: where the segment before ends")
-    radius: float = param(300.0, 50.0, 1e5, "m", "curve only: radius (the car's own limit is "
-                          "checked with the run)")
+    radius: float = param(300.0, 50.0, 1e5, "m", "curve only: radius (the car's own limit, "
+                          "150 m for the B-type car of GB 50157-2013, and the cant deficiency at the "
+                          "run's top speed, at most EN 13803's 150 mm, are checked with the run)")
     hand: str = choice("left", HANDS, "curve only: the side the line turns to, looking forward")
     superelevation: float = param(0.0, 0.0, 0.18, "m", "curve only: cant h, the outer rail's height "
                                   "over the inner (EN 13803's largest limit, ballasted track: "

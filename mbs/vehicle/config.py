@@ -40,7 +40,7 @@ from axlebox.mbs.vehicle.speed import SpeedProfile
 from axlebox.mbs.track.irregularity import IrregularityParams
 from axlebox.mbs.track.bed import MODELS as TRACK_MODELS
 from axlebox.mbs.track.bed import Seats
-from axlebox.mbs.track.line import Line, Segment
+from axlebox.mbs.track.line import G, Line, Segment, cant_deficiency
 from axlebox.mbs.wheelrail.element import WheelRailParams
 from axlebox.mbs.wheelrail.geometry import TrackLayout
 
@@ -672,6 +672,14 @@ def _cross_checks(c: CarConfig) -> None:
                              f"gearbox.hanger_arm = {g.hanger_arm:g} (the hanger carries the far end)")
 
 
+#: m, the smallest curve radius of a B-type metro car's lines (GB 50157-2013, Code for Design of
+#: Metro, Table 6.2.2: depot and yard lines; main lines 300 m, 250 m where difficult)
+MIN_RADIUS = 150.0
+#: m, the largest cant deficiency EN 13803:2017 admits on plain line (150 mm, about 1 m/s^2
+#: unbalanced; metro codes keep to 0.4-0.5 m/s^2, GB 50157-2013 5.3.3)
+MAX_CANT_DEFICIENCY = 0.150
+
+
 def _check_line(c: CarConfig) -> None:
     """The line must hold the whole run: the rear wheelset at the start, the front one at the
     end."""
@@ -682,6 +690,22 @@ def _check_line(c: CarConfig) -> None:
                                  "[[track.layout]]: expected 0 (tangent track has no chainage)")
         return
     g = c.geometry
+    v_max = max(c.speed_profile().v)
+    for i, sg in enumerate(c.segments):
+        if sg.kind != "curve":
+            continue
+        if sg.radius < MIN_RADIUS:
+            raise ParameterError(
+                f"track.layout[{i}].radius = {sg.radius:g} is not allowed for this car: expected at "
+                f"least {MIN_RADIUS:g} m, the smallest radius a B-type metro car's bogies and "
+                "couplers are built for (GB 50157-2013, Table 6.2.2: its depot and yard lines)")
+        d = cant_deficiency(v_max, sg.radius, sg.superelevation, line.s0)
+        if d > MAX_CANT_DEFICIENCY:
+            raise ParameterError(
+                f"track.layout[{i}] at {v_max * 3.6:g} km/h is not allowed: its cant deficiency "
+                f"would be {d * 1e3:.0f} mm ({G * d / line.s0:.2f} m/s^2 unbalanced); expected at "
+                f"most {MAX_CANT_DEFICIENCY * 1e3:.0f} mm (EN 13803:2017's largest limit): more superelevation, a larger radius or a "
+                "lower speed")
     rear = g.bogie_distance + g.wheelbase / 2
     if c.track.start < rear:
         raise ParameterError(f"track.start = {c.track.start:g} is not allowed: the rear wheelset "
