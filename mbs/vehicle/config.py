@@ -704,8 +704,8 @@ def _check_line(c: CarConfig) -> None:
             raise ParameterError(
                 f"track.layout[{i}] at {v_max * 3.6:g} km/h is not allowed: its cant deficiency "
                 f"would be {d * 1e3:.0f} mm ({G * d / line.s0:.2f} m/s^2 unbalanced); expected at "
-                f"most {MAX_CANT_DEFICIENCY * 1e3:.0f} mm (EN 13803:2017's largest limit): more superelevation, a larger radius or a "
-                "lower speed")
+                f"most {MAX_CANT_DEFICIENCY * 1e3:.0f} mm (EN 13803:2017's largest limit): more "
+                "superelevation, a larger radius or a lower speed")
     rear = g.bogie_distance + g.wheelbase / 2
     if c.track.start < rear:
         raise ParameterError(f"track.start = {c.track.start:g} is not allowed: the rear wheelset "
