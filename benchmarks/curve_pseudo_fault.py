@@ -36,12 +36,14 @@ CASES = [("tangent", "validation_48kmh", {}),
          ("300 m right, 0.49 m/s^2", "curve_300m_right_unbalanced", {"track": {"start": 80.0}})]
 
 
-def _complete(path: Path) -> bool:
+def _status(path: Path) -> tuple[str, str] | None:
+    """A finished run's status and message (a run that stopped, say derailed, is finished too);
+    None where there is no whole result file yet."""
     try:
         with resultfile.reading(path) as f:
-            return f.attrs.get("status", "") == "done"
+            return str(f.attrs.get("status", "")), str(f.attrs.get("message", ""))
     except Exception:                                   # noqa: BLE001 - absent or partial: run it
-        return False
+        return None
 
 
 def main() -> None:
@@ -54,11 +56,15 @@ def main() -> None:
     rows = []
     for label, config, over in CASES:
         path = out / f"{config}.h5"
-        if not _complete(path):
+        if _status(path) is None:
             t0 = time.perf_counter()
             ps.run(config, path, a.duration, log=lambda *_: None, overrides=over)
             print(f"{label}: {a.duration:g} s simulated in {time.perf_counter() - t0:.0f} s wall",
                   flush=True)
+        status, message = _status(path)
+        if status != "done":
+            print(f"{label}: {status}: {message}", flush=True)
+            continue
         speed, width, side = case_parameters(path)
         case = diagnosed_case(path, speed, width, side, lambda *_: None)
         r = case.row()
