@@ -14,7 +14,6 @@ means over the whole run after the fade-in, and the table says which.
 from __future__ import annotations
 
 import html
-import re
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -67,74 +66,104 @@ class Curving:
         return min(w.margin for w in self.wheels)
 
 
-def _in_curve(cfg, chainage) -> np.ndarray:
-    """Which of the chainages lie inside a circular segment of the config's line."""
-    inside = np.zeros(np.shape(chainage), bool)
-    line = cfg.line()
-    if line is None:
-        return inside
-    ends = np.cumsum([sg.length for sg in cfg.segments])
-    for sg, end in zip(cfg.segments, ends):
-        if sg.kind == "curve":
-            inside |= (chainage >= end - sg.length) & (chainage <= end)
-    return inside
+@dataclass(frozen=True)
+class Record:
+    """What the table and the plot read of a car's result file, read once (:func:`read`)."""
+    cfg: object          # the run's CarConfig
+    t: np.ndarray
+    wheels: list         # wheel names, sorted
+    x: dict              # wheel -> its contacts' chainage on the line, m
+    YQ: dict             # wheel -> (Y, Q, Y/Q, Y/Q 2 m mean)
+    nadal: float
+    sets: list           # wheelset names, sorted
+    sum_Y: dict          # wheelset -> (sum Y, its 2 m mean)
+    prudhomme: float
+    attitude: dict       # wheelset -> (lateral displacement, angle of attack)
+    rows: dict           # bearing -> (its row loads, its wheelset's name)
 
 
-def table(path) -> Curving | None:
-    """The curving table of a car's result file (None for a rig's, or one without the
+def read(path) -> Record | None:
+    """The curving outputs of a car's result file (None for a rig's, or one without the
     wheel-rail safety outputs)."""
     with resultfile.reading(path) as f:
         if "wheelrail" not in f or "time" not in f:
             return None
-        cfg = vconfig.loads(str(f.attrs.get("config", "")), f"{Path(path).name}'s config")
-        t = f["time"][()]
         wr = f["wheelrail"]
         wheels = sorted(n for n in wr if "YQ" in wr[n])
         if not wheels:
             return None
-        YQ = {n: wr[f"{n}/YQ"][()] for n in wheels}
-        nadal = float(wr[f"{wheels[0]}/YQ"].attrs["nadal_limit"])
-        x = {n: wr[f"{n}/contact_point"][:, 0] + cfg.track.start for n in wheels}
-        sets = sorted({n.rsplit("_", 1)[0] for n in wheels if f"{n.rsplit('_', 1)[0]}" in wr
-                       and "sum_Y" in wr[n.rsplit("_", 1)[0]]})
-        sumY = {k: wr[f"{k}/sum_Y"][()] for k in sets}
-        prud = float(wr[f"{sets[0]}/sum_Y"].attrs["prudhomme_limit_N"]) if sets else float("nan")
-        att = {k: wr[f"{k}/attitude"][()] for k in sets if "attitude" in wr[k]}
-        br = f.get("bearings")
-        rows = {n: br[f"{n}/row_loads"][()] for n in (br or {}) if "row_loads" in br[n]}
+        cfg = vconfig.loads(str(f.attrs.get("config", "")), f"{Path(path).name}'s config")
+        sets = sorted(n for n in wr if "sum_Y" in wr[n])
+        br = f.get("bearings") or {}
+        return Record(
+            cfg, f["time"][()], wheels,
+            {n: wr[f"{n}/contact_point"][:, 0] + cfg.track.start for n in wheels},
+            {n: wr[f"{n}/YQ"][()] for n in wheels}, float(wr[f"{wheels[0]}/YQ"].attrs["nadal_limit"]),
+            sets, {k: wr[f"{k}/sum_Y"][()] for k in sets},
+            float(wr[f"{sets[0]}/sum_Y"].attrs["prudhomme_limit_N"]) if sets else float("nan"),
+            {k: wr[f"{k}/attitude"][()] for k in sets if "attitude" in wr[k]},
+            {n: (br[f"{n}/row_loads"][()], str(br[f"{n}/row_loads"].attrs.get("wheelset", "")))
+             for n in br if "row_loads" in br[n]})
+
+
+def _record(src) -> Record | None:
+    """``src`` read (a result file's path), or as it is (a :class:`Record`, or None: what
+    :func:`read` gives for a file without curving outputs)."""
+    return src if src is None or isinstance(src, Record) else read(src)
+
+
+def _in_curve(line, chainage) -> np.ndarray:
+    """Which of the chainages lie inside a circular segment of the line."""
+    inside = np.zeros(np.shape(chainage), bool)
+    for sg, s0, s1 in zip(line.segments, line.starts[:-1], line.starts[1:]):
+        if sg.kind == "curve":
+            inside |= (chainage >= s0) & (chainage <= s1)
+    return inside
+
+
+def table(src) -> Curving | None:
+    """The curving table of a car's result file or its :class:`Record` (None for a rig's, or one
+    without the wheel-rail safety outputs)."""
+    r = _record(src)
+    if r is None:
+        return None
+    t, wheels = r.t, r.wheels
     after = t >= min(TRACK_FADE_IN_S, t[-1])
-    curve = {n: _in_curve(cfg, x[n]) & after for n in wheels}
+    line = r.cfg.line()
+    curve = {n: (_in_curve(line, r.x[n]) if line is not None else np.zeros(t.shape, bool)) & after
+             for n in wheels}
     any_curve = any(c.any() for c in curve.values())
 
     def steady(names):
         """The outputs at which all of ``names``' contacts are in the circular part."""
-        if not any_curve:
+        if not any_curve or not names:
             return after
         k = np.logical_and.reduce([curve[n] for n in names])
         return k if k.any() else after
+
+    def of(ws):
+        return [n for n in wheels if n.startswith(f"{ws}_")]
     out_w = []
     for n in wheels:
         k = steady([n])
-        yq_max = float(np.max(YQ[n][after, 3]))
-        out_w.append(WheelRow(n, float(YQ[n][k, 0].mean()), float(YQ[n][k, 1].mean()), yq_max,
-                              1.0 - yq_max / nadal))
+        yq_max = float(np.max(r.YQ[n][after, 3]))
+        out_w.append(WheelRow(n, float(r.YQ[n][k, 0].mean()), float(r.YQ[n][k, 1].mean()), yq_max,
+                              1.0 - yq_max / r.nadal))
     out_s = []
-    for s in sets:
-        k = steady([n for n in wheels if n.startswith(f"{s}_")])
-        a = att.get(s)
-        out_s.append(WheelsetRow(s, float(sumY[s][k, 0].mean()), float(np.max(np.abs(sumY[s][after, 1]))),
+    for s in r.sets:
+        k = steady(of(s))
+        a = r.attitude.get(s)
+        out_s.append(WheelsetRow(s, float(r.sum_Y[s][k, 0].mean()),
+                                 float(np.max(np.abs(r.sum_Y[s][after, 1]))),
                                  float(a[k, 0].mean()) if a is not None else float("nan"),
                                  float(a[k, 1].mean()) if a is not None else float("nan")))
     out_b = []
-    for n, r in rows.items():
-        k_ws = re.match(r"bearing(\d+)", n)           # mbs/vehicle/car.py: bearing<k><side>
-        ws = [w for w in wheels if k_ws and w.startswith(f"ws{k_ws.group(1)}_")]
-        k = steady(ws) if ws else after
-        m = r[k].mean(0)
+    for n, (rows, ws) in r.rows.items():
+        m = rows[steady(of(ws))].mean(0)
         out_b.append(BearingRow(n, (m[0], m[1]), (m[2], m[3]), (m[4], m[5])))
     where = ("in the circular part of the curve, after the irregularity's fade-in" if any_curve
              else "over the whole run after the irregularity's fade-in (no circular curve reached)")
-    return Curving(out_w, out_s, out_b, nadal, prud, where)
+    return Curving(out_w, out_s, out_b, r.nadal, r.prudhomme, where)
 
 
 def summary(c: Curving) -> str:
@@ -182,54 +211,43 @@ def table_html(c: Curving, label: str = "") -> str:
     return "\n".join(parts)
 
 
-def figure(path, out: Path) -> Path | None:
-    """The plot along the line of a car's result on one: the line's curvature and cant, each
-    wheel's Y/Q (2 m mean) with Nadal's limit, each wheelset's sum Y (2 m mean) with
-    Prud'homme's, angles of attack, and the bearings' row axial loads, against the chainage of
-    the front wheelset (None off a line)."""
+def figure(src, out: Path) -> Path | None:
+    """The plot along the line of a car's result (file or :class:`Record`) on one: the line's
+    curvature and cant, each wheel's Y/Q (2 m mean) with Nadal's limit, each wheelset's sum Y
+    (2 m mean) with Prud'homme's, angles of attack, and the bearings' row axial loads, against
+    the chainage of the front wheelset (None off a line)."""
     from matplotlib.figure import Figure
-    with resultfile.reading(path) as f:
-        cfg = vconfig.loads(str(f.attrs.get("config", "")), f"{Path(path).name}'s config")
-        line = cfg.line()
-        if line is None or "wheelrail" not in f:
-            return None
-        wr = f["wheelrail"]
-        wheels = sorted(n for n in wr if "YQ" in wr[n])
-        sets = sorted(n for n in wr if "sum_Y" in wr[n])
-        x = wr[f"{wheels[0]}/contact_point"][:, 0] + cfg.track.start
-        YQ = {n: wr[f"{n}/YQ"][:, 3] for n in wheels}
-        nadal = float(wr[f"{wheels[0]}/YQ"].attrs["nadal_limit"])
-        sY = {n: wr[f"{n}/sum_Y"][:, 1] for n in sets}
-        prud = float(wr[f"{sets[0]}/sum_Y"].attrs["prudhomme_limit_N"]) if sets else None
-        att = {n: wr[f"{n}/attitude"][:, 1] for n in sets if "attitude" in wr[n]}
-        br = f.get("bearings")
-        rows = {n: br[f"{n}/row_loads"][:, :2] for n in (br or {}) if "row_loads" in br[n]}
+    r = _record(src)
+    line = r.cfg.line() if r is not None else None
+    if line is None:
+        return None
+    x = r.x[r.wheels[0]]
     fig = Figure(figsize=(10, 11), layout="constrained")
-    ax = fig.subplots(5 if rows else 4, 1, sharex=True)
+    ax = fig.subplots(5 if r.rows else 4, 1, sharex=True)
     s = np.linspace(max(0.0, x.min()), min(line.length, x.max()), 800)
     g = line.at(s)
     ax[0].plot(s, 1e3 * g.kappa, label="curvature 1/km")
     ax[0].plot(s, 1e3 * g.e, label="cant mm (right rail over left)")
     ax[0].set_ylabel("line")
-    for n in wheels:
-        ax[1].plot(x, YQ[n], lw=0.8, label=n)
-    ax[1].axhline(nadal, color="k", ls="--", label=f"Nadal {nadal:.2f}")
+    for n in r.wheels:
+        ax[1].plot(x, r.YQ[n][:, 3], lw=0.8, label=n)
+    ax[1].axhline(r.nadal, color="k", ls="--", label=f"Nadal {r.nadal:.2f}")
     ax[1].set_ylabel("Y/Q (2 m mean)")
-    for n in sets:
-        ax[2].plot(x, sY[n] / 1e3, lw=0.8, label=n)
-    if prud:
+    for n in r.sets:
+        ax[2].plot(x, r.sum_Y[n][:, 1] / 1e3, lw=0.8, label=n)
+    if r.sets:
         for sg in (1, -1):
-            ax[2].axhline(sg * prud / 1e3, color="k", ls="--")
+            ax[2].axhline(sg * r.prudhomme / 1e3, color="k", ls="--")
     ax[2].set_ylabel("sum Y kN (2 m mean)")
-    for n, a in att.items():
-        ax[3].plot(x, 1e3 * a, lw=0.8, label=n)
+    for n, a in r.attitude.items():
+        ax[3].plot(x, 1e3 * a[:, 1], lw=0.8, label=n)
     ax[3].set_ylabel("angle of attack mrad")
-    if rows:
-        for n, r in rows.items():
-            ax[4].plot(x, r[:, 0] / 1e3, lw=0.6, label=f"{n} row 1")
-            ax[4].plot(x, r[:, 1] / 1e3, lw=0.6, ls=":", label=f"{n} last row")
+    if r.rows:
+        for n, (rows, _) in r.rows.items():
+            ax[4].plot(x, rows[:, 0] / 1e3, lw=0.6, label=f"{n} row 1")
+            ax[4].plot(x, rows[:, 1] / 1e3, lw=0.6, ls=":", label=f"{n} last row")
         ax[4].set_ylabel("bearing axial kN")
-    ax[-1].set_xlabel(f"chainage of {wheels[0].rsplit('_', 1)[0]}'s contacts, m")
+    ax[-1].set_xlabel(f"chainage of {r.wheels[0].rsplit('_', 1)[0]}'s contacts, m")
     for a in ax:
         a.grid(alpha=0.3)
         a.legend(fontsize=6, ncol=4, loc="best")

@@ -385,8 +385,9 @@ def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
         figures += _windows_figures(path, out, log, left=left, right=right, **diagnose_kw)
     curves = []
     for path in files:                  # runs on a line: the curving table and the plot along it
-        if (fig := curving.figure(path, out / f"curving_{path.stem}.png")) is not None:
-            curves.append((path.name, curving.table_html(curving.table(path))))
+        rec = curving.read(path)
+        if (fig := curving.figure(rec, out / f"curving_{path.stem}.png")) is not None:
+            curves.append((path.name, curving.table_html(curving.table(rec))))
             figures.append((f"Curving along the line - {path.name}", fig))
     figures.sort(key=lambda t: t[1].name)
     pictures = mode_pictures(source, modes_dir)

@@ -239,7 +239,7 @@ def running_safety(run: integrate.Run, model, cfg: vconfig.CarConfig) -> dict:
     force on the track and its 2 m sliding mean, with Prud'homme's limit at the static wheel
     load) at the output instants (:mod:`axlebox.mbs.post.safety`).  The distance each is
     averaged over is its contact point's x, the distance its wheel has run."""
-    from axlebox.mbs.kernel.wheels import WH_BODY, WH_SIDE
+    from axlebox.mbs.kernel.wheels import WH_SIDE
     if run.time.size == 0 or run.wheels is None:
         return {}
     delta = safety.flange_angle(_profile(cfg.wheelrail.wheel, "wheel"))
@@ -247,27 +247,35 @@ def running_safety(run: integrate.Run, model, cfg: vconfig.CarConfig) -> dict:
     Q0 = vehicle.static_wheel_load(cfg)
     # the columns needed, in one pass over a streamed run's outputs (not a pass a wheel)
     cols = np.asarray(run.wheels[:, :, [ek.OUT_F, ek.OUT_F + 1, ek.OUT_F + 2, ek.OUT_P]])
-    out, by_body = {}, {}
+    out, of_wheel = {}, []
     for i, name in enumerate(model.wheel_names):
         F = cols[:, i, :3]
         dist = np.maximum.accumulate(cols[:, i, 3])               # never back: a record's distance
-        side = int(model.S.wh_i[i, WH_SIDE])                     # 0 left, 1 right
-        by_body.setdefault(int(model.S.wh_i[i, WH_BODY]), {})[side] = (F, dist)
-        w = safety.wheel_forces(F, 1 if side == 0 else -1, dist)
+        of_wheel.append((F, dist))
+        w = safety.wheel_forces(F, 1 if model.S.wh_i[i, WH_SIDE] == 0 else -1, dist)
         out[f"{name}/YQ"] = (np.stack(w, axis=1), {
             "unit": "N, N, 1, 1", "columns": "Y, Q, Y/Q, Y/Q 2 m sliding mean",
             "nadal_limit": nadal, "flange_angle_rad": delta, "mu": cfg.wheelrail.mu,
             "about": "Y on the rail towards its field side, Q on the rail downwards (Nadal; EN 14363)"})
-    for b, wheels in by_body.items():                            # a wheelset: its two wheels
-        if len(wheels) == 2:
-            (FL, sL), (FR, sR) = wheels[0], wheels[1]
-            sY = safety.sum_Y(FL, FR)
-            both = np.stack([sY, safety.sliding_mean(sY, 0.5 * (sL + sR))], axis=1)
-            out[f"{model.bodies[b].name}/sum_Y"] = (both, {
-                "unit": "N", "columns": "sum Y, its 2 m sliding mean",
-                "prudhomme_limit_N": float(safety.prudhomme(Q0)), "static_wheel_load_N": Q0,
-                "about": "the wheelset's lateral force on the track, track y (Prud'homme; EN 14363)"})
+    for b, (iL, iR) in _wheelsets(model).items():
+        (FL, sL), (FR, sR) = of_wheel[iL], of_wheel[iR]
+        sY = safety.sum_Y(FL, FR)
+        both = np.stack([sY, safety.sliding_mean(sY, 0.5 * (sL + sR))], axis=1)
+        out[f"{model.bodies[b].name}/sum_Y"] = (both, {
+            "unit": "N", "columns": "sum Y, its 2 m sliding mean",
+            "prudhomme_limit_N": float(safety.prudhomme(Q0)), "static_wheel_load_N": Q0,
+            "about": "the wheelset's lateral force on the track, track y (Prud'homme; EN 14363)"})
     return out
+
+
+def _wheelsets(model) -> dict:
+    """The bodies with a left and a right wheel (the wheelsets): body index -> (left wheel's
+    index, right wheel's)."""
+    from axlebox.mbs.kernel.wheels import WH_BODY, WH_SIDE
+    by_body: dict = {}
+    for i in range(len(model.wheel_names)):
+        by_body.setdefault(int(model.S.wh_i[i, WH_BODY]), {})[int(model.S.wh_i[i, WH_SIDE])] = i
+    return {b: (w[0], w[1]) for b, w in by_body.items() if len(w) == 2}
 
 
 def wheelset_attitude(run: integrate.Run, model) -> dict:
@@ -277,21 +285,14 @@ def wheelset_attitude(run: integrate.Run, model) -> dict:
     frame about z, the mean of its two wheels'; positive turns the axle's left end back: in a
     left-hand curve a leading wheelset whose flange runs into the outer rail yaws negative), from
     the wheels' outputs (:mod:`axlebox.mbs.kernel.wheels` ``WO_YC``, ``WO_YAW``)."""
-    from axlebox.mbs.kernel.wheels import WH_BODY, WO_YAW, WO_YC
-    if run.time.size == 0 or run.wheels is None or run.wheels.shape[2] <= WO_YAW:
+    from axlebox.mbs.kernel.wheels import WO_YAW, WO_YC
+    if run.time.size == 0 or run.wheels is None:
         return {}
     cols = np.asarray(run.wheels[:, :, [WO_YC, WO_YAW]])
-    by_body = {}
-    for i in range(len(model.wheel_names)):
-        by_body.setdefault(int(model.S.wh_i[i, WH_BODY]), []).append(i)
-    out = {}
-    for b, wheels in by_body.items():
-        if len(wheels) == 2:
-            both = cols[:, wheels].mean(1)
-            out[f"{model.bodies[b].name}/attitude"] = (both, {
+    return {f"{model.bodies[b].name}/attitude": (cols[:, list(pair)].mean(1), {
                 "unit": "m, rad", "columns": "lateral displacement, angle of attack",
                 "about": "on the track frame at the contacts: y to the left, yaw about z"})
-    return out
+            for b, pair in _wheelsets(model).items()}
 
 
 def write(path, run: integrate.Run, model, cfg: vconfig.CarConfig,
@@ -327,7 +328,8 @@ def write(path, run: integrate.Run, model, cfg: vconfig.CarConfig,
             "columns": f"axial {rows}; radial {rows}; load zone centre {rows}",
             "about": "each row's rollers' load on the outer ring, track frame: axial along y (to "
                      "the left), radial in x-z, the load zone's centre atan2(F_x, F_z) from the top "
-                     "towards the front; at the exchange's last evaluation"})
+                     "towards the front; at the exchange's last evaluation",
+            "wheelset": model.bodies[int(model.B.idx[i, kb.BR_BODY])].name})
     dr = drives(run, model)
     ride_attrs = {"columns": ", ".join(comfort.RideComfort.COLUMNS), "unit": "1, 1, 1, m/s^2, m/s^2, "
                   "m/s^2", "standards": "Sperling (W_z, W_y); EN 12299:2009 6.7.2 (N_MV: W_d on x, y, "

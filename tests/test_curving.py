@@ -113,6 +113,38 @@ def test_at_the_equilibrium_speed_the_lateral_forces_cancel():
     assert abs(_sum_Y(run)) < 0.05 * M * 0.5
 
 
+def _cone_on_crowns(gamma=0.05, y_max=None):
+    """Tables of wheels of cones ``gamma`` on rails of 40 mm crowns, r0 0.46 m, the Kalker linear
+    law; with the contacts' half distance ``l0`` and ``r0``."""
+    from axlebox.mbs.wheelrail.element import WheelRailParams, build_tables
+    from axlebox.mbs.wheelrail.element_kernel import P_L0
+    from axlebox.mbs.wheelrail.geometry import TrackLayout
+    from axlebox.mbs.wheelrail.profile import Profile
+    y = np.linspace(-0.07, 0.07, 701)
+    wheel = Profile(y=y, z=gamma * y, kind="wheel", name="cone 1:20")
+    yr = np.linspace(-0.036, 0.036, 721)
+    rail = Profile(y=yr, z=-(0.04 - np.sqrt(0.04 ** 2 - yr ** 2)), kind="rail", name="R40 crown")
+    params = WheelRailParams(law="kalker", **({} if y_max is None else {"y_max": y_max}))
+    tab = build_tables(wheel, rail, TrackLayout(r0=0.46, cant=0.0), params, cache=False)
+    return tab, float(tab.par[P_L0]), 0.46
+
+
+def _rolling(tab, F):
+    """A centred wheelset's height on its rails under the wheelset load ``F`` (N; Hertz's
+    approach at each wheel), and its axle's height over the contacts (the spin's radius)."""
+    from axlebox.mbs.wheelrail.element_kernel import COL_C0Z, COL_KH, COL_PZ
+    ic = tab.tab.shape[0] // 2
+    z = float(tab.tab[ic, COL_C0Z]) - (0.5 * F / float(tab.tab[ic, COL_KH])) ** (2 / 3)
+    return z, z - float(tab.tab[ic, COL_PZ])
+
+
+def _balanced_curve(R, V, l0):
+    """A 500 m left-hand curve of radius R whose cant balances V."""
+    from axlebox.mbs.track.line import Line, Segment
+    h = 2 * l0 * np.sin(np.arctan(V * V / (G * R)))
+    return Line([Segment("curve", 500.0, radius=R, hand="left", superelevation=h)], s0=2 * l0)
+
+
 def _free_wheelset(R, V, gamma=0.05, push=0.0):
     """A rigid wheelset of 1:20 cones on 40 mm crowns, loaded by 60 kN at its axle, alone on a
     curve of radius R whose cant balances V; the steady running of the statics (issue 69: the
@@ -121,34 +153,19 @@ def _free_wheelset(R, V, gamma=0.05, push=0.0):
     from axlebox.mbs.solver.body import rigid
     from axlebox.mbs.solver.elements import Load
     from axlebox.mbs.solver.system import System
-    from axlebox.mbs.track.line import Line, Segment
     from axlebox.mbs.vehicle.statics import equilibrium
-    from axlebox.mbs.wheelrail.element import WheelRailParams, build_tables
-    from axlebox.mbs.wheelrail.element_kernel import COL_C0Z, COL_KH, COL_PZ, P_L0
-    from axlebox.mbs.wheelrail.geometry import TrackLayout
-    from axlebox.mbs.wheelrail.profile import Profile
-    y = np.linspace(-0.07, 0.07, 701)
-    wheel = Profile(y=y, z=gamma * y, kind="wheel", name="cone 1:20")
-    yr = np.linspace(-0.036, 0.036, 721)
-    rail = Profile(y=yr, z=-(0.04 - np.sqrt(0.04 ** 2 - yr ** 2)), kind="rail", name="R40 crown")
-    tab = build_tables(wheel, rail, TrackLayout(r0=0.46, cant=0.0), WheelRailParams(law="kalker"),
-                       cache=False)
-    ic = tab.tab.shape[0] // 2
-    l0, r0 = float(tab.par[P_L0]), 0.46
-    F = 60e3 + 1500 * G
-    z = float(tab.tab[ic, COL_C0Z]) - (0.5 * F / float(tab.tab[ic, COL_KH])) ** (2 / 3)
-    h = 2 * l0 * np.sin(np.arctan(V * V / (G * R)))
+    tab, l0, r0 = _cone_on_crowns(gamma)
+    z, rho = _rolling(tab, 60e3 + 1500 * G)
     s = System(speed=V)
     s.set_wheel_rail(tab.tab, tab.par)
     s.add_body(rigid("ws", 1500.0, (800.0, 100.0, 800.0), spin=True), r=(0.0, 0.0, z),
-               v=(V, 0.0, 0.0), omega=(0.0, V / (z - float(tab.tab[ic, COL_PZ])), 0.0))
+               v=(V, 0.0, 0.0), omega=(0.0, V / rho, 0.0))
     for name, sg in (("L", 1.0), ("R", -1.0)):
         s.wheel(name, s.marker("ws", at=(0.0, sg * l0, -r0)), 0 if sg > 0 else 1, r0)
     s.add(Load("axle load", s.marker("ws"), force=(0.0, 0.0, -60e3)))
     if push:
         s.add(Load("push", s.marker("ws"), force=(0.0, push, 0.0)))
-    s.on_line(Line([Segment("curve", 500.0, radius=R, hand="left", superelevation=h)],
-                   s0=2 * l0), 100.0)
+    s.on_line(_balanced_curve(R, V, l0), 100.0)
     model = s.assemble()
     yq = equilibrium(model, tol=1e-9) if not push else model.y0
     return model, yq, tab
@@ -235,7 +252,10 @@ def test_the_axle_boxes_carry_the_wheelsets_net_lateral_force():
     np.testing.assert_allclose(rows, run.bearings[k][:, :, kb.BR_OUTER, 1].mean(0), rtol=0.02)
 
 
-def _bogie(kx, R, V, a=1.25, b1=1.0, ky=2e6):
+KY = 2e6                # N/m: the bogie's primary springs' lateral stiffness, each
+
+
+def _bogie(kx, R, V, a=1.25, b1=1.0, ky=KY):
     """A two-axle bogie alone on a curve of radius R whose cant balances V: a 2 t frame carrying
     100 kN (in its mass), on two rigid wheelsets of 1:20 cones on 40 mm crowns (:func:`_free_wheelset`'s pair,
     the Kalker linear law) at ``+-a``, each held by two primary springs at ``+-b1`` of
@@ -244,29 +264,15 @@ def _bogie(kx, R, V, a=1.25, b1=1.0, ky=2e6):
     from axlebox.mbs.solver.body import rigid
     from axlebox.mbs.solver.elements import Bushing
     from axlebox.mbs.solver.system import System
-    from axlebox.mbs.track.line import Line, Segment
     from axlebox.mbs.vehicle.statics import equilibrium
-    from axlebox.mbs.wheelrail.element import WheelRailParams, build_tables
-    from axlebox.mbs.wheelrail.element_kernel import COL_C0Z, COL_KH, COL_PZ, P_L0
-    from axlebox.mbs.wheelrail.geometry import TrackLayout
-    from axlebox.mbs.wheelrail.profile import Profile
-    y = np.linspace(-0.07, 0.07, 701)
-    wheel = Profile(y=y, z=0.05 * y, kind="wheel", name="cone 1:20")
-    yr = np.linspace(-0.036, 0.036, 721)
-    rail = Profile(y=yr, z=-(0.04 - np.sqrt(0.04 ** 2 - yr ** 2)), kind="rail", name="R40 crown")
-    params = WheelRailParams(law="kalker", y_max=0.02)
-    tab = build_tables(wheel, rail, TrackLayout(r0=0.46, cant=0.0), params, cache=False)
-    ic = tab.tab.shape[0] // 2
-    l0, r0 = float(tab.par[P_L0]), 0.46
-    F = 0.5 * (100e3 + 2000 * G) + 1500 * G
-    z = float(tab.tab[ic, COL_C0Z]) - (0.5 * F / float(tab.tab[ic, COL_KH])) ** (2 / 3)
-    h = 2 * l0 * np.sin(np.arctan(V * V / (G * R)))
+    tab, l0, r0 = _cone_on_crowns(y_max=0.02)
+    z, rho = _rolling(tab, 0.5 * (100e3 + 2000 * G) + 1500 * G)
     s = System(speed=V)
     s.set_wheel_rail(tab.tab, tab.par)
     # the frame's load as its mass (a dead load would miss its centrifugal force: 0.8 kN)
     s.add_body(rigid("frame", 2000.0 + 100e3 / G, (9000.0, 6000.0, 15000.0)),
                r=(0.0, 0.0, z + 0.2), v=(V, 0.0, 0.0))
-    spin = V / (z - float(tab.tab[ic, COL_PZ]))
+    spin = V / rho
     for i, x in ((1, a), (2, -a)):
         ws = f"ws{i}"
         s.add_body(rigid(ws, 1500.0, (800.0, 100.0, 800.0), spin=True), r=(x, 0.0, z),
@@ -275,8 +281,7 @@ def _bogie(kx, R, V, a=1.25, b1=1.0, ky=2e6):
             s.wheel(f"{ws}_{name}", s.marker(ws, at=(0.0, sg * l0, -r0)), 0 if sg > 0 else 1, r0)
             s.add(Bushing(f"primary{i}{name}", s.marker("frame", at=(x, sg * b1, -0.2)),
                           s.marker(ws, at=(0.0, sg * b1, 0.0)), k=(kx, ky, 2e6, 0, 0, 0)))
-    s.on_line(Line([Segment("curve", 500.0, radius=R, hand="left", superelevation=h)],
-                   s0=2 * l0), 100.0)
+    s.on_line(_balanced_curve(R, V, l0), 100.0)
     model = s.assemble()
     return model, equilibrium(model, tol=1e-9), tab, (a, b1, l0, r0)
 
@@ -337,7 +342,7 @@ def test_a_bogie_curves_as_the_linear_steady_curving_theory_says(kx):
     assert lam == pytest.approx(0.05, rel=0.06)
     r_mean = out[:, OUT_R].mean()
     b = 0.25 * (out[0, OUT_P + 1] - out[1, OUT_P + 1] + out[2, OUT_P + 1] - out[3, OUT_P + 1])
-    (y1, p1, y2, p2, _, _), y0 = _steady_curving_theory(2 * kx * b1 ** 2, 2 * 2e6, f11, f22, lam,
+    (y1, p1, y2, p2, _, _), y0 = _steady_curving_theory(2 * kx * b1 ** 2, 2 * KY, f11, f22, lam,
                                                          r_mean, b, a, R)
     scale_psi = a / R                                  # the angles' own scale
     assert gy1 == pytest.approx(y1, rel=0.05) and gy2 == pytest.approx(y2, rel=0.05)
