@@ -306,7 +306,11 @@ def write(path, run: integrate.Run, model, cfg: vconfig.CarConfig,
     for i, name in enumerate(model.wheel_names):
         o = run.wheels[:, i]
         wr[f"{name}/force"] = (o[:, ek.OUT_F:ek.OUT_F + 3], {"unit": "N", "frame": "track, on the wheel"})
-        wr[f"{name}/normal"] = (o[:, ek.OUT_N], {"unit": "N"})
+        wr[f"{name}/normal"] = (o[:, ek.OUT_N], {"unit": "N", "note": "the most loaded contact's"})
+        wr[f"{name}/region_normal"] = (o[:, ek.OUT_NPT:ek.OUT_NPT + ek.NPT],
+                                       {"unit": "N", "columns": "tread, flange root, flange"})
+        wr[f"{name}/region_angle"] = (o[:, ek.OUT_DPT:ek.OUT_DPT + ek.NPT],
+                                      {"unit": "rad", "columns": "tread, flange root, flange"})
         wr[f"{name}/creepage"] = (o[:, [ek.OUT_XI, ek.OUT_ETA, ek.OUT_SPIN]],
                                   {"unit": "1, 1, 1/m", "columns": "xi, eta, spin"})
         wr[f"{name}/contact_point"] = (o[:, ek.OUT_P:ek.OUT_P + 3], {"unit": "m"})

@@ -7,11 +7,15 @@ docstring):
 
 1. :func:`~axlebox.mbs.wheelrail.geometry.contact_table` of the rigid wheelset (``n_geom`` lateral
    displacements y in ``[-y_max, y_max]``): roll0, z0, contact points, contact angles, rolling
-   radii, curvatures, per side.
+   radii, curvatures, per side; and its :func:`~axlebox.mbs.wheelrail.geometry.contact_regions`:
+   each wheel cut into up to NPT regions (tread, flange root, flange) at the single-point
+   contact's jumps of more than ``split_angle``, with each region's own closest point and its
+   gap in the rigid wheelset's touching pose (the kernel's multi-point contact).
 2. Per side, the wheel's own look-up offset ``u(y) = y + s l0 (cos roll0 - 1) + k r0 sin roll0``
    (``k`` 0 for ``index="centre"``, 1 for ``"tread"``; monotone, checked) and every column
    resampled linearly onto one uniform grid of ``n_grid`` points in u covering both sides.
-3. Optionally (``smooth_y > 0``) every geometry column is smoothed over u by a Gaussian of
+3. Optionally (``smooth_y > 0``) each region's contact geometry (point, angle, radius,
+   curvatures; not the touching pose nor the gaps) is smoothed over u by a Gaussian of
    standard deviation ``smooth_y`` (the equivalent-contact idea of Arnold & Netter 1998, Math.
    Comput. Model. Dyn. Syst. 4(2) 162-184, as SIMPACK's "equivalent elastic" contact does it).
    Why: a single-point Hertz element sees a step where the contact point jumps across the tread
@@ -22,7 +26,10 @@ docstring):
    from one to the other while their gap difference stays under the penetration (about 80 um),
    i.e. over 2-4 mm of u for contact angles 0.02-0.04 rad apart, which a Gaussian of 1 mm
    spreads it over.  Away from the jumps the columns change by ``smooth_y^2 f''/2``: 2 um of
-   rolling radius on the tread (``tests/test_wheelrail_element.py``).
+   rolling radius on the tread (``tests/test_wheelrail_element.py``).  The touching pose and
+   the gaps stay exact: smoothed across the flange's jumps (where the wheelset's height rises
+   with a slope 10 times the tread's) they would leave the pose 0.1-0.5 mm off touching; and a
+   jump that is a region border needs no smoothing, both regions carry load across it.
 4. At each grid point: Hertz (:mod:`axlebox.mbs.wheelrail.hertz`) with the relative curvatures
    ``A = kappa_wheel_x / 2`` (straight rail) and ``B = (kappa_wheel_y + kappa_rail_y) / 2``
    floored at ``B_min`` (a conformal contact is not Hertzian; S1002/60E1 stays above 0.27/m),
@@ -54,7 +61,7 @@ from axlebox._params import ParameterError, check_ranges, choice, digest, param,
 
 from . import element_kernel as ek
 from . import fastsim_kernel as fk
-from .geometry import TrackLayout, contact_table
+from .geometry import TrackLayout, contact_regions, contact_table
 from .hertz import contact_stiffness, effective_modulus, hertz
 from .kalker import creep_coefficients
 from .profile import Profile
@@ -62,16 +69,24 @@ from .profile import Profile
 __all__ = ["WheelRailParams", "WheelRailTables", "build_tables", "make_par",
            "wheel_force_reference", "LAWS", "INDEXES", "TABLE_VERSION"]
 
-TABLE_VERSION = 1
+TABLE_VERSION = 2
 LAWS = {"fastsim": ek.LAW_FASTSIM, "kalker": ek.LAW_KALKER, "she": ek.LAW_SHE}
 INDEXES = {"centre": 0, "tread": 1}
 BOUNDS = {"parabolic": 0, "elliptic": 1}
 UPDATES = {"cutback": 0, "rotate": 1}
 # fields that shape the tables (the rest only enter par)
-_TABLE_FIELDS = ("E", "nu", "index", "y_max", "n_geom", "n_grid", "step", "B_min", "smooth_y")
+_TABLE_FIELDS = ("E", "nu", "index", "y_max", "n_geom", "n_grid", "step", "B_min", "smooth_y",
+                 "split_angle")
+_BLOCKS = ek.NPC * np.arange(ek.NPT)
+# the columns taken from the geometry (the rest follow from them by Hertz and Kalker), and of
+# those the ones smoothed: each region's contact geometry, not the touching pose nor the gaps
+# (step 3)
+_GEOMETRY = np.concatenate([np.arange(ek.COL_PY)]
+                           + [o + np.r_[ek.COL_PY:ek.COL_B + 1, ek.COL_GAP] for o in _BLOCKS])
+_SMOOTHED = np.concatenate([o + np.arange(ek.COL_PY, ek.COL_B + 1) for o in _BLOCKS])
 # mirror sign of each column: lateral quantities change sign, the others do not
 _MIRROR = np.ones(ek.NCOL)
-_MIRROR[[ek.COL_ROLL0, ek.COL_C0Y, ek.COL_PY]] = -1.0
+_MIRROR[[ek.COL_ROLL0, ek.COL_C0Y, *(ek.COL_PY + _BLOCKS)]] = -1.0
 _MEMO: dict = {}
 # the kernel's slot constants (COL_*, P_*, OUT_*, LAW_*, NCOL, N_PAR, N_OUT), re-exported here
 globals().update({k: v for k, v in vars(ek).items()
@@ -104,8 +119,11 @@ class WheelRailParams:
     n_grid: int = param(1201, 11, 100001, unit="", doc="points of the uniform look-up grid")
     step: float = param(2e-5, 1e-6, 1e-4, doc="grid of the minimum-gap search")
     B_min: float = param(0.1, 1e-3, 10.0, unit="1/m", doc="floor of the relative curvature B")
-    smooth_y: float = param(1.0e-3, 0.0, 0.005, doc="Gaussian smoothing of the geometry columns over "
-                                                 "u (0: exact single-point tables)")
+    smooth_y: float = param(1.0e-3, 0.0, 0.005, doc="Gaussian smoothing of each contact region's "
+                                                 "geometry over u (0: exact tables)")
+    split_angle: float = param(0.1, 0.01, 1.0, unit="rad",
+                               doc="contact-angle jump of the single-point contact that makes a "
+                                   "border between two contact regions of the wheel")
 
     def __post_init__(self):
         check_ranges(self)
@@ -131,9 +149,13 @@ class WheelRailTables:
     names: tuple
     key: str
 
-    def column(self, col: int, side: int) -> np.ndarray:
-        """Column ``col`` (``COL_*``) of side 0 (left) or 1 (right) on the grid ``u``."""
-        return self.tab[:, side * ek.NCOL + col]
+    def column(self, col: int, side: int, region: int = 0) -> np.ndarray:
+        """Column ``col`` (``COL_*``) of side 0 (left) or 1 (right) on the grid ``u``; for a
+        region's column (``COL_PY`` on) that of ``region`` (0 tread ... NPT - 1 flange)."""
+        if region and col < ek.COL_PY:
+            raise ParameterError(f"region = {region!r} is not allowed for column {col}: the "
+                                 f"touching pose (columns 0-{ek.COL_PY - 1}) is the wheel's")
+        return self.tab[:, side * ek.NCOL + col + region * ek.NPC]
 
     def with_params(self, params: WheelRailParams) -> "WheelRailTables":
         """The same tables with another ``par`` (friction, law, damping, FASTSIM grid)."""
@@ -211,6 +233,8 @@ def build_tables(wheel: Profile, rail: Profile, layout: TrackLayout | None = Non
 def _compute(wheel, rail, layout, params, wheel_right, rail_right):
     ct = contact_table(wheel, rail, layout, y_max=params.y_max, n=params.n_geom,
                        wheel_right=wheel_right, rail_right=rail_right, step=params.step)
+    reg = contact_regions(wheel, rail, ct, wheel_right=wheel_right, rail_right=rail_right,
+                          step=params.step, split_angle=params.split_angle)
     rails = (rail, rail_right or rail)
     r0 = layout.r0
     l0 = 0.5 * layout.back_to_back - wheel.flange_back
@@ -231,22 +255,25 @@ def _compute(wheel, rail, layout, params, wheel_right, rail_right):
         raw[k, :, ek.COL_Z0] = z0
         raw[k, :, ek.COL_C0Y] = c0y
         raw[k, :, ek.COL_C0Z] = r0 + z0 + s * l0 * np.sin(roll)
-        raw[k, :, ek.COL_PY] = ct.y_track[:, k]
-        raw[k, :, ek.COL_PZ] = rail_k.height(ct.y_rail[:, k])
-        raw[k, :, ek.COL_DELTA] = ct.delta[:, k]
-        raw[k, :, ek.COL_R] = ct.r[:, k]
-        raw[k, :, ek.COL_A] = 0.5 * ct.kappa_wheel_x[:, k]
-        raw[k, :, ek.COL_B] = 0.5 * (ct.kappa_wheel_y[:, k] + ct.kappa_rail_y[:, k])
+        for p in range(ek.NPT):
+            o = p * ek.NPC
+            raw[k, :, o + ek.COL_PY] = reg.y_track[:, k, p]
+            raw[k, :, o + ek.COL_PZ] = rail_k.height(reg.y_rail[:, k, p])
+            raw[k, :, o + ek.COL_DELTA] = reg.delta[:, k, p]
+            raw[k, :, o + ek.COL_R] = reg.r[:, k, p]
+            raw[k, :, o + ek.COL_A] = 0.5 * reg.kappa_wheel_x[:, k, p]
+            raw[k, :, o + ek.COL_B] = 0.5 * (reg.kappa_wheel_y[:, k, p] + reg.kappa_rail_y[:, k, p])
+            raw[k, :, o + ek.COL_GAP] = reg.gap[:, k, p]
     U = min(-u_side[0][0], u_side[0][-1], -u_side[1][0], u_side[1][-1])
     grid = np.linspace(-U, U, params.n_grid)
     tab = np.zeros((params.n_grid, 2 * ek.NCOL))
     for k in range(2):
-        for j in range(ek.COL_B + 1):
+        for j in _GEOMETRY:
             tab[:, k * ek.NCOL + j] = np.interp(grid, u_side[k], raw[k, :, j])
     if params.smooth_y > 0.0:
-        geo = [k * ek.NCOL + j for k in range(2) for j in range(ek.COL_B + 1)]
-        tab[:, geo] = gaussian_filter1d(tab[:, geo], params.smooth_y / (grid[1] - grid[0]),
-                                        axis=0, mode="nearest")
+        cols = [k * ek.NCOL + j for k in range(2) for j in _SMOOTHED]
+        tab[:, cols] = gaussian_filter1d(tab[:, cols], params.smooth_y / (grid[1] - grid[0]),
+                                         axis=0, mode="nearest")
     if wheel_right is None and rail_right is None:
         left = tab[:, :ek.NCOL]
         right_mirrored = tab[::-1, ek.NCOL:] * _MIRROR
@@ -254,18 +281,19 @@ def _compute(wheel, rail, layout, params, wheel_right, rail_right):
         tab = np.concatenate([left, left[::-1] * _MIRROR], axis=1)
     E_star = effective_modulus(params.E, params.nu)
     for k in range(2):
-        sl = slice(k * ek.NCOL, (k + 1) * ek.NCOL)
-        t = tab[:, sl]
-        t[:, ek.COL_B] = np.maximum(t[:, ek.COL_B], params.B_min)
-        A, B = t[:, ek.COL_A], t[:, ek.COL_B]
-        KH = contact_stiffness(A, B, E_star)
-        unit = hertz(A, B, 1.0, E_star)                   # semi-axes at N = 1 N
-        t[:, ek.COL_KH] = KH
-        t[:, ek.COL_AHAT] = unit.a * np.cbrt(KH)
-        t[:, ek.COL_BHAT] = unit.b * np.cbrt(KH)
-        C = creep_coefficients(t[:, ek.COL_AHAT] / t[:, ek.COL_BHAT], params.nu)
-        for j, col in enumerate((ek.COL_C11, ek.COL_C22, ek.COL_C23, ek.COL_C33)):
-            t[:, col] = C[j]
+        for p in range(ek.NPT):
+            o = k * ek.NCOL + p * ek.NPC
+            col = {j: o + j for j in range(ek.COL_PY, ek.COL_GAP + 1)}
+            tab[:, col[ek.COL_B]] = np.maximum(tab[:, col[ek.COL_B]], params.B_min)
+            A, B = tab[:, col[ek.COL_A]], tab[:, col[ek.COL_B]]
+            KH = contact_stiffness(A, B, E_star)
+            unit = hertz(A, B, 1.0, E_star)                   # semi-axes at N = 1 N
+            tab[:, col[ek.COL_KH]] = KH
+            tab[:, col[ek.COL_AHAT]] = unit.a * np.cbrt(KH)
+            tab[:, col[ek.COL_BHAT]] = unit.b * np.cbrt(KH)
+            C = creep_coefficients(tab[:, col[ek.COL_AHAT]] / tab[:, col[ek.COL_BHAT]], params.nu)
+            for j, c in enumerate((ek.COL_C11, ek.COL_C22, ek.COL_C23, ek.COL_C33)):
+                tab[:, col[c]] = C[j]
     grid_par = np.zeros(ek.P_MU)
     grid_par[ek.P_U0], grid_par[ek.P_DU], grid_par[ek.P_NGRID] = grid[0], grid[1] - grid[0], len(grid)
     grid_par[ek.P_R0], grid_par[ek.P_L0], grid_par[ek.P_INDEX] = r0, l0, k_index
@@ -277,10 +305,10 @@ def _compute(wheel, rail, layout, params, wheel_right, rail_right):
 def wheel_force_reference(side, c, e, v_c, omega, V, z_rail, y_rail, dz_rail, dy_rail,
                           tables: WheelRailTables) -> np.ndarray:
     """The element of :func:`axlebox.mbs.wheelrail.element_kernel.wheel_rail_force` in numpy (vectors,
-    ``np.interp``, a rotation matrix, ``np.cross``), returning its ``out`` array.  FASTSIM runs
-    as the interpreted Python source of the kernel (``_fastsim.py_func``): it is checked
-    against the independent numpy FASTSIM in ``tests/test_tangential.py``; here it is the
-    element around it that is checked."""
+    ``np.interp``, a rotation matrix, ``np.cross``, the contact point from the meridian plane's
+    unit vector), returning its ``out`` array.  FASTSIM runs as the interpreted Python source of
+    the kernel (``_fastsim.py_func``): it is checked against the independent numpy FASTSIM in
+    ``tests/test_tangential.py``; here it is the element around it that is checked."""
     par, P = tables.par, ek
     s = 1.0 if side == 0 else -1.0
     c, e, v_c, omega = (np.asarray(v, dtype=float) for v in (c, e, v_c, omega))
@@ -289,39 +317,52 @@ def wheel_force_reference(side, c, e, v_c, omega, V, z_rail, y_rail, dz_rail, dy
     u = c[1] - s * l0 - y_rail + par[P.P_INDEX] * r0 * math.sin(phi)
     grid = tables.u
     clamped = not grid[0] <= u <= grid[-1]
-    col = {j: float(np.interp(u, grid, tables.column(j, side))) for j in range(ek.NCOL)}
+
+    def at(j, region=0):
+        return float(np.interp(u, grid, tables.column(j, side, region)))
+
     rail = np.array([0.0, y_rail, z_rail])
-    c0 = rail + np.array([0.0, s * l0 + col[P.COL_C0Y], col[P.COL_C0Z]])
-    p = rail + np.array([0.0, col[P.COL_PY], col[P.COL_PZ]])
-    p[0] = c0[0] = c[0]
-    d = col[P.COL_DELTA]
-    n = np.array([0.0, -s * math.sin(d), math.cos(d)])
-    t1 = np.array([1.0, 0.0, 0.0])
-    t2 = np.cross(n, t1)
-    dphi = phi - col[P.COL_ROLL0]
+    c0 = rail + np.array([c[0], s * l0 + at(P.COL_C0Y), at(P.COL_C0Z)])
+    dphi = phi - at(P.COL_ROLL0)
     R = np.array([[1.0, 0.0, 0.0], [0.0, math.cos(dphi), -math.sin(dphi)],
                   [0.0, math.sin(dphi), math.cos(dphi)]])
-    dp = (c - c0) + (R - np.eye(3)) @ (p - c0)
-    pen = -dp @ n
-    v_p = v_c + np.cross(omega, p - c)
-    pen_dot = -(v_p - np.array([0.0, dy_rail, dz_rail])) @ n
     Vr = max(V, par[P.P_VMIN])
-    xi, eta, spin = v_p @ t1 / Vr, v_p @ t2 / Vr, omega @ n / Vr
-    N = a = b = Fx = Fy = Mz = 0.0
-    if pen > 0.0:
-        N = max(col[P.COL_KH] * pen ** 1.5 * (1.0 + par[P.P_CHI] * pen_dot), 0.0)
-        a, b = col[P.COL_AHAT] * math.sqrt(pen), col[P.COL_BHAT] * math.sqrt(pen)
-        Fx, Fy, Mz = _law_reference(xi, eta, spin, a, b, N, par, col)
-    F = N * n + Fx * t1 + Fy * t2
-    M = np.cross(p - c, F) + Mz * n
     out = np.zeros(ek.N_OUT)
-    out[P.OUT_F:P.OUT_F + 3], out[P.OUT_M:P.OUT_M + 3] = F, M
+    F_sum, M_sum, rows = np.zeros(3), np.zeros(3), []
+    for k in range(ek.NPT):
+        col = {j: at(j, k) for j in range(ek.COL_PY, ek.COL_GAP + 1)}
+        p = rail + np.array([c[0], col[P.COL_PY], col[P.COL_PZ]])
+        d = col[P.COL_DELTA]
+        n = np.array([0.0, -s * math.sin(d), math.cos(d)])
+        t1 = np.array([1.0, 0.0, 0.0])
+        t2 = np.cross(n, t1)
+        dp = (c - c0) + (R - np.eye(3)) @ (p - c0)
+        pen = -dp @ n - col[P.COL_GAP] * math.cos(d)
+        m = -(n - (n @ e) * e)
+        m /= np.linalg.norm(m)                      # from the axle to the point, in the meridian
+        p[0] = c[0] + ((p - c) @ e) * e[0] + col[P.COL_R] * m[0]
+        v_p = v_c + np.cross(omega, p - c)
+        pen_dot = -(v_p - np.array([0.0, dy_rail, dz_rail])) @ n
+        xi, eta, spin = v_p @ t1 / Vr, v_p @ t2 / Vr, omega @ n / Vr
+        N = a = b = Fx = Fy = Mz = 0.0
+        if pen > 0.0:
+            N = max(col[P.COL_KH] * pen ** 1.5 * (1.0 + par[P.P_CHI] * pen_dot), 0.0)
+            a, b = col[P.COL_AHAT] * math.sqrt(pen), col[P.COL_BHAT] * math.sqrt(pen)
+            Fx, Fy, Mz = _law_reference(xi, eta, spin, a, b, N, par, col)
+        F = N * n + Fx * t1 + Fy * t2
+        F_sum += F
+        M_sum += np.cross(p - c, F) + Mz * n
+        out[P.OUT_NPT + k], out[P.OUT_DPT + k], out[P.OUT_YPT + k] = N, d, p[1]
+        rows.append((N, pen, {P.OUT_N: N, P.OUT_PEN: pen, P.OUT_XI: xi, P.OUT_ETA: eta,
+                              P.OUT_SPIN: spin, P.OUT_FX: Fx, P.OUT_FY: Fy, P.OUT_A: a,
+                              P.OUT_B: b, P.OUT_DELTA: d, P.OUT_MZ: Mz, P.OUT_PENDOT: pen_dot,
+                              P.OUT_R: col[P.COL_R]}, p))
+    N, pen, best, p = max(rows, key=lambda row: (row[0], row[1]))   # the most loaded region
+    out[P.OUT_F:P.OUT_F + 3], out[P.OUT_M:P.OUT_M + 3] = F_sum, M_sum
     out[P.OUT_P:P.OUT_P + 3] = p
-    for slot, v in ((P.OUT_N, N), (P.OUT_PEN, pen), (P.OUT_XI, xi), (P.OUT_ETA, eta),
-                    (P.OUT_SPIN, spin), (P.OUT_FX, Fx), (P.OUT_FY, Fy), (P.OUT_A, a),
-                    (P.OUT_B, b), (P.OUT_DELTA, d), (P.OUT_MZ, Mz), (P.OUT_PENDOT, pen_dot),
-                    (P.OUT_R, col[P.COL_R]), (P.OUT_CLAMP, float(clamped))):
+    for slot, v in best.items():
         out[slot] = v
+    out[P.OUT_CLAMP] = float(clamped)
     return out
 
 

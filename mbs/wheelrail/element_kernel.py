@@ -8,7 +8,8 @@ Frame: the track frame (inertial, track-fixed): x forward along the track, y lef
 the crown of the nominal rails (the side-local rail origin of :mod:`axlebox.mbs.wheelrail.geometry`); the
 vehicle runs at +V along x.  Side 0 = left (s = +1), 1 = right (s = -1).
 
-Method (one contact point per wheel, elastic normal contact, table look-up):
+Method (up to NPT contact points per wheel, one per region of the wheel's surface: tread,
+flange root, flange; elastic normal contact, table look-up):
 
 1. Look-up.  The wheel's roll ``phi = atan2(e_z, hypot(e_x, e_y))`` (independent of yaw).  The
    table is indexed by the wheel's own lateral offset from its rail,
@@ -25,12 +26,20 @@ Method (one contact point per wheel, elastic normal contact, table look-up):
    table's.  Limit: the table is 1-D, so 5 mrad of extra roll (7.5 mm of cross-level) still
    costs up to 44 um where the contact point jumps; a table in (u, roll) would remove that.
 2. Penetration.  The table row is a touching configuration: reference wheel centre ``c0`` (from
-   the wheelset's ``roll0, z0``), contact point ``p0`` on the rail, contact angle delta.  The
+   the wheelset's ``roll0, z0``) and, per region, its point ``p0`` on the rail closest to the
+   wheel, its contact angle delta and its vertical ``gap`` there (0 for the region that holds
+   the rigid contact; :func:`axlebox.mbs.wheelrail.geometry.contact_regions`).  The
    wheel's actual pose differs by the translation ``c - c0`` and the rotation ``dphi = phi -
    roll0`` about x; its surface point at ``p0`` moves by
    ``dp = (c - c0) + (R(dphi) - I)(p0 - c0)``, and the penetration is the approach along the
-   contact normal, ``pen = -dp.n`` (first order in the motion away from the touching row; exact
-   for the vertical approach, which is all there is on a perfect track).  Rail irregularities
+   contact normal less the region's gap along it, ``pen = -dp.n - gap cos(delta)`` (first
+   order in the motion away from the touching row; exact for the vertical approach, which is
+   all there is on a perfect track).  So where the profiles give two-point contact (S1002 on
+   60E1: tread and flange root at 5 mm of lateral displacement, flange root and flange at 6.2
+   mm) both regions carry load as soon as the wheel's approach closes the second one's gap,
+   each with its own normal, Hertz patch and creep forces (steps 3-5), as in the multi-Hertzian
+   methods (Pombo & Ambrosio, Multibody Syst. Dyn. 19 (2008) 91-114; Shabana, Zaazaa &
+   Sugiyama, *Railroad Vehicle Dynamics*, CRC 2008, ch. 5).  Rail irregularities
    shift ``c0`` and ``p0`` by ``(0, y_rail, z_rail)``.  ``pen <= 0``: no force.
 3. Normal force, Hunt & Crossley (1975) damping, which vanishes with the penetration so that the
    force is continuous at first touch: ``N = K_H pen^1.5 (1 + chi pen_dot)``, clipped at
@@ -40,7 +49,14 @@ Method (one contact point per wheel, elastic normal contact, table look-up):
 4. Contact frame ``t1 = x``, ``n = (0, -s sin(delta), cos(delta))`` (the rail's outward normal,
    acting on the wheel: its lateral part pushes a flange back towards the track centre),
    ``t2 = n x t1 = (0, cos(delta), s sin(delta))``, so ``n = t1 x t2`` as in
-   :mod:`axlebox.mbs.wheelrail.kalker`.  Creepages from the wheel's material velocity at the contact,
+   :mod:`axlebox.mbs.wheelrail.kalker`.  The contact point ``p`` has the table's ``y, z`` and
+   lies where the wheel's surface of revolution has the normal n: in the meridian plane of the
+   axle ``e`` and n, so ``p - c = alpha e + r m`` with ``m = -(n - (n.e) e) / sqrt(1 - (n.e)^2)``
+   and ``p_x - c_x = alpha e_x + r (n.e) e_x / sqrt(1 - (n.e)^2)``, ``alpha = (p - c).e`` (its
+   lateral and vertical parts): a yawed wheelset's flange contact leads or lags the axle by
+   ``r tan(delta) psi``, which makes its lateral creepage ``(y'/V - psi) / cos(delta)``
+   (Wickens, *Fundamentals of Rail Vehicle Dynamics*, 2003, ch. 2).  Creepages from the wheel's
+   material velocity at the contact,
    ``v_p = v_c + omega x (p - c)``: ``xi = v_p.t1/V``, ``eta = v_p.t2/V``, spin
    ``omega.n/V`` (1/m).  The rail's material is at rest, so nothing is subtracted: a wheel that
    follows a lateral irregularity exactly (``v_y = V y_rail'``, yaw ``y_rail'``) has ``eta = 0``;
@@ -50,12 +66,13 @@ Method (one contact point per wheel, elastic normal contact, table look-up):
    ``L1 = 8a/(3 C11 G)``, ``L2 = 8a/(3 C22 G)``, ``L3 = pi a sqrt(a/b)/(4 C23 G)``), Kalker's
    linear law, or Shen-Hedrick-Elkins (formulas in :mod:`axlebox.mbs.wheelrail.kalker` and
    :func:`axlebox.mbs.wheelrail.tangential.shen_hedrick_elkins`).  None when ``N = 0``.
-6. ``F = N n + Fx t1 + Fy t2`` on the wheel at ``p = (c_x, y_rail + p0_y, z_rail + p0_z)`` and
-   ``M = (p - c) x F + Mz n`` about c.
+6. Per region ``F = N n + Fx t1 + Fy t2`` on the wheel at ``p`` and ``M = (p - c) x F + Mz n``
+   about c; the wheel's force and moment are their sums.
 
-Neglected: the contact point's longitudinal shift with yaw, the rail's slope in the contact frame
-(both second order on tangent track), a second contact point (the table's contact jumps are
-smeared over one grid interval, or over ``smooth_y`` of lateral displacement: element.py, step 3).
+Neglected: the change of the lateral clearance with yaw (``r tan(delta) psi^2``, second order),
+the rail's slope in the contact frame, more than NPT regions; within a region the contact point's
+jumps (the tread's at 0.1 mm) are smeared over ``smooth_y`` of lateral displacement (element.py,
+step 3).
 """
 from __future__ import annotations
 
@@ -65,14 +82,17 @@ import numpy as np
 from numba import njit
 
 from .fastsim_kernel import fastsim_forces
+from .geometry import NPT
 
 # ----------------------------------------------------------------------- tab: per-side columns
 # tab has shape (n_grid, 2 NCOL): column side * NCOL + COL_*, rows on the uniform grid of u.
+# First the rigid wheelset's touching pose, then NPT blocks of NPC columns, one per contact
+# region of the wheel (tread, flange root, flange): region k's column is COL_* + k NPC.
 COL_ROLL0 = 0      # wheelset roll of the rigid contact solution, rad
 COL_Z0 = 1         # wheelset centre height above r0, m
 COL_C0Y = 2        # reference wheel centre, lateral, relative to y_rail + s l0, m
 COL_C0Z = 3        # reference wheel centre height, relative to z_rail, m
-COL_PY = 4         # contact point, track y, relative to y_rail, m
+COL_PY = 4         # the region's contact point, track y, relative to y_rail, m
 COL_PZ = 5         # contact point height, relative to z_rail, m
 COL_DELTA = 6      # contact angle (geometry.py sign: + when the rail rises to the field side)
 COL_R = 7          # rolling radius, m
@@ -85,7 +105,9 @@ COL_C11 = 13       # Kalker's coefficients at a/b = a_hat/b_hat and nu
 COL_C22 = 14
 COL_C23 = 15
 COL_C33 = 16
-NCOL = 17
+COL_GAP = 17       # the region's vertical gap in the touching pose (0: the rigid contact), m
+NPC = COL_GAP + 1 - COL_PY     # columns per region
+NCOL = COL_PY + NPT * NPC
 
 # ----------------------------------------------------------------------------------- par slots
 P_U0 = 0           # first grid point of u, m
@@ -111,6 +133,8 @@ LAW_KALKER = 1
 LAW_SHE = 2
 
 # ----------------------------------------------------------------------------------- out slots
+# the scalars OUT_N ... OUT_R are those of the region carrying the largest normal force (of the
+# one nearest to touching when none does); F and M are the sums over the regions
 OUT_F = 0          # (3) force on the wheel, track frame, N
 OUT_M = 3          # (3) moment on the wheel about c, N m
 OUT_N = 6          # normal force, N
@@ -128,7 +152,10 @@ OUT_MZ = 19        # spin moment about n, N m
 OUT_PENDOT = 20    # normal approach rate, m/s
 OUT_R = 21         # rolling radius, m
 OUT_CLAMP = 22     # 1 when u was outside the table (clamped), else 0
-N_OUT = 23
+OUT_NPT = 23       # (NPT) each region's normal force, tread first, N
+OUT_DPT = OUT_NPT + NPT        # (NPT) each region's contact angle, rad
+OUT_YPT = OUT_DPT + NPT        # (NPT) each region's contact point, track y, m
+N_OUT = OUT_YPT + NPT
 
 
 @njit(cache=True, inline="always")
@@ -170,6 +197,58 @@ def tangential_law(law, xi, eta, spin, a, b, N, mu, G, C11, C22, C23, C33, ellip
 
 
 @njit(cache=True)
+def _region(tab, i, w, col, par, s, c, e, v_c, omega, Vr, y_rail, z_rail, dy_rail, dz_rail,
+            c0y, c0z, cd, sd):
+    """One contact region (module docstring, steps 2-5), its columns ``col + COL_*``.  Returns
+    ``(N, pen, xi, eta, spin, Fx, Fy, Mz, a, b, delta, pen_dot, lx, ly, lz, r)``."""
+    py = _lerp(tab, i, w, col + COL_PY)
+    pz = _lerp(tab, i, w, col + COL_PZ)
+    delta = _lerp(tab, i, w, col + COL_DELTA)
+    r = _lerp(tab, i, w, col + COL_R)
+    # the wheel's surface point at p0 moved from the touching row to the actual pose
+    ry = py - c0y
+    rz = pz - c0z
+    dpy = (cd - 1.0) * ry - sd * rz + (c[1] - y_rail - c0y)
+    dpz = sd * ry + (cd - 1.0) * rz + (c[2] - z_rail - c0z)
+    sdl = sin(delta)
+    cdl = cos(delta)
+    ny_ = -s * sdl                                       # n = (0, ny_, nz_)
+    nz_ = cdl
+    pen = -(ny_ * dpy + nz_ * dpz) - _lerp(tab, i, w, col + COL_GAP) * cdl
+    # the contact point: where the wheel's surface of revolution has the normal n (its
+    # meridian plane holds e and n), ahead of the axle by r (n.e) e_x / sqrt(1 - (n.e)^2)
+    ly = y_rail + py - c[1]
+    lz = z_rail + pz - c[2]
+    ne = ny_ * e[1] + nz_ * e[2]
+    lx = (ly * e[1] + lz * e[2]) * e[0] + r * ne * e[0] / sqrt(1.0 - ne * ne)
+    vx = v_c[0] + omega[1] * lz - omega[2] * ly
+    vy = v_c[1] + omega[2] * lx - omega[0] * lz
+    vz = v_c[2] + omega[0] * ly - omega[1] * lx
+    pen_dot = -((vy - dy_rail) * ny_ + (vz - dz_rail) * nz_)
+    xi = vx / Vr
+    eta = (vy * cdl + vz * s * sdl) / Vr
+    spin = (omega[1] * ny_ + omega[2] * nz_) / Vr
+    N = 0.0
+    a = 0.0
+    b = 0.0
+    Fx = 0.0
+    Fy = 0.0
+    Mz = 0.0
+    if pen > 0.0:
+        sp = sqrt(pen)
+        N = max(_lerp(tab, i, w, col + COL_KH) * pen * sp * (1.0 + par[P_CHI] * pen_dot),
+                0.0)
+        a = _lerp(tab, i, w, col + COL_AHAT) * sp
+        b = _lerp(tab, i, w, col + COL_BHAT) * sp
+        Fx, Fy, Mz = tangential_law(
+            int(par[P_LAW]), xi, eta, spin, a, b, N, par[P_MU], par[P_G],
+            _lerp(tab, i, w, col + COL_C11), _lerp(tab, i, w, col + COL_C22),
+            _lerp(tab, i, w, col + COL_C23), _lerp(tab, i, w, col + COL_C33),
+            int(par[P_ELLIPTIC]), int(par[P_ROTATE]), int(par[P_NX]), int(par[P_NY]))
+    return N, pen, xi, eta, spin, Fx, Fy, Mz, a, b, delta, pen_dot, lx, ly, lz, r
+
+
+@njit(cache=True)
 def wheel_rail_force(side, c, e, v_c, omega, V, z_rail, y_rail, dz_rail, dy_rail, tab, par,
                      out):
     """Force and moment of the rail on one wheel (module docstring); fills ``out[:N_OUT]``.
@@ -197,77 +276,50 @@ def wheel_rail_force(side, c, e, v_c, omega, V, z_rail, y_rail, dz_rail, dy_rail
         clamp = 1.0
     i = min(int(t), n_grid - 2)
     w = t - i
-    roll0 = _lerp(tab, i, w, base + COL_ROLL0)
     c0y = s * l0 + _lerp(tab, i, w, base + COL_C0Y)      # relative to y_rail
     c0z = _lerp(tab, i, w, base + COL_C0Z)               # relative to z_rail
-    py = _lerp(tab, i, w, base + COL_PY)
-    pz = _lerp(tab, i, w, base + COL_PZ)
-    delta = _lerp(tab, i, w, base + COL_DELTA)
-    # the wheel's surface point at p0 moved from the touching row to the actual pose
-    ry = py - c0y
-    rz = pz - c0z
-    dphi = phi - roll0
+    dphi = phi - _lerp(tab, i, w, base + COL_ROLL0)
     cd = cos(dphi)
     sd = sin(dphi)
-    dpy = (cd - 1.0) * ry - sd * rz + (c[1] - y_rail - c0y)
-    dpz = sd * ry + (cd - 1.0) * rz + (c[2] - z_rail - c0z)
-    sdl = sin(delta)
-    cdl = cos(delta)
-    ny_ = -s * sdl                                       # n = (0, ny_, nz_)
-    nz_ = cdl
-    pen = -(ny_ * dpy + nz_ * dpz)
-    # contact point and the wheel's material velocity there
-    lx = 0.0
-    ly = y_rail + py - c[1]
-    lz = z_rail + pz - c[2]
-    vx = v_c[0] + omega[1] * lz - omega[2] * ly
-    vy = v_c[1] + omega[2] * lx - omega[0] * lz
-    vz = v_c[2] + omega[0] * ly - omega[1] * lx
-    pen_dot = -((vy - dy_rail) * ny_ + (vz - dz_rail) * nz_)
     Vr = max(V, par[P_VMIN])
-    xi = vx / Vr
-    eta = (vy * cdl + vz * s * sdl) / Vr
-    spin = (omega[1] * ny_ + omega[2] * nz_) / Vr
-    N = 0.0
-    a = 0.0
-    b = 0.0
-    Fx = 0.0
-    Fy = 0.0
-    Mz = 0.0
-    if pen > 0.0:
-        sp = sqrt(pen)
-        N = max(_lerp(tab, i, w, base + COL_KH) * pen * sp * (1.0 + par[P_CHI] * pen_dot), 0.0)
-        a = _lerp(tab, i, w, base + COL_AHAT) * sp
-        b = _lerp(tab, i, w, base + COL_BHAT) * sp
-        Fx, Fy, Mz = tangential_law(
-            int(par[P_LAW]), xi, eta, spin, a, b, N, par[P_MU], par[P_G],
-            _lerp(tab, i, w, base + COL_C11), _lerp(tab, i, w, base + COL_C22),
-            _lerp(tab, i, w, base + COL_C23), _lerp(tab, i, w, base + COL_C33),
-            int(par[P_ELLIPTIC]), int(par[P_ROTATE]), int(par[P_NX]), int(par[P_NY]))
-    # F = N n + Fx t1 + Fy t2,  t2 = (0, cos delta, s sin delta)
-    Fxw = Fx
-    Fyw = N * ny_ + Fy * cdl
-    Fzw = N * nz_ + Fy * s * sdl
-    out[OUT_F] = Fxw
-    out[OUT_F + 1] = Fyw
-    out[OUT_F + 2] = Fzw
-    out[OUT_M] = ly * Fzw - lz * Fyw
-    out[OUT_M + 1] = lz * Fxw - lx * Fzw + Mz * ny_
-    out[OUT_M + 2] = lx * Fyw - ly * Fxw + Mz * nz_
-    out[OUT_N] = N
-    out[OUT_PEN] = pen
-    out[OUT_XI] = xi
-    out[OUT_ETA] = eta
-    out[OUT_SPIN] = spin
-    out[OUT_FX] = Fx
-    out[OUT_FY] = Fy
-    out[OUT_P] = c[0]
-    out[OUT_P + 1] = y_rail + py
-    out[OUT_P + 2] = z_rail + pz
-    out[OUT_A] = a
-    out[OUT_B] = b
-    out[OUT_DELTA] = delta
-    out[OUT_MZ] = Mz
-    out[OUT_PENDOT] = pen_dot
-    out[OUT_R] = _lerp(tab, i, w, base + COL_R)
+    for j in range(6):
+        out[OUT_F + j] = 0.0
+    best = -1
+    for k in range(NPT):
+        (N, pen, xi, eta, spin, Fx, Fy, Mz, a, b, delta, pen_dot, lx, ly, lz,
+         r) = _region(tab, i, w, base + k * NPC, par, s, c, e, v_c, omega, Vr, y_rail,
+                      z_rail, dy_rail, dz_rail, c0y, c0z, cd, sd)
+        # F = N n + Fx t1 + Fy t2,  t1 = x, t2 = (0, cos delta, s sin delta)
+        sdl = sin(delta)
+        cdl = cos(delta)
+        Fxw = Fx
+        Fyw = -N * s * sdl + Fy * cdl
+        Fzw = N * cdl + Fy * s * sdl
+        out[OUT_F] += Fxw
+        out[OUT_F + 1] += Fyw
+        out[OUT_F + 2] += Fzw
+        out[OUT_M] += ly * Fzw - lz * Fyw
+        out[OUT_M + 1] += lz * Fxw - lx * Fzw - Mz * s * sdl
+        out[OUT_M + 2] += lx * Fyw - ly * Fxw + Mz * cdl
+        out[OUT_NPT + k] = N
+        out[OUT_DPT + k] = delta
+        out[OUT_YPT + k] = c[1] + ly
+        if best < 0 or N > out[OUT_N] or (N == out[OUT_N] and pen > out[OUT_PEN]):
+            best = k
+            out[OUT_N] = N
+            out[OUT_PEN] = pen
+            out[OUT_XI] = xi
+            out[OUT_ETA] = eta
+            out[OUT_SPIN] = spin
+            out[OUT_FX] = Fx
+            out[OUT_FY] = Fy
+            out[OUT_P] = c[0] + lx
+            out[OUT_P + 1] = c[1] + ly
+            out[OUT_P + 2] = c[2] + lz
+            out[OUT_A] = a
+            out[OUT_B] = b
+            out[OUT_DELTA] = delta
+            out[OUT_MZ] = Mz
+            out[OUT_PENDOT] = pen_dot
+            out[OUT_R] = r
     out[OUT_CLAMP] = clamp

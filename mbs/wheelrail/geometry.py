@@ -230,22 +230,142 @@ def contact_table(wheel: Profile, rail: Profile, layout: TrackLayout | None = No
         for k, sd in enumerate(sides):
             _, i = sd.min_gap(y, phi, r0)
             t = sd.refine(y, phi, r0, i)
-            g, yr = sd.gap(y, phi, np.array([t]), r0)
+            g, _ = sd.gap(y, phi, np.array([t]), r0)
             gaps.append(g[0])
-            yr = float(yr[0])
-            dzw = float(sd.wheel.height(t, 1))
-            dzr = float(sd.rail.height(yr, 1))
-            r = r0 - float(sd.wheel.height(t))
-            dw = math.atan(dzw)
-            cols["y_wheel"][j, k] = t
-            cols["y_rail"][j, k] = yr
-            cols["y_track"][j, k] = sd.s * (yr + sd.y_rail)
-            cols["r"][j, k] = r
-            cols["delta"][j, k] = math.atan(dzr)
-            cols["delta_wheel"][j, k] = dw
-            cols["kappa_wheel_x"][j, k] = math.cos(dw) / r
-            cols["kappa_wheel_y"][j, k] = float(sd.wheel.curvature(t))
-            cols["kappa_rail_y"][j, k] = -float(sd.rail.curvature(yr))
+            for name, v in _point(sd, y, phi, r0, t).items():
+                cols[name][j, k] = v
         zc[j] = -0.5 * (gaps[0] + gaps[1]) - r0
     return ContactTable(y=ys, roll=roll, z=zc, layout=layout,
                         names=(wheel.name, rail.name), **cols)
+
+
+def _point(sd: _Side, y, phi, r0, t) -> dict:
+    """The contact columns of :class:`ContactTable` at the wheel point ``t`` (side-local)."""
+    _, yr = sd.gap(y, phi, np.array([t]), r0)
+    yr = float(yr[0])
+    r = r0 - float(sd.wheel.height(t))
+    dw = math.atan(float(sd.wheel.height(t, 1)))
+    return {"y_wheel": t, "y_rail": yr, "y_track": sd.s * (yr + sd.y_rail), "r": r,
+            "delta": math.atan(float(sd.rail.height(yr, 1))), "delta_wheel": dw,
+            "kappa_wheel_x": math.cos(dw) / r, "kappa_wheel_y": float(sd.wheel.curvature(t)),
+            "kappa_rail_y": -float(sd.rail.curvature(yr))}
+
+
+# ------------------------------------------------------------------------- multi-point contact
+NPT = 3            # contact points per wheel at most: tread, flange root, flange
+
+
+@dataclasses.dataclass
+class ContactRegions:
+    """Each wheel's surface cut into up to :data:`NPT` regions, tread first, and in each region
+    its own closest point to the rail at every row of a :class:`ContactTable` (the rigid
+    wheelset's roll and height there).  Columns as :class:`ContactTable`'s, shape ``(n, 2, NPT)``
+    (row, side, region), plus ``gap``: the region's vertical wheel-rail gap at that point, 0 for
+    the region that holds the rigid contact, capped at 1 m.  A region that lies wholly beside
+    the rail head repeats its point of the nearest row where it does not, one the wheel does not
+    have repeats region 0's, each with a gap of 1 m.
+
+    Why: on S1002/60E1 the single contact point jumps from the tread (7 deg) to the flange root
+    (18 deg) at 4.8-5.2 mm and from there to the flange (26 -> 70 deg) at 6.0-6.4 mm of lateral
+    displacement.  One elastic contact smoothed across such a jump gives a normal half-way
+    between tread and flange, too weak laterally and too stiff vertically; a real wheelset
+    touches both at once (two-point contact), each patch its own normal and tangential problem
+    (Shabana, Zaazaa & Sugiyama, *Railroad Vehicle Dynamics*, CRC 2008, ch. 5; Pombo & Ambrosio,
+    Multibody Syst. Dyn. 19 (2008) 91-114).  The regions' borders are the middles of the
+    single-point contact's jumps on the wheel where the contact angle changes by more than
+    ``split_angle`` (the tread's own jump at 0.1 mm, 1.5 -> 3.8 deg, stays one region: the
+    element smooths it, element.py step 3)."""
+
+    splits: np.ndarray          # (2, NPT - 1) wheel side-local y of the borders, NaN: none
+    y_wheel: np.ndarray
+    y_rail: np.ndarray
+    y_track: np.ndarray
+    r: np.ndarray
+    delta: np.ndarray
+    delta_wheel: np.ndarray
+    kappa_wheel_x: np.ndarray
+    kappa_wheel_y: np.ndarray
+    kappa_rail_y: np.ndarray
+    gap: np.ndarray
+
+
+def region_splits(table: ContactTable, split_angle: float) -> np.ndarray:
+    """Per side, the borders between the wheel's contact regions (side-local wheel y, tread to
+    flange, NaN-padded to ``NPT - 1``): the middles of the single-point contact's jumps of more
+    than 1 mm on the wheel with a contact-angle change over ``split_angle`` (rad); where there
+    are more, the ``NPT - 1`` largest in angle."""
+    out = np.full((2, NPT - 1), np.nan)
+    for k in range(2):
+        yw, d = table.y_wheel[:, k], table.delta[:, k]
+        jump = np.flatnonzero((np.abs(np.diff(yw)) > 1e-3) & (np.abs(np.diff(d)) > split_angle))
+        jump = jump[np.argsort(-np.abs(np.diff(d))[jump])][:NPT - 1]
+        mids = np.sort(0.5 * (yw[jump] + yw[jump + 1]))[::-1]     # tread (field side) first
+        out[k, :mids.size] = mids
+    return out
+
+
+def contact_regions(wheel: Profile, rail: Profile, table: ContactTable, *,
+                    wheel_right: Profile | None = None, rail_right: Profile | None = None,
+                    step: float = 2e-5, split_angle: float = 0.1) -> ContactRegions:
+    """The :class:`ContactRegions` of ``table`` (built from the same profiles and layout).  A
+    region's closest point is the minimum of the vertical gap on the search grid ``step`` inside
+    it, refined by a parabola through its neighbours (the global one is the table's own point)."""
+    layout = table.layout
+    r0 = layout.r0
+    sides = _sides(wheel, rail, layout, wheel_right, rail_right, step)
+    splits = region_splits(table, split_angle)
+    n = table.y.size
+    cols = {f.name: np.zeros((n, 2, NPT)) for f in dataclasses.fields(ContactRegions)
+            if f.name != "splits"}
+    for k, sd in enumerate(sides):
+        edges = np.concatenate([[np.inf], splits[k][~np.isnan(splits[k])], [-np.inf]])
+        masks = [(sd.yw <= edges[p]) & (sd.yw > edges[p + 1]) for p in range(edges.size - 1)]
+        for j in range(n):
+            y, phi = table.y[j], table.roll[j]
+            g, _ = sd.gap(y, phi, sd.yw, r0, sd.zw)
+            g0 = float(np.min(g))
+            for p in range(NPT):
+                if p >= len(masks):               # no such region: slot 0's point, never touching
+                    for name in cols:
+                        cols[name][j, k, p] = cols[name][j, k, 0]
+                    cols["gap"][j, k, p] = 1.0
+                    continue
+                idx = np.flatnonzero(masks[p])
+                i = idx[int(np.argmin(g[idx]))]
+                if not np.isfinite(g[i]):         # the whole region lies beside the rail head
+                    for name in cols:
+                        cols[name][j, k, p] = np.nan
+                    cols["gap"][j, k, p] = 1.0
+                    continue
+                if edges[p] >= table.y_wheel[j, k] > edges[p + 1]:
+                    t, gp = table.y_wheel[j, k], 0.0          # the rigid contact itself
+                else:
+                    t = sd.yw[i]
+                    if idx[0] < i < idx[-1]:
+                        gm, gc, gq = g[i - 1], g[i], g[i + 1]
+                        den = gm - 2.0 * gc + gq
+                        if den > 0.0:
+                            t += 0.5 * step * (gm - gq) / den
+                    gp = float(sd.gap(y, phi, np.array([t]), r0)[0][0]) - g0
+                    gp = min(max(gp, 0.0), 1.0) if np.isfinite(gp) else 1.0
+                for name, v in _point(sd, y, phi, r0, t).items():
+                    cols[name][j, k, p] = v
+                cols["gap"][j, k, p] = gp
+        # beside the rail head a region keeps the point of its nearest row on it: continuous
+        # columns for the element's smoothing (it never touches there)
+        for p in range(1, NPT):
+            off = np.isnan(cols["y_wheel"][:, k, p])
+            if not off.any():
+                continue
+            rows = np.arange(n)
+            if off.all():
+                src, p_src = rows, 0
+            else:
+                on = np.flatnonzero(~off)
+                hi = on[np.clip(np.searchsorted(on, rows), 0, on.size - 1)]
+                lo = on[np.clip(np.searchsorted(on, rows) - 1, 0, on.size - 1)]
+                src, p_src = np.where(np.abs(hi - rows) <= np.abs(lo - rows), hi, lo), p
+            for name in cols:
+                if name != "gap":
+                    cols[name][off, k, p] = cols[name][src[off], k, p_src]
+    return ContactRegions(splits=splits, **cols)
