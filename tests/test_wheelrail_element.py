@@ -385,6 +385,37 @@ def test_two_point_contact_matches_the_profiles(tables):
     assert regions == {0, 1, 2} and two >= 6
 
 
+def test_field_side_reach_and_the_flange_side_end(tables):
+    """Each wheel's table reaches ``y_field`` beyond the rigid wheelset's range on its field side
+    (element.py step 1, geometry.field_extension), where a gauge opening under a wheelset held
+    against a curve's outer rail takes the inner wheel: there the wheel, lowered 50 um below its
+    touch as the profiles themselves give it (roll held at the table's end), has the penetration
+    ``pen / cos(delta)`` = 50 um within 2 um and is not clamped; past the flange side's end of
+    the rigid wheelset's table it is reported off its table (OUT_CLAMP)."""
+    T = tables
+    layout = TrackLayout(**LM)
+    geo = _sides(s1002(), uic60(), layout, None, None, 2e-5)
+    r0, l0 = layout.r0, geo[0].y_wheel
+    roll = float(T.column(ek.COL_ROLL0, 0)[0])
+    assert T.u[0] < -T.par[ek.P_UFL] - 0.9 * T.params.y_field      # the reach is there
+    for side in (0, 1):
+        s = 1.0 - 2.0 * side
+        phi = s * roll                          # the field side's end: the other wheel climbing
+        for y in (-14e-3, -18e-3, -22e-3):
+            y = s * y
+            g, _ = geo[side].gap(y, phi, np.arange(-0.07, 0.07, 2e-6), r0)
+            cz = -g.min() + s * l0 * math.sin(phi) - 50e-6         # 50 um below the touch
+            cy = y + s * l0 * math.cos(phi)
+            out = force(T, side, [0.0, cy, cz], [0.0, math.cos(phi), math.sin(phi)],
+                        [V, 0.0, 0.0], [0.0, V / r0, 0.0])
+            assert out[ek.OUT_CLAMP] == 0.0
+            assert out[ek.OUT_PEN] / math.cos(out[ek.OUT_DELTA]) == pytest.approx(50e-6, abs=2e-6)
+        u = s * (T.par[ek.P_UFL] + 1e-4)        # just past the flange side's end
+        out = force(T, side, [0.0, u + s * l0, r0],
+                    [0.0, 1.0, 0.0], [V, 0.0, 0.0], [0.0, V / r0, 0.0])
+        assert out[ek.OUT_CLAMP] == 1.0
+
+
 @pytest.mark.parametrize("u, region", [(0.0, 0), (9.0e-3, 1), (10.5e-3, 2)])
 def test_yawed_wheel_lateral_creepage_and_flange_lead(tables, u, region):
     """A wheel yawed by psi = 2 mrad, rolling without longitudinal creep and without lateral

@@ -10,7 +10,12 @@ docstring):
    radii, curvatures, per side; and its :func:`~axlebox.mbs.wheelrail.geometry.contact_regions`:
    each wheel cut into up to NPT regions (tread, flange root, flange) at the single-point
    contact's jumps of more than ``split_angle``, with each region's own closest point and its
-   gap in the rigid wheelset's touching pose (the kernel's multi-point contact).
+   gap in the rigid wheelset's touching pose (the kernel's multi-point contact).  Each wheel's
+   rows continue ``y_field`` beyond the table's end on its own field side
+   (:func:`~axlebox.mbs.wheelrail.geometry.field_extension`: the wheel touching alone, the roll
+   held), where a gauge opening under a wheelset held against a curve's outer rail takes the
+   inner wheel; the table's flange-side end stays the wheelset's (``P_UFL``: past it the kernel
+   reports the wheel off its table).
 2. Per side, the wheel's own look-up offset ``u(y) = y + s l0 (cos roll0 - 1) + k r0 sin roll0``
    (``k`` 0 for ``index="centre"``, 1 for ``"tread"``; monotone, checked) and every column
    resampled linearly onto one uniform grid of ``n_grid`` points in u covering both sides.
@@ -61,7 +66,7 @@ from axlebox._params import ParameterError, check_ranges, choice, digest, param,
 
 from . import element_kernel as ek
 from . import fastsim_kernel as fk
-from .geometry import TrackLayout, contact_regions, contact_table
+from .geometry import TrackLayout, contact_regions, contact_table, field_extension, region_splits
 from .hertz import contact_stiffness, effective_modulus, hertz
 from .kalker import creep_coefficients
 from .profile import Profile
@@ -76,7 +81,7 @@ BOUNDS = {"parabolic": 0, "elliptic": 1}
 UPDATES = {"cutback": 0, "rotate": 1}
 # fields that shape the tables (the rest only enter par)
 _TABLE_FIELDS = ("E", "nu", "index", "y_max", "n_geom", "n_grid", "step", "B_min", "smooth_y",
-                 "split_angle")
+                 "split_angle", "y_field")
 _BLOCKS = ek.NPC * np.arange(ek.NPT)
 # the columns taken from the geometry (the rest follow from them by Hertz and Kalker), and of
 # those the ones smoothed: each region's contact geometry, not the touching pose nor the gaps
@@ -116,9 +121,13 @@ class WheelRailParams:
     index: str = "tread"            # look-up offset: 'tread' | 'centre' (element_kernel.py)
     y_max: float = param(0.012, 0.002, 0.03, doc="half range of the geometry table")
     n_geom: int = param(601, 21, 10001, unit="", doc="points of the geometry table")
-    n_grid: int = param(1201, 11, 100001, unit="", doc="points of the uniform look-up grid")
+    n_grid: int = param(1201, 11, 100001, unit="",
+                        doc="points of the uniform look-up grid over the rigid wheelset's range "
+                            "(its step continues over the field sides' reach)")
     step: float = param(2e-5, 1e-6, 1e-4, doc="grid of the minimum-gap search")
     B_min: float = param(0.1, 1e-3, 10.0, unit="1/m", doc="floor of the relative curvature B")
+    y_field: float = param(0.012, 0.0, 0.03, doc="reach of each wheel's table beyond y_max on its "
+                                             "field side (the wheel touching alone)")
     smooth_y: float = param(1.0e-3, 0.0, 0.005, doc="Gaussian smoothing of each contact region's "
                                                  "geometry over u (0: exact tables)")
     split_angle: float = param(0.1, 0.01, 1.0, unit="rad",
@@ -233,16 +242,19 @@ def build_tables(wheel: Profile, rail: Profile, layout: TrackLayout | None = Non
 def _compute(wheel, rail, layout, params, wheel_right, rail_right):
     ct = contact_table(wheel, rail, layout, y_max=params.y_max, n=params.n_geom,
                        wheel_right=wheel_right, rail_right=rail_right, step=params.step)
-    reg = contact_regions(wheel, rail, ct, wheel_right=wheel_right, rail_right=rail_right,
-                          step=params.step, split_angle=params.split_angle)
+    splits = region_splits(ct, params.split_angle)
+    prof = dict(wheel_right=wheel_right, rail_right=rail_right, step=params.step)
     rails = (rail, rail_right or rail)
     r0 = layout.r0
     l0 = 0.5 * layout.back_to_back - wheel.flange_back
     k_index = INDEXES[params.index]
-    y, roll, z0 = ct.y, ct.roll, ct.z
-    raw = np.zeros((2, len(y), ek.NCOL))
-    u_side = []
+    raw, u_side, u_flange = [], [], []
     for k, s in enumerate((1.0, -1.0)):
+        # this wheel's rows: the rigid wheelset's, then its own beyond them on its field side
+        tk = field_extension(wheel, rail, ct, k, params.y_field, **prof) if params.y_field else ct
+        reg = contact_regions(wheel, rail, tk, splits=splits, **prof)
+        y, roll, z0 = tk.y, tk.roll, tk.z
+        raw.append(np.zeros((len(y), ek.NCOL)))
         rail_k = rails[k].canted(layout.cant)
         c0y = y + s * l0 * (np.cos(roll) - 1.0)
         u = c0y + k_index * r0 * np.sin(roll)
@@ -251,25 +263,30 @@ def _compute(wheel, rail, layout, params, wheel_right, rail_right):
                                  f"{wheel.name} on {rail.name}: the look-up offset of side "
                                  f"{'LR'[k]} is not monotone in y (try 'centre')")
         u_side.append(u)
-        raw[k, :, ek.COL_ROLL0] = roll
-        raw[k, :, ek.COL_Z0] = z0
-        raw[k, :, ek.COL_C0Y] = c0y
-        raw[k, :, ek.COL_C0Z] = r0 + z0 + s * l0 * np.sin(roll)
+        u_flange.append(s * u[-1 if k == 0 else 0])
+        raw[k][:, ek.COL_ROLL0] = roll
+        raw[k][:, ek.COL_Z0] = z0
+        raw[k][:, ek.COL_C0Y] = c0y
+        raw[k][:, ek.COL_C0Z] = r0 + z0 + s * l0 * np.sin(roll)
         for p in range(ek.NPT):
             o = p * ek.NPC
-            raw[k, :, o + ek.COL_PY] = reg.y_track[:, k, p]
-            raw[k, :, o + ek.COL_PZ] = rail_k.height(reg.y_rail[:, k, p])
-            raw[k, :, o + ek.COL_DELTA] = reg.delta[:, k, p]
-            raw[k, :, o + ek.COL_R] = reg.r[:, k, p]
-            raw[k, :, o + ek.COL_A] = 0.5 * reg.kappa_wheel_x[:, k, p]
-            raw[k, :, o + ek.COL_B] = 0.5 * (reg.kappa_wheel_y[:, k, p] + reg.kappa_rail_y[:, k, p])
-            raw[k, :, o + ek.COL_GAP] = reg.gap[:, k, p]
-    U = min(-u_side[0][0], u_side[0][-1], -u_side[1][0], u_side[1][-1])
-    grid = np.linspace(-U, U, params.n_grid)
-    tab = np.zeros((params.n_grid, 2 * ek.NCOL))
+            raw[k][:, o + ek.COL_PY] = reg.y_track[:, k, p]
+            raw[k][:, o + ek.COL_PZ] = rail_k.height(reg.y_rail[:, k, p])
+            raw[k][:, o + ek.COL_DELTA] = reg.delta[:, k, p]
+            raw[k][:, o + ek.COL_R] = reg.r[:, k, p]
+            raw[k][:, o + ek.COL_A] = 0.5 * reg.kappa_wheel_x[:, k, p]
+            raw[k][:, o + ek.COL_B] = 0.5 * (reg.kappa_wheel_y[:, k, p] + reg.kappa_rail_y[:, k, p])
+            raw[k][:, o + ek.COL_GAP] = reg.gap[:, k, p]
+    # the grid's step: n_grid points over the rigid wheelset's range, continued over the reach
+    U_flange = min(u_flange)
+    du = 2.0 * U_flange / (params.n_grid - 1)
+    U = min(-u_side[0][0], u_side[1][-1])
+    m = int(np.floor(U / du + 1e-9))
+    grid = du * np.arange(-m, m + 1)
+    tab = np.zeros((grid.size, 2 * ek.NCOL))
     for k in range(2):
         for j in _GEOMETRY:
-            tab[:, k * ek.NCOL + j] = np.interp(grid, u_side[k], raw[k, :, j])
+            tab[:, k * ek.NCOL + j] = np.interp(grid, u_side[k], raw[k][:, j])
     if params.smooth_y > 0.0:
         cols = [k * ek.NCOL + j for k in range(2) for j in _SMOOTHED]
         tab[:, cols] = gaussian_filter1d(tab[:, cols], params.smooth_y / (grid[1] - grid[0]),
@@ -297,6 +314,7 @@ def _compute(wheel, rail, layout, params, wheel_right, rail_right):
     grid_par = np.zeros(ek.P_MU)
     grid_par[ek.P_U0], grid_par[ek.P_DU], grid_par[ek.P_NGRID] = grid[0], grid[1] - grid[0], len(grid)
     grid_par[ek.P_R0], grid_par[ek.P_L0], grid_par[ek.P_INDEX] = r0, l0, k_index
+    grid_par[ek.P_UFL] = U_flange
     return np.ascontiguousarray(tab), grid_par, grid
 
 
@@ -316,7 +334,7 @@ def wheel_force_reference(side, c, e, v_c, omega, V, z_rail, y_rail, dz_rail, dy
     l0, r0 = par[P.P_L0], par[P.P_R0]
     u = c[1] - s * l0 - y_rail + par[P.P_INDEX] * r0 * math.sin(phi)
     grid = tables.u
-    clamped = not grid[0] <= u <= grid[-1]
+    clamped = not grid[0] <= u <= grid[-1] or s * u > par[P.P_UFL]
 
     def at(j, region=0):
         return float(np.interp(u, grid, tables.column(j, side, region)))

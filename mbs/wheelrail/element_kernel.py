@@ -14,7 +14,9 @@ flange root, flange; elastic normal contact, table look-up):
 1. Look-up.  The wheel's roll ``phi = atan2(e_z, hypot(e_x, e_y))`` (independent of yaw).  The
    table is indexed by the wheel's own lateral offset from its rail,
    ``u = c_y - s l0 - y_rail + k r0 sin(phi)``, per side on a uniform grid with linear
-   interpolation, clamped at the ends (``out[OUT_CLAMP] = 1``).  ``k = 0`` (``index="centre"``)
+   interpolation, clamped at the ends (``out[OUT_CLAMP] = 1``, also past ``P_UFL`` on the
+   flange side, where the rigid wheelset's table ends; on its field side each wheel's table
+   reaches ``y_field`` further, element.py step 1).  ``k = 0`` (``index="centre"``)
    is the offset of the wheel centre; ``k = 1`` (``index="tread"``, the default) is the offset of
    the wheel's lowest taping-line point, i.e. of the wheel where it meets the rail.  Why: a wheel
    rolled by ``dphi`` more than the table's rigid solution (cross-level irregularity, wheelset
@@ -116,17 +118,19 @@ P_NGRID = 2        # number of grid points
 P_R0 = 3           # nominal rolling radius, m
 P_L0 = 4           # half the distance between the nominal wheel centres (taping-line planes), m
 P_INDEX = 5        # k of the look-up: 0 centre, 1 tread
-P_MU = 6           # friction coefficient
-P_G = 7            # shear modulus, Pa
-P_NU = 8           # Poisson ratio (already in the tables; kept for the record)
-P_LAW = 9          # 0 FASTSIM, 1 Kalker linear, 2 Shen-Hedrick-Elkins
-P_NX = 10          # FASTSIM elements per strip
-P_NY = 11          # FASTSIM strips
-P_ELLIPTIC = 12    # FASTSIM traction bound: 0 parabolic, 1 elliptic
-P_ROTATE = 13      # FASTSIM slip step: 0 cut-back, 1 rotate
-P_CHI = 14         # Hunt-Crossley damping, s/m
-P_VMIN = 15        # floor of the reference speed in the creepages, m/s
-N_PAR = 16
+P_UFL = 6          # the flange side's end of the table, s u, m (the grid reaches further only on
+                   # each wheel's field side)
+P_MU = 7           # friction coefficient
+P_G = 8            # shear modulus, Pa
+P_NU = 9           # Poisson ratio (already in the tables; kept for the record)
+P_LAW = 10         # 0 FASTSIM, 1 Kalker linear, 2 Shen-Hedrick-Elkins
+P_NX = 11          # FASTSIM elements per strip
+P_NY = 12          # FASTSIM strips
+P_ELLIPTIC = 13    # FASTSIM traction bound: 0 parabolic, 1 elliptic
+P_ROTATE = 14      # FASTSIM slip step: 0 cut-back, 1 rotate
+P_CHI = 15         # Hunt-Crossley damping, s/m
+P_VMIN = 16        # floor of the reference speed in the creepages, m/s
+N_PAR = 17
 
 LAW_FASTSIM = 0
 LAW_KALKER = 1
@@ -267,7 +271,7 @@ def wheel_rail_force(side, c, e, v_c, omega, V, z_rail, y_rail, dz_rail, dy_rail
     u = c[1] - s * l0 - y_rail + par[P_INDEX] * r0 * sin(phi)
     n_grid = int(par[P_NGRID])
     t = (u - par[P_U0]) / par[P_DU]
-    clamp = 0.0
+    clamp = 1.0 if s * u > par[P_UFL] else 0.0           # past the flange side's end
     if t < 0.0:
         t = 0.0
         clamp = 1.0

@@ -251,6 +251,49 @@ def _point(sd: _Side, y, phi, r0, t) -> dict:
             "kappa_rail_y": -float(sd.rail.curvature(yr))}
 
 
+def field_extension(wheel: Profile, rail: Profile, table: ContactTable, side: int, reach: float,
+                    *, wheel_right: Profile | None = None, rail_right: Profile | None = None,
+                    step: float = 2e-5) -> ContactTable:
+    """``table`` continued for one wheel by ``reach`` of lateral displacement beyond its field-side
+    end (left wheel: y below ``table.y[0]``; right: above ``table.y[-1]``), at the same row step.
+
+    Why: the rigid wheelset's two-sided problem ends where the other wheel's flange climbs
+    (``y_max``), but a wheel can run further onto its own field side than that, where the rails'
+    gauge opens under a wheelset held against the outer rail of a curve (FRA class 5: gauge
+    +9.8 mm within the first 14 m of a record; an inner wheel 7.9 + 4.9 mm off its rail).  There
+    the wheel touches its rail alone: the roll is held at the table's end and the height is that
+    wheel's own touch (the element's penetration starts from any touching pose).  The other
+    side's columns repeat this side's; only ``side``'s are meant to be read."""
+    layout = table.layout
+    r0 = layout.r0
+    sd = _sides(wheel, rail, layout, wheel_right, rail_right, step)[side]
+    dy = table.y[1] - table.y[0]
+    n = int(math.ceil(reach / dy))
+    end = 0 if side == 0 else -1
+    sign = -1.0 if side == 0 else 1.0
+    ys = table.y[end] + sign * dy * np.arange(1, n + 1)
+    phi = float(table.roll[end])
+    cols = {k: np.zeros((n, 2)) for k in ("y_wheel", "y_rail", "y_track", "r", "delta",
+                                          "delta_wheel", "kappa_wheel_x", "kappa_wheel_y",
+                                          "kappa_rail_y")}
+    zc = np.zeros(n)
+    for j, y in enumerate(ys):
+        _, i = sd.min_gap(y, phi, r0)
+        t = sd.refine(y, phi, r0, i)
+        g, _ = sd.gap(y, phi, np.array([t]), r0)
+        zc[j] = -float(g[0]) - r0
+        for name, v in _point(sd, y, phi, r0, t).items():
+            cols[name][j, :] = v
+    roll = np.full(n, phi)
+
+    def join(old, new):                       # rows kept in ascending y
+        return np.concatenate([new[::-1], old]) if side == 0 else np.concatenate([old, new])
+
+    return ContactTable(y=join(table.y, ys), roll=join(table.roll, roll), z=join(table.z, zc),
+                        layout=layout, names=table.names,
+                        **{k: join(getattr(table, k), v) for k, v in cols.items()})
+
+
 # ------------------------------------------------------------------------- multi-point contact
 NPT = 3            # contact points per wheel at most: tread, flange root, flange
 
@@ -306,14 +349,15 @@ def region_splits(table: ContactTable, split_angle: float) -> np.ndarray:
 
 def contact_regions(wheel: Profile, rail: Profile, table: ContactTable, *,
                     wheel_right: Profile | None = None, rail_right: Profile | None = None,
-                    step: float = 2e-5, split_angle: float = 0.1) -> ContactRegions:
+                    step: float = 2e-5, split_angle: float = 0.1,
+                    splits: np.ndarray | None = None) -> ContactRegions:
     """The :class:`ContactRegions` of ``table`` (built from the same profiles and layout).  A
     region's closest point is the minimum of the vertical gap on the search grid ``step`` inside
     it, refined by a parabola through its neighbours (the global one is the table's own point)."""
     layout = table.layout
     r0 = layout.r0
     sides = _sides(wheel, rail, layout, wheel_right, rail_right, step)
-    splits = region_splits(table, split_angle)
+    splits = region_splits(table, split_angle) if splits is None else splits
     n = table.y.size
     cols = {f.name: np.zeros((n, 2, NPT)) for f in dataclasses.fields(ContactRegions)
             if f.name != "splits"}
