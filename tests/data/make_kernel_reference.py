@@ -19,6 +19,14 @@ over 0.01 s a difference in the last bit grows by far less than 1e-9):
   config's), its start (statics and the bearings' quasi-static start) and its state after
   0.01 s of "imex" at 5e-6 s with the bodies' exchange at 1e-5 s; the body states and each
   bearing's rollers and cages apart.
+
+The car's part was remade with the checkout of its day when the car's wheel-rail contact changed
+(issue 69: multi-point contact tables, TABLE_VERSION 2): the old kernel cannot run the new
+tables, and the rig cases still hold the old kernel's states.  With that checkout::
+
+    python3 tests/data/make_kernel_reference.py tests/data/kernel_reference.npz --car
+
+keeps the rig cases of the file and writes the car's anew.
 """
 from __future__ import annotations
 
@@ -76,9 +84,12 @@ def run_rig(c):
     return Y0, Y
 
 
-def main(out):
+def main(out, car_only=False):
     data = {"duration": DURATION}
-    for name, c in rig_cases():
+    if car_only:
+        with np.load(out) as f:
+            data.update({k: f[k] for k in f.files if not k.startswith("car/")})
+    for name, c in ([] if car_only else rig_cases()):
         Y0, Y = run_rig(c)
         Z = c.bearing.Z
         data[f"{name}/config"] = np.array(c.to_toml())
@@ -107,7 +118,21 @@ def main(out):
         data[f"car/{when}/cages"] = np.stack([c for _, c in rc])
     print("car done")
     np.savez_compressed(out, **data)
+    _print_inputs(model)
+
+
+def _print_inputs(model):
+    """The car's inputs the test's CAR_INPUTS names: the hash of its model arrays and what made them."""
+    import hashlib
+
+    import scipy
+    h = hashlib.sha256()
+    for name, v in zip(model.S._fields, model.S):
+        h.update(name.encode() + b"\0" + np.ascontiguousarray(v).tobytes())
+    print({"sha256": h.hexdigest()[:16], "numpy": np.__version__, "scipy": scipy.__version__,
+           "simd": sorted(np.show_config(mode="dicts")["SIMD Extensions"]["found"])})
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else "kernel_reference.npz")
+    args = [a for a in sys.argv[1:] if a != "--car"]
+    main(args[0] if args else "kernel_reference.npz", car_only="--car" in sys.argv[1:])
