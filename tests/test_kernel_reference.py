@@ -111,9 +111,9 @@ def _same_inputs_or_skip(model) -> None:
 def test_the_car_gives_its_reference_states(ref):
     """The validation case with rigid bodies (eight DTRBs, "imex" at 5e-6 s with the bodies'
     exchange at 1e-5 s; the flexible bodies' last bits follow the FE solver's threads): 0.01 s
-    from the stored start, as the car with the multi-point contact tables gave it.  (The start itself is not compared: the car's statics stops at a
-    residual of 5.6e-4 of the weight, where the linear algebra's threads move its last
-    digits.)"""
+    from the stored start, as the car with the multi-point contact tables gave it.  (The start
+    itself is not compared: the car's statics stops at a residual of 5.6e-4 of the weight,
+    where the linear algebra's threads move its last digits.)"""
     from axlebox import configs
     from axlebox.mbs.solver import integrate
     from axlebox.pipelines import simulate as psim

@@ -391,7 +391,8 @@ def test_field_side_reach_and_the_flange_side_end(tables):
     against a curve's outer rail takes the inner wheel: there the wheel, lowered 50 um below its
     touch as the profiles themselves give it (roll held at the table's end), has the penetration
     ``pen / cos(delta)`` = 50 um within 2 um and is not clamped; past the flange side's end of
-    the rigid wheelset's table it is reported off its table (OUT_CLAMP)."""
+    the rigid wheelset's table it is reported off its table at that end (OUT_CLAMP), and past
+    the reach at the field side's."""
     T = tables
     layout = TrackLayout(**LM)
     geo = _sides(s1002(), uic60(), layout, None, None, 2e-5)
@@ -413,7 +414,11 @@ def test_field_side_reach_and_the_flange_side_end(tables):
         u = s * (T.par[ek.P_UFL] + 1e-4)        # just past the flange side's end
         out = force(T, side, [0.0, u + s * l0, r0],
                     [0.0, 1.0, 0.0], [V, 0.0, 0.0], [0.0, V / r0, 0.0])
-        assert out[ek.OUT_CLAMP] == 1.0
+        assert out[ek.OUT_CLAMP] == ek.CLAMP_FLANGE
+        u = (T.u[0] - 1e-4) if side == 0 else (T.u[-1] + 1e-4)    # past the field side's end
+        out = force(T, side, [0.0, u + s * l0, r0],
+                    [0.0, 1.0, 0.0], [V, 0.0, 0.0], [0.0, V / r0, 0.0])
+        assert out[ek.OUT_CLAMP] == ek.CLAMP_FIELD
 
 
 @pytest.mark.parametrize("u, region", [(0.0, 0), (9.0e-3, 1), (10.5e-3, 2)])

@@ -18,6 +18,7 @@ from axlebox._threads import Fitter
 
 from ..kernel import integrate as ki
 from ..kernel.exchange import HOLDS, exchange
+from ..wheelrail import element_kernel as ek
 from .system import Model
 
 METHODS = ("rk4", "leapfrog", "imex", "imex2", "galpha")
@@ -280,9 +281,14 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
             msg = (f"Newton did not converge at t = {tbad:.6f} s (step {h:g} s); try a smaller dt "
                    f"or method 'rk4'")
         elif status == ki.DERAILED:
-            msg = (f"wheel {model.wheel_names[bad]!r} left its contact table at t = {tbad:.6f} s: "
-                   "flange climb or derailment (the wheel beyond the lateral range the profiles' "
-                   "contact was computed for, wheelrail y_max); what was computed is kept")
+            if W.whout[bad, ek.OUT_CLAMP] == ek.CLAMP_FLANGE:
+                why = ("past its flange side's end: a flange climb (the wheelset beyond the "
+                       "lateral range where both wheels touch, wheelrail y_max)")
+            else:
+                why = ("past its field side's end: the wheel run off its rail head (beyond "
+                       "wheelrail y_max + y_field, a gauge opening wider than the table reaches)")
+            msg = (f"wheel {model.wheel_names[bad]!r} left its contact table at t = {tbad:.6f} s, "
+                   f"{why}; what was computed is kept")
         else:
             msg = f"the run diverged at t = {tbad:.6f} s: {st} in {where}"
     ks = (n_keep - 1) // se + 1 if n_keep else 0

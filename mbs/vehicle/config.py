@@ -165,6 +165,13 @@ class WheelRail:
                                "(second order, jumps at stick-slip changes)")
     smooth_y: float = like(WheelRailParams, "smooth_y", doc="lateral displacement the contact tables are "
                            "smoothed over (the tread contact jump of S1002 on 60E1 1:40); 0: exact tables")
+    split_angle: float = like(WheelRailParams, "split_angle", doc="contact-angle jump of the single-point "
+                              "contact that parts two contact regions of a wheel (tread, flange root, "
+                              "flange: multi-point contact); one larger than the profiles' jumps gives "
+                              "one region, the single-point contact")
+    y_field: float = like(WheelRailParams, "y_field", doc="reach of each wheel's contact table beyond "
+                          "the rigid wheelset's lateral range on its own field side (a gauge opening "
+                          "under a wheelset held against a curve's outer rail)")
 
 
 @section("bodies")
@@ -511,7 +518,8 @@ class CarConfig:
     def wheelrail_params(self) -> WheelRailParams:
         w = self.wheelrail
         return WheelRailParams(mu=w.mu, law=w.law, nx=w.fastsim_grid, ny=w.fastsim_grid,
-                               update=w.fastsim_update, smooth_y=w.smooth_y)
+                               update=w.fastsim_update, smooth_y=w.smooth_y,
+                               split_angle=w.split_angle, y_field=w.y_field)
 
     def irregularity(self, contact_load: float = 0.0) -> IrregularityParams | None:
         """The track irregularity's parameters (None on smooth track); ``contact_load``: the

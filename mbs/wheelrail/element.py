@@ -252,7 +252,7 @@ def _compute(wheel, rail, layout, params, wheel_right, rail_right):
     for k, s in enumerate((1.0, -1.0)):
         # this wheel's rows: the rigid wheelset's, then its own beyond them on its field side
         tk = field_extension(wheel, rail, ct, k, params.y_field, **prof) if params.y_field else ct
-        reg = contact_regions(wheel, rail, tk, splits=splits, **prof)
+        reg = contact_regions(wheel, rail, tk, splits=splits, side=k, **prof)
         y, roll, z0 = tk.y, tk.roll, tk.z
         raw.append(np.zeros((len(y), ek.NCOL)))
         rail_k = rails[k].canted(layout.cant)
@@ -334,7 +334,8 @@ def wheel_force_reference(side, c, e, v_c, omega, V, z_rail, y_rail, dz_rail, dy
     l0, r0 = par[P.P_L0], par[P.P_R0]
     u = c[1] - s * l0 - y_rail + par[P.P_INDEX] * r0 * math.sin(phi)
     grid = tables.u
-    clamped = not grid[0] <= u <= grid[-1] or s * u > par[P.P_UFL]
+    clamped = (P.CLAMP_FLANGE if s * u > par[P.P_UFL] else
+               P.CLAMP_FIELD if not grid[0] <= u <= grid[-1] else 0.0)
 
     def at(j, region=0):
         return float(np.interp(u, grid, tables.column(j, side, region)))
@@ -380,7 +381,7 @@ def wheel_force_reference(side, c, e, v_c, omega, V, z_rail, y_rail, dz_rail, dy
     out[P.OUT_P:P.OUT_P + 3] = p
     for slot, v in best.items():
         out[slot] = v
-    out[P.OUT_CLAMP] = float(clamped)
+    out[P.OUT_CLAMP] = clamped
     return out
 
 

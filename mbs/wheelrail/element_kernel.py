@@ -14,9 +14,10 @@ flange root, flange; elastic normal contact, table look-up):
 1. Look-up.  The wheel's roll ``phi = atan2(e_z, hypot(e_x, e_y))`` (independent of yaw).  The
    table is indexed by the wheel's own lateral offset from its rail,
    ``u = c_y - s l0 - y_rail + k r0 sin(phi)``, per side on a uniform grid with linear
-   interpolation, clamped at the ends (``out[OUT_CLAMP] = 1``, also past ``P_UFL`` on the
-   flange side, where the rigid wheelset's table ends; on its field side each wheel's table
-   reaches ``y_field`` further, element.py step 1).  ``k = 0`` (``index="centre"``)
+   interpolation, clamped at the ends: ``out[OUT_CLAMP] = CLAMP_FLANGE`` past ``P_UFL`` on the
+   flange side, where the rigid wheelset's table ends (a flange climb), ``CLAMP_FIELD`` past the
+   grid's end on the field side, which each wheel's table reaches ``y_field`` further (element.py
+   step 1: the wheel run off its rail head).  ``k = 0`` (``index="centre"``)
    is the offset of the wheel centre; ``k = 1`` (``index="tread"``, the default) is the offset of
    the wheel's lowest taping-line point, i.e. of the wheel where it meets the rail.  Why: a wheel
    rolled by ``dphi`` more than the table's rigid solution (cross-level irregularity, wheelset
@@ -155,7 +156,9 @@ OUT_DELTA = 18     # contact angle, rad
 OUT_MZ = 19        # spin moment about n, N m
 OUT_PENDOT = 20    # normal approach rate, m/s
 OUT_R = 21         # rolling radius, m
-OUT_CLAMP = 22     # 1 when u was outside the table (clamped), else 0
+OUT_CLAMP = 22     # 0 on the table, else which end u was clamped at:
+CLAMP_FLANGE = 1.0  # past the flange side's end (P_UFL)
+CLAMP_FIELD = 2.0   # past the field side's end
 OUT_NPT = 23       # (NPT) each region's normal force, tread first, N
 OUT_DPT = OUT_NPT + NPT        # (NPT) each region's contact angle, rad
 OUT_YPT = OUT_DPT + NPT        # (NPT) each region's contact point, track y, m
@@ -271,13 +274,11 @@ def wheel_rail_force(side, c, e, v_c, omega, V, z_rail, y_rail, dz_rail, dy_rail
     u = c[1] - s * l0 - y_rail + par[P_INDEX] * r0 * sin(phi)
     n_grid = int(par[P_NGRID])
     t = (u - par[P_U0]) / par[P_DU]
-    clamp = 1.0 if s * u > par[P_UFL] else 0.0           # past the flange side's end
-    if t < 0.0:
-        t = 0.0
-        clamp = 1.0
-    elif t > n_grid - 1.0:
-        t = n_grid - 1.0
-        clamp = 1.0
+    clamp = CLAMP_FLANGE if s * u > par[P_UFL] else 0.0
+    if t < 0.0 or t > n_grid - 1.0:         # only a field side is left at the grid's ends
+        t = min(max(t, 0.0), n_grid - 1.0)
+        if clamp == 0.0:
+            clamp = CLAMP_FIELD
     i = min(int(t), n_grid - 2)
     w = t - i
     c0y = s * l0 + _lerp(tab, i, w, base + COL_C0Y)      # relative to y_rail

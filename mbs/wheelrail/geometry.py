@@ -230,25 +230,26 @@ def contact_table(wheel: Profile, rail: Profile, layout: TrackLayout | None = No
         for k, sd in enumerate(sides):
             _, i = sd.min_gap(y, phi, r0)
             t = sd.refine(y, phi, r0, i)
-            g, _ = sd.gap(y, phi, np.array([t]), r0)
-            gaps.append(g[0])
-            for name, v in _point(sd, y, phi, r0, t).items():
+            point, g = _point(sd, y, phi, r0, t)
+            gaps.append(g)
+            for name, v in point.items():
                 cols[name][j, k] = v
         zc[j] = -0.5 * (gaps[0] + gaps[1]) - r0
     return ContactTable(y=ys, roll=roll, z=zc, layout=layout,
                         names=(wheel.name, rail.name), **cols)
 
 
-def _point(sd: _Side, y, phi, r0, t) -> dict:
-    """The contact columns of :class:`ContactTable` at the wheel point ``t`` (side-local)."""
-    _, yr = sd.gap(y, phi, np.array([t]), r0)
+def _point(sd: _Side, y, phi, r0, t) -> tuple[dict, float]:
+    """The contact columns of :class:`ContactTable` at the wheel point ``t`` (side-local), and
+    the vertical wheel-rail gap there."""
+    g, yr = sd.gap(y, phi, np.array([t]), r0)
     yr = float(yr[0])
     r = r0 - float(sd.wheel.height(t))
     dw = math.atan(float(sd.wheel.height(t, 1)))
     return {"y_wheel": t, "y_rail": yr, "y_track": sd.s * (yr + sd.y_rail), "r": r,
             "delta": math.atan(float(sd.rail.height(yr, 1))), "delta_wheel": dw,
             "kappa_wheel_x": math.cos(dw) / r, "kappa_wheel_y": float(sd.wheel.curvature(t)),
-            "kappa_rail_y": -float(sd.rail.curvature(yr))}
+            "kappa_rail_y": -float(sd.rail.curvature(yr))}, float(g[0])
 
 
 def field_extension(wheel: Profile, rail: Profile, table: ContactTable, side: int, reach: float,
@@ -280,9 +281,9 @@ def field_extension(wheel: Profile, rail: Profile, table: ContactTable, side: in
     for j, y in enumerate(ys):
         _, i = sd.min_gap(y, phi, r0)
         t = sd.refine(y, phi, r0, i)
-        g, _ = sd.gap(y, phi, np.array([t]), r0)
-        zc[j] = -float(g[0]) - r0
-        for name, v in _point(sd, y, phi, r0, t).items():
+        point, g = _point(sd, y, phi, r0, t)
+        zc[j] = -g - r0
+        for name, v in point.items():
             cols[name][j, :] = v
     roll = np.full(n, phi)
 
@@ -350,10 +351,12 @@ def region_splits(table: ContactTable, split_angle: float) -> np.ndarray:
 def contact_regions(wheel: Profile, rail: Profile, table: ContactTable, *,
                     wheel_right: Profile | None = None, rail_right: Profile | None = None,
                     step: float = 2e-5, split_angle: float = 0.1,
-                    splits: np.ndarray | None = None) -> ContactRegions:
+                    splits: np.ndarray | None = None, side: int | None = None) -> ContactRegions:
     """The :class:`ContactRegions` of ``table`` (built from the same profiles and layout).  A
     region's closest point is the minimum of the vertical gap on the search grid ``step`` inside
-    it, refined by a parabola through its neighbours (the global one is the table's own point)."""
+    it, refined by a parabola through its neighbours (the global one is the table's own point).
+    ``side`` (0 left, 1 right) computes that wheel's columns alone, the other's left zero (a
+    :func:`field_extension` table is meant for one side)."""
     layout = table.layout
     r0 = layout.r0
     sides = _sides(wheel, rail, layout, wheel_right, rail_right, step)
@@ -362,6 +365,8 @@ def contact_regions(wheel: Profile, rail: Profile, table: ContactTable, *,
     cols = {f.name: np.zeros((n, 2, NPT)) for f in dataclasses.fields(ContactRegions)
             if f.name != "splits"}
     for k, sd in enumerate(sides):
+        if side is not None and k != side:
+            continue
         edges = np.concatenate([[np.inf], splits[k][~np.isnan(splits[k])], [-np.inf]])
         masks = [(sd.yw <= edges[p]) & (sd.yw > edges[p + 1]) for p in range(edges.size - 1)]
         for j in range(n):
@@ -369,20 +374,16 @@ def contact_regions(wheel: Profile, rail: Profile, table: ContactTable, *,
             g, _ = sd.gap(y, phi, sd.yw, r0, sd.zw)
             g0 = float(np.min(g))
             for p in range(NPT):
-                if p >= len(masks):               # no such region: slot 0's point, never touching
-                    for name in cols:
-                        cols[name][j, k, p] = cols[name][j, k, 0]
-                    cols["gap"][j, k, p] = 1.0
-                    continue
-                idx = np.flatnonzero(masks[p])
-                i = idx[int(np.argmin(g[idx]))]
-                if not np.isfinite(g[i]):         # the whole region lies beside the rail head
-                    for name in cols:
+                idx = np.flatnonzero(masks[p]) if p < len(masks) else np.zeros(0, int)
+                i = idx[int(np.argmin(g[idx]))] if idx.size else -1
+                if i < 0 or not np.isfinite(g[i]):    # no such region, or it lies beside the
+                    for name in cols:                 # rail head: filled below, never touching
                         cols[name][j, k, p] = np.nan
                     cols["gap"][j, k, p] = 1.0
                     continue
-                if edges[p] >= table.y_wheel[j, k] > edges[p + 1]:
-                    t, gp = table.y_wheel[j, k], 0.0          # the rigid contact itself
+                rigid = edges[p] >= table.y_wheel[j, k] > edges[p + 1]
+                if rigid:
+                    t = table.y_wheel[j, k]                   # the rigid contact itself
                 else:
                     t = sd.yw[i]
                     if idx[0] < i < idx[-1]:
@@ -390,13 +391,17 @@ def contact_regions(wheel: Profile, rail: Profile, table: ContactTable, *,
                         den = gm - 2.0 * gc + gq
                         if den > 0.0:
                             t += 0.5 * step * (gm - gq) / den
-                    gp = float(sd.gap(y, phi, np.array([t]), r0)[0][0]) - g0
-                    gp = min(max(gp, 0.0), 1.0) if np.isfinite(gp) else 1.0
-                for name, v in _point(sd, y, phi, r0, t).items():
+                point, gp = _point(sd, y, phi, r0, t)
+                for name, v in point.items():
                     cols[name][j, k, p] = v
+                if rigid:
+                    gp = 0.0
+                else:
+                    gp = min(max(gp - g0, 0.0), 1.0) if np.isfinite(gp) else 1.0
                 cols["gap"][j, k, p] = gp
-        # beside the rail head a region keeps the point of its nearest row on it: continuous
-        # columns for the element's smoothing (it never touches there)
+        # a region without a point of its own keeps that of its nearest row on the rail head,
+        # or region 0's (a region the wheel lacks): continuous columns for the element's
+        # smoothing
         for p in range(1, NPT):
             off = np.isnan(cols["y_wheel"][:, k, p])
             if not off.any():
