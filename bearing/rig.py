@@ -160,16 +160,14 @@ class RigResult:
     def plot(self, path=None, t_from: float = 0.05):
         """Acceleration, its envelope spectrum with the fault orders marked, and one roller's
         cup load; saved to ``path`` when given.  Returns the matplotlib figure."""
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        from axlebox._figures import subplots
 
         from .spectra import envelope_spectrum
         m = self.time >= min(t_from, 0.5 * self.time[-1])
         t, a = self.time[m], self.acceleration[m, AZ]
         f_s = shaft_hz(self.config.speed_kmh, self.config.r_wheel)
         o = models.orders(self.config.bearing).at(f_s)
-        fig, (top, mid, bottom) = plt.subplots(3, 1, figsize=(9, 9), constrained_layout=True)
+        fig, (top, mid, bottom) = subplots(3, 1, figsize=(9, 9), constrained_layout=True)
         top.plot(t, a, lw=0.5)
         top.set(xlabel="time (s)", ylabel="outer ring a_z (m/s²)", title=f"{self.config.speed_kmh:g} km/h, "
                   f"{len(self.config.defects)} defect(s)")

@@ -330,8 +330,6 @@ def run(path, *, json_out=None, figures=None, log=print, **options):
     if figures is not None:
         out = Path(figures)
         out.mkdir(parents=True, exist_ok=True)
-        fig = res.plot(out / f"{Path(path).stem}_diagnose.png")
-        import matplotlib.pyplot as plt
-        plt.close(fig)
+        res.plot(out / f"{Path(path).stem}_diagnose.png")
         log(f"wrote {out / (Path(path).stem + '_diagnose.png')}")
     return res

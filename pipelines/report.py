@@ -125,8 +125,6 @@ REPORT_TURNS, REPORT_OVERLAP = 5.5, 0.75
 def _windows_figures(path, out: Path, log, **options) -> list[tuple[str, Path]]:
     """For a car run along a speed profile: its windows (:mod:`.windows`) as JSON Lines and the
     figure of the verdicts and the speed over time; nothing for other results."""
-    import matplotlib.pyplot as plt
-
     from axlebox.mbs.vehicle.config import CarConfig
 
     from .readers import result_config
@@ -141,7 +139,7 @@ def _windows_figures(path, out: Path, log, **options) -> list[tuple[str, Path]]:
         return []
     w.write(out / f"windows_{Path(path).stem}.jsonl")
     png = out / f"fig_windows_{Path(path).stem}.png"
-    plt.close(w.plot(png))
+    w.plot(png)
     s = w.summary
     agree = (f", left {s['words']['left']}, right {s['words']['right']} in {s['share']:.0%}"
              if s["words"] else "")

@@ -9,12 +9,10 @@ from __future__ import annotations
 from pathlib import Path
 
 import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from axlebox.bearing.diagnostics.spectral import psd  # noqa: E402
+from axlebox._figures import subplots
+from axlebox.bearing.diagnostics.spectral import psd
 
 SIDES = (("left", "-"), ("right", "--"))
 SPM_BANDS = ((0.0, 21.0, "#e8f5e9", "normal"), (21.0, 35.0, "#fff8e1", "mild"),
@@ -25,12 +23,11 @@ DPI = 110
 
 def _save(fig, path: Path) -> Path:
     fig.savefig(path, dpi=DPI)
-    plt.close(fig)
     return path
 
 
 def _colour(widths, w):
-    cmap = plt.get_cmap("viridis")
+    cmap = matplotlib.colormaps["viridis"]
     ws = sorted(widths)
     return cmap(0.85 * ws.index(w) / max(len(ws) - 1, 1))
 
@@ -55,7 +52,7 @@ def _fault_period(case) -> float:
 
 def time_signals(cases, path: Path, n_periods: float = 8.0) -> Path:
     """Fig. 9: both sides' acceleration over ``n_periods`` fault periods, a row per case."""
-    fig, ax = plt.subplots(len(cases), 2, figsize=(11, 2.2 * len(cases) + 0.6), squeeze=False,
+    fig, ax = subplots(len(cases), 2, figsize=(11, 2.2 * len(cases) + 0.6), squeeze=False,
                            sharex=True, constrained_layout=True)
     for i, case in enumerate(cases):
         fs = case.pair.left.fs
@@ -75,7 +72,7 @@ def time_signals(cases, path: Path, n_periods: float = 8.0) -> Path:
 def envelope_spectra(cases, path: Path, n_harmonics: int = 4) -> Path:
     """Fig. 10: envelope spectra normalised to their largest value, with the BPFO harmonics
     (dashed) and the FTF (dotted) marked."""
-    fig, ax = plt.subplots(len(cases), 2, figsize=(11, 2.2 * len(cases) + 0.6), squeeze=False,
+    fig, ax = subplots(len(cases), 2, figsize=(11, 2.2 * len(cases) + 0.6), squeeze=False,
                            constrained_layout=True)
     for i, case in enumerate(cases):
         for j, (side, _) in enumerate(SIDES):
@@ -123,7 +120,7 @@ def _against_speed(ax, cases, value, ylabel):
 def indicators(cases, path: Path) -> Path:
     """Fig. 11: RMS (a) and SPM (b) of both sides against speed, a curve per defect width;
     (b) shades the SPM bands (normal < 21 dB <= mild <= 35 dB < serious)."""
-    fig, ax = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True)
+    fig, ax = subplots(1, 2, figsize=(11, 4.2), constrained_layout=True)
     _against_speed(ax[0], cases, lambda c, s: getattr(c.pair, s).rms, "RMS (m/s$^2$)")
     ax[0].set_title("(a) RMS", fontsize=9)
     for lo, hi, colour, name in SPM_BANDS:
@@ -142,7 +139,7 @@ def indicators(cases, path: Path) -> Path:
 def comparison(case, path: Path, n_periods: float = 3.0) -> Path:
     """Fig. 12: both sides overlaid over a few fault periods (the lag shows as a shift of the
     impulses) and their Welch PSDs overlaid, with FC of each side marked."""
-    fig, ax = plt.subplots(1, 2, figsize=(11, 3.8), constrained_layout=True)
+    fig, ax = subplots(1, 2, figsize=(11, 3.8), constrained_layout=True)
     fs = case.pair.left.fs
     k = min(case.pair.left.n_samples, int(n_periods * _fault_period(case) * fs))
     for side, ls in SIDES:
@@ -169,7 +166,7 @@ def comparison(case, path: Path, n_periods: float = 3.0) -> Path:
 def lags(cases, path: Path) -> Path:
     """Fig. 13: the lag of the trailing side against speed, a curve per defect width, with the
     paper's range (1.1-4.2 ms) shaded; cases whose envelopes do not correlate are left out."""
-    fig, ax = plt.subplots(figsize=(6.5, 4.2), constrained_layout=True)
+    fig, ax = subplots(figsize=(6.5, 4.2), constrained_layout=True)
     ax.axhspan(*(1e3 * v for v in LAG_PAPER_S), color="0.92", zorder=0, label="paper, 1.1-4.2 ms")
     groups = _by_width([c for c in cases if c.width_mm > 0])
     for w, cs in groups.items():
@@ -188,7 +185,7 @@ def vf(cases, path: Path) -> Path:
     written over each pair of bars and the criterion's range quoted."""
     groups = _by_width(cases)
     # at least 8 in wide: one width's panel alone is too narrow for the figure's title
-    fig, ax = plt.subplots(1, len(groups), figsize=(max(4.2 * len(groups), 8.0), 4.0),
+    fig, ax = subplots(1, len(groups), figsize=(max(4.2 * len(groups), 8.0), 4.0),
                            squeeze=False, constrained_layout=True)
     for p, (w, cs) in enumerate(groups.items()):
         a = ax[0, p]
@@ -216,7 +213,7 @@ def comfort_spectra(cases, path: Path, sensor: str = "carbody_centre") -> Path:
     a panel per speed, a curve per defect width, Sperling's and EN 12299's indices in the
     legend."""
     speeds = sorted({c.speed_kmh for c in cases})
-    fig, ax = plt.subplots(len(speeds), 2, figsize=(11, 2.6 * len(speeds) + 0.6), squeeze=False,
+    fig, ax = subplots(len(speeds), 2, figsize=(11, 2.6 * len(speeds) + 0.6), squeeze=False,
                            constrained_layout=True)
     widths = {c.width_mm for c in cases}
     for i, v in enumerate(speeds):
@@ -243,7 +240,7 @@ def comfort_indices(cases, path: Path) -> Path:
     """Sperling's W_z and W_y and EN 12299's N_MV against speed, a curve per floor sensor and
     defect width, with the scales' bands (Sperling 2.5 'more pronounced but not unpleasant',
     N_MV 1.5 / 2.5 comfortable / medium)."""
-    fig, ax = plt.subplots(1, 3, figsize=(13, 4.0), constrained_layout=True)
+    fig, ax = subplots(1, 3, figsize=(13, 4.0), constrained_layout=True)
     groups = _by_width([c for c in cases if c.ride])
     sensors = sorted({r.sensor for c in cases for r in c.ride})
     for k, (field, label, marks) in enumerate((("W_z", "Sperling W_z (vertical)", (2.5, 3.0)),

@@ -70,11 +70,9 @@ class Windowed:
         """The figure of the speed and the verdicts over time: the shaft speed (each window's
         span drawn at its speeds), then each window's words for the two sides at its centre;
         written to ``path`` (PNG), the figure returned."""
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        from axlebox._figures import subplots
         words = ("healthy", "pseudo-fault", "undecided", "real fault", "faults on both sides", "not read")
-        fig, (a0, a1) = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True, height_ratios=(1, 1.2))
+        fig, (a0, a1) = subplots(2, 1, figsize=(8, 5.5), sharex=True, height_ratios=(1, 1.2))
         if len(self.speed):
             a0.plot(self.speed[0], self.speed[1], color="0.3", lw=1.0, label="shaft speed")
         for r in self.rows:
@@ -215,7 +213,6 @@ def run_windows(path, turns: float, overlap: float = 0.5, *, out=None, figures=N
     if figures is not None:
         Path(figures).mkdir(parents=True, exist_ok=True)
         png = Path(figures) / f"{Path(path).stem}_windows.png"
-        import matplotlib.pyplot as plt
-        plt.close(w.plot(png))
+        w.plot(png)
         log(f"wrote {png}")
     return w

@@ -147,11 +147,9 @@ class PairResult:
         """Both time signals, both envelope spectra with the fault lines (dashed: expected
         harmonics; dots: harmonics found over the floor) and the verdicts; saved to ``path``
         when given.  Returns the matplotlib figure."""
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        from axlebox._figures import figure
 
-        fig = plt.figure(figsize=(12, 9), constrained_layout=True)
+        fig = figure(figsize=(12, 9), constrained_layout=True)
         gs = fig.add_gridspec(3, 2, height_ratios=[1, 1, 0.6])
         ax = [[fig.add_subplot(gs[i, j]) for j in range(2)] for i in range(2)]
         colours = {"BPFO": "tab:red", "BPFI": "tab:green", "FTF": "tab:purple", "2BSF": "tab:brown"}

@@ -167,9 +167,9 @@ class RideComfort:
 
     def plot(self, ax=None):
         """The floor's amplitude spectra, raw and weighted (W_d lateral, W_b vertical)."""
-        import matplotlib.pyplot as plt
         if ax is None:
-            ax = plt.figure(figsize=(7, 4)).add_subplot()
+            from axlebox._figures import figure
+            ax = figure(figsize=(7, 4)).add_subplot()
         sel = (self.f_hz >= 0.3) & (self.f_hz <= 80)
         for name, spec in self.spectra.items():
             ax.loglog(self.f_hz[sel], spec[sel], label=name, lw=1.0,

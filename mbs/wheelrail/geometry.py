@@ -150,10 +150,8 @@ class ContactTable:
 
     def plot(self):
         """Rolling radius difference, contact angles, contact points and roll; returns the Figure."""
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(2, 2, figsize=(10, 6.5), sharex=True)
+        from axlebox._figures import subplots
+        fig, ax = subplots(2, 2, figsize=(10, 6.5), sharex=True)
         ymm = self.y * 1e3
         ax[0, 0].plot(ymm, self.delta_r * 1e3)
         ax[0, 0].set_ylabel("r_L - r_R (mm)")

@@ -130,11 +130,9 @@ class Profile:
 
     def plot(self, ax=None):
         """Plot the profile in millimetres; returns the matplotlib Axes."""
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
         if ax is None:
-            ax = plt.figure(figsize=(6, 3)).add_subplot()
+            from axlebox._figures import figure
+            ax = figure(figsize=(6, 3)).add_subplot()
         ax.plot(self.y * 1e3, self.z * 1e3, label=self.name or self.kind)
         ax.set_xlabel("y (mm, field side +)")
         ax.set_ylabel("z (mm, up)")
