@@ -12,6 +12,7 @@ import sys
 from pathlib import Path
 
 from axlebox._params import ParameterError, number
+from axlebox._progress import Progress
 from axlebox.bearing.resultfile import ResultFileError
 from axlebox.fem.bodyfile import BodyFileError
 
@@ -54,7 +55,10 @@ def _cmd_bodies_build(a) -> None:
     if not 0 <= a.zeta < 1:
         raise ParameterError(f"--zeta = {a.zeta} is not allowed: expected 0 <= zeta < 1")
     params = {n: make_params(n, overrides) for n in names}
-    for n in names:
+    pace = Progress("bodies", len(names), "body", units="bodies")
+    for k, n in enumerate(names, 1):
+        if k > 1:
+            print(f"bodies: [{k}/{len(names)}] {n} next, {pace.left(k - 1)}", flush=True)
         rb, path = build_body(n, method=a.method, n_modes=None if a.fmax else a.modes or 20,
                               fmax_hz=a.fmax, mesh_size=a.mesh_size, params=params[n],
                               coupling=None if a.coupling == "default" else a.coupling,
@@ -172,10 +176,11 @@ def _cmd_bearing_simulate(a) -> None:
     if not out.parent.is_dir():
         raise FileNotFoundError(f"--out: folder {str(out.parent)!r} does not exist")
 
-    def progress(x):
-        print(f"\rsimulating {a.duration:g} s: {100 * x:5.1f} %", end="", file=sys.stderr, flush=True)
-    res = simulate(cfg, out=out, progress=progress)
-    print(file=sys.stderr)
+    progress = Progress("simulating", a.duration)
+    try:
+        res = simulate(cfg, out=out, progress=lambda x: progress(x * a.duration))
+    finally:
+        progress.close()
     print(f"wrote {out}: {a.type.upper()}, cage {res.cage_hz(min(0.05, a.duration / 2)):.4f} Hz, "
           f"outer-ring a_z rms "
           f"{res.acceleration[:, 2].std():.3g} m/s^2")

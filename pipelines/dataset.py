@@ -33,6 +33,7 @@ import numpy as np
 
 from axlebox._files import h5_bound, h5_reserved, write_text
 from axlebox._params import ParameterError
+from axlebox._progress import Progress
 from axlebox.bearing import resultfile
 
 from .readers import TRACK_FADE_IN_S
@@ -138,7 +139,8 @@ def build(sweep_dir, *, window_s: float = 0.5, hop_s: float = 0.25, criterion=No
     criterion = Criterion(mode="relative") if criterion is None else criterion
     files = results(sweep_dir)
     rows, left, right, fs_all = [], [], [], set()
-    for path in files:
+    pace = Progress("dataset", len(files), "record")
+    for k, path in enumerate(files, 1):
         lab, _ = case_labels(path)
         sensors = (f"ws{lab['wheelset']}_L", f"ws{lab['wheelset']}_R")
         fs, starts, xl, xr_ = windows(path, sensors, window_s, hop_s)
@@ -157,8 +159,9 @@ def build(sweep_dir, *, window_s: float = 0.5, hop_s: float = 0.25, criterion=No
             rows.append({**lab, "start_index": int(i), "t_start": float(i / fs)})
         left.append(xl)
         right.append(xr_)
-        log(f"dataset: {path.name}: {starts.size} windows, real side {lab['real_side']}, verdicts "
-            f"{lab['left_verdict']} / {lab['right_verdict']}")
+        left_s = f", {pace.left(k)}" if k < len(files) else ""
+        log(f"dataset: [{k}/{len(files)}] {path.name}: {starts.size} windows, real side "
+            f"{lab['real_side']}, verdicts {lab['left_verdict']} / {lab['right_verdict']}{left_s}")
     if len(fs_all) > 1:
         raise ParameterError(f"SWEEP_DIR holds results sampled at {sorted(fs_all)} Hz: expected one "
                              "sampling rate (windows of one length)")

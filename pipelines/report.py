@@ -28,6 +28,7 @@ import numpy as np
 
 from axlebox._files import replaced, write_text
 from axlebox._params import ParameterError
+from axlebox._progress import Progress
 from axlebox.bearing import resultfile
 from axlebox.bearing.diagnostics.channel import jsonable
 from axlebox.bearing.diagnostics.pair import PairResult
@@ -346,7 +347,8 @@ def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     cases = []
-    for path in files:
+    pace = Progress("report", len(files), "case")
+    for k, path in enumerate(files, 1):
         speed, width, side = case_parameters(path)
         if left is not None or right is not None:
             side = None                     # other channels than the default ws2_L / ws2_R
@@ -355,8 +357,10 @@ def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
         cases[-1].speed_range = _speed_range(path)
         pair = cases[-1].pair
         if pair is not None:
-            log(f"report: {path.name}: {cases[-1].label}: left {pair.verdict.words['left']}, "
-                f"right {pair.verdict.words['right']} ({pair.verdict.rule})")
+            left_s = f", {pace.left(k)}" if k < len(files) else ""
+            log(f"report: [{k}/{len(files)}] {path.name}: {cases[-1].label}: left "
+                f"{pair.verdict.words['left']}, right {pair.verdict.words['right']} "
+                f"({pair.verdict.rule}{left_s})")
     cases.sort(key=lambda c: (c.speed_kmh, c.width_mm))
     all_cases, cases = cases, [c for c in cases if c.pair is not None]
     figures = []

@@ -15,7 +15,6 @@ command run again resumes from the two, to the same bits as a run never stopped.
 from __future__ import annotations
 
 import math
-import sys
 import time
 import tomllib
 import dataclasses
@@ -28,6 +27,7 @@ import numpy as np
 from axlebox import configs
 from axlebox._cache import cache_dir
 from axlebox._files import tmp_path
+from axlebox._progress import Progress
 from axlebox._params import ParameterError
 from axlebox.bearing import resultfile
 from axlebox.fem import bodyfile
@@ -469,8 +469,7 @@ def run(config_path, out, duration: float | None = None, log=print,
         f"({s.method}, dt {s.dt:g} s)" + (f", resuming at {resume['k'] / s.output_rate_hz:g} s from {partial}"
                                           if resume else ""))
 
-    def progress(t, T):
-        print(f"\rsimulating: {t:6.3f} / {T:g} s", end="", file=sys.stderr, flush=True)
+    progress = Progress("simulating", cfg.run.duration)
     sink = stream.Stream(streamed, model, s.state_every, None if resume is None else resume["k"],
                          every=stream.kept_every(s, cfg.sensors))
 
@@ -484,7 +483,7 @@ def run(config_path, out, duration: float | None = None, log=print,
                                  resume=resume, sink=sink.append)
     finally:
         sink.close()
-    print(file=sys.stderr)
+        progress.close()
     with stream.finished(streamed, res, model, s, cfg.sensors) as rec:   # as the acquisition records it
         ride = comfort.floor_comfort(rec.time, rec.sensors, model.system.track_ramp)   # fade-in left out
         write(out, rec, model, cfg, ride)

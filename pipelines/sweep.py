@@ -46,6 +46,7 @@ from pathlib import Path
 from axlebox import configs
 from axlebox._files import is_locked, locked
 from axlebox._params import ParameterError
+from axlebox._progress import Progress
 from axlebox.bearing import resultfile
 from axlebox.bearing.defects import Defect
 
@@ -305,11 +306,13 @@ def run_cases(todo: list[Case], out, scheduler=None, workers=None, log=print) ->
         threads = 0 if scheduler else threads
         futs = {client.submit(run_case, c.kind, c.toml, str(c.path(out)), threads, pure=False): c
                 for c in todo}
+        pace = Progress("sweep", len(todo), "case")
         for k, fut in enumerate(as_completed(futs), 1):
             c, head = futs[fut], f"[{k}/{len(todo)}] {futs[fut].name}"
+            left = f", {pace.left(k)}" if k < len(todo) else ""
             try:
                 r = fut.result()
-                log(f"{head}: done in {r['wall_s']:.1f} s (elapsed {time.perf_counter() - t0:.1f} s)"
+                log(f"{head}: done in {r['wall_s']:.1f} s (elapsed {time.perf_counter() - t0:.1f} s{left})"
                     if r["computed"] else f"{head}: finished by another runner meanwhile: not computed again")
             except Exception as err:  # noqa: BLE001 - one case's failure does not stop the others
                 failed.append(c.name)
