@@ -59,8 +59,11 @@ def test_a_worker_killed_mid_case_has_its_case_rerun(tmp_path):
         while time.monotonic() < deadline:
             for proc in psutil.Process().children(recursive=True):
                 try:
+                    # a case's lock, .<case>.lock in the sweep's folder (not dask's own, such as
+                    # its workspace's purge.lock, which a worker holds while it starts)
                     locks = [f.path for f in proc.open_files() if f.path.endswith(".lock")
-                             and Path(f.path).name != LOCK]
+                             and Path(f.path).parent == out and Path(f.path).name != LOCK
+                             and Path(f.path).name.startswith(".")]
                 except psutil.Error:
                     continue
                 if locks:
