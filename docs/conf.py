@@ -54,7 +54,8 @@ sphinx_gallery_conf = {
     "gallery_dirs": "auto_examples",
     "filename_pattern": r"/plot_",
     "download_all_examples": False,
-    "image_scrapers": ("matplotlib",),      # pyvista scenes are shown as screenshots
+    # pyvista scenes are shown as screenshots; the package's own figures by _scrapers.py
+    "image_scrapers": ("matplotlib", "_scrapers.returned_figures"),
     "remove_config_comments": True,
     "abort_on_example_error": True,
     "plot_gallery": "True",

@@ -28,7 +28,8 @@ def test_the_package_folder_holds_only_its_own_modules():
     command line's entry, and ParameterError is one class wherever it is reached from."""
     assert len(axlebox.__path__) == 1
     names = {m.name for m in pkgutil.iter_modules(axlebox.__path__)}
-    assert names <= {"__main__", "_cache", "_files", "_numba", "_params", "_threads"}, names
+    assert names <= {"__main__", "_cache", "_figures", "_files", "_numba", "_params", "_progress",
+                     "_threads"}, names
     from axlebox._params import ParameterError
     from axlebox.mbs.vehicle.config import ParameterError as via_mbs
     assert axlebox.ParameterError is ParameterError is via_mbs
