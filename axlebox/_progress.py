@@ -53,6 +53,12 @@ class Progress:
             return ""
         return f"about {duration(max(self.total - done, 0.0) * el / gained)} left"
 
+    def aside(self, done: float) -> str:
+        """``", about 12 min left"`` to end a log line with, ``""`` once all is done or before a
+        rate is known."""
+        left = self.left(done) if done < self.total else ""
+        return f", {left}" if left else ""
+
     def line(self, done: float) -> str:
         el = self.clock() - self._t0
         gained = done - self._d0

@@ -159,9 +159,8 @@ def build(sweep_dir, *, window_s: float = 0.5, hop_s: float = 0.25, criterion=No
             rows.append({**lab, "start_index": int(i), "t_start": float(i / fs)})
         left.append(xl)
         right.append(xr_)
-        left_s = f", {pace.left(k)}" if k < len(files) else ""
         log(f"dataset: [{k}/{len(files)}] {path.name}: {starts.size} windows, real side "
-            f"{lab['real_side']}, verdicts {lab['left_verdict']} / {lab['right_verdict']}{left_s}")
+            f"{lab['real_side']}, verdicts {lab['left_verdict']} / {lab['right_verdict']}{pace.aside(k)}")
     if len(fs_all) > 1:
         raise ParameterError(f"SWEEP_DIR holds results sampled at {sorted(fs_all)} Hz: expected one "
                              "sampling rate (windows of one length)")

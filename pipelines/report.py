@@ -357,10 +357,9 @@ def report(source, out_dir, *, left=None, right=None, modes_dir=None, log=print,
         cases[-1].speed_range = _speed_range(path)
         pair = cases[-1].pair
         if pair is not None:
-            left_s = f", {pace.left(k)}" if k < len(files) else ""
             log(f"report: [{k}/{len(files)}] {path.name}: {cases[-1].label}: left "
                 f"{pair.verdict.words['left']}, right {pair.verdict.words['right']} "
-                f"({pair.verdict.rule}{left_s})")
+                f"({pair.verdict.rule}{pace.aside(k)})")
     cases.sort(key=lambda c: (c.speed_kmh, c.width_mm))
     all_cases, cases = cases, [c for c in cases if c.pair is not None]
     figures = []

@@ -309,11 +309,11 @@ def run_cases(todo: list[Case], out, scheduler=None, workers=None, log=print) ->
         pace = Progress("sweep", len(todo), "case")
         for k, fut in enumerate(as_completed(futs), 1):
             c, head = futs[fut], f"[{k}/{len(todo)}] {futs[fut].name}"
-            left = f", {pace.left(k)}" if k < len(todo) else ""
             try:
                 r = fut.result()
-                log(f"{head}: done in {r['wall_s']:.1f} s (elapsed {time.perf_counter() - t0:.1f} s{left})"
-                    if r["computed"] else f"{head}: finished by another runner meanwhile: not computed again")
+                log(f"{head}: done in {r['wall_s']:.1f} s (elapsed {time.perf_counter() - t0:.1f} s"
+                    f"{pace.aside(k)})" if r["computed"]
+                    else f"{head}: finished by another runner meanwhile: not computed again")
             except Exception as err:  # noqa: BLE001 - one case's failure does not stop the others
                 failed.append(c.name)
                 log(f"{head}: failed: {type(err).__name__}: {err}")

@@ -74,6 +74,7 @@ def test_counted_work_says_the_time_an_item_takes_and_what_is_left():
     assert p.left(0) == ""
     clock.t += 360.0                              # three cases in 6 min
     assert p.left(3) == "about 26 min left"
+    assert p.aside(3) == ", about 26 min left" and p.aside(16) == "" and p.aside(0) == ""
     p(3)
     assert f.getvalue() == "sweep: 3 / 16 cases, 2 min a case, about 26 min left\n"
     assert Progress("bodies", 4, "body", units="bodies", file=f).line(0).startswith(
