@@ -68,7 +68,7 @@ def _wheels(n, t, y, dy, S, W, B):
 @njit
 def _dynamics(n, t, y, dy, S, W, B):
     for _ in range(n):
-        ks._dynamics(t, y, dy, S, W)
+        ks.dynamics(t, y, dy, S, W)
 
 
 @njit

@@ -205,7 +205,7 @@ def _cmd_contact_geometry(a) -> None:
 def _cmd_simulate(a) -> None:
     from .simulate import run
     res = run(a.config, a.out, duration=a.duration, checkpoint_every=a.checkpoint_every,
-              restart=a.restart)
+              restart=a.restart, ahead=True)
     if not res.ok:
         raise RuntimeError(f"{res.message}; what was computed is in {a.out}")
 

@@ -44,6 +44,7 @@ from axlebox.mbs.wheelrail.profile import read_profile
 from axlebox.mbs.wheelrail.standard import chn60, s1002, uic60
 
 from . import stream
+from .ahead import NoAhead, start as start_ahead
 
 def reduced_bodies(cfg: vconfig.CarConfig, log=print) -> dict:
     """The reduced bodies the config needs, each kind from its own file (``bodies.<kind>``, a
@@ -164,18 +165,24 @@ def _car(cfg, tabs, trk, red, bearings=None):
     return s.assemble()
 
 
-def build_model(cfg: vconfig.CarConfig, log=print):
+def build_model(cfg: vconfig.CarConfig, log=print, ahead=None):
     """Vehicle model in static equilibrium: (model, y0).  With ``joint.model = "bearing"`` the
     equilibrium is found with row bushings first, then the bearings are put in their own
-    (mbs/vehicle/bearings.py)."""
+    (mbs/vehicle/bearings.py).  ``ahead``: a process compiling the kernels ahead
+    (:mod:`.ahead`), waited for before each step that needs its work."""
+    ahead = ahead or NoAhead()
     red = reduced_bodies(cfg, log)
     tabs, trk = tables(cfg), track_record(cfg)
     model = _car(cfg, tabs, trk, red)
     log(f"vehicle: {len(model.bodies)} bodies, {model.n_states} states, flexible: "
         + ", ".join(f"{b.name} ({b.n_modes} modes)" for b in model.bodies if b.n_modes))
+    if not ahead.take("statics"):
+        ahead.wait("statics")
     y0 = statics.equilibrium(model, log=log)
+    ahead.go()
     if not cfg.has_bearings:
         return model, y0
+    ahead.wait("bearings")
     ws = model.body_state(model.system.index("ws1"), y0)
     loads = {key: F for key, F in car_bearings.joint_loads(model, y0).items()
              if key[0] in cfg.joint.wheelsets}        # the rest stay on row bushings
@@ -431,7 +438,7 @@ def write_checkpoint(path: Path, text: str, snap: dict) -> None:
 
 def run(config_path, out, duration: float | None = None, log=print,
         overrides: dict | None = None, checkpoint_every: float | None = None,
-        restart: bool = False) -> integrate.Run:
+        restart: bool = False, ahead=False) -> integrate.Run:
     """The whole command; ``config_path``: a file, a shipped config's name or a :class:`Config`
     (in memory: the sweep's cases).  The outputs stream to ``<out>.stream.d`` while the run
     goes (memory flat in its length; :mod:`.stream`), the result is made from it at the end.
@@ -440,7 +447,9 @@ def run(config_path, out, duration: float | None = None, log=print,
     from it and the stream and gives the same file as an uninterrupted run; another config is
     refused (exit 2, naming what changed) unless ``restart``.  Returns the run's status, wall
     time, recorded time and sensors; its wheel-rail, bearing and state outputs are in the file
-    only (copied to it from the stream a block at a time)."""
+    only (copied to it from the stream a block at a time).  ``ahead``: compile the kernels in a
+    second process meanwhile where numba's cache lacks them (True; :mod:`.ahead`), or that
+    process, started by the caller."""
     cfg = load_config(config_path, duration, overrides)
     text = cfg.to_toml()
     out = Path(out)
@@ -464,7 +473,15 @@ def run(config_path, out, duration: float | None = None, log=print,
                                      "(made by an earlier version?): --restart to start over")
     s = cfg.settings()
     t0 = time.perf_counter()
-    model, y0 = build_model(cfg, log)
+    if ahead is True:
+        ahead = start_ahead(cfg)
+    try:
+        model, y0 = build_model(cfg, log, ahead or None)
+        if ahead:
+            ahead.wait("run")
+    finally:
+        if ahead:
+            ahead.close()
     log(f"model ready in {time.perf_counter() - t0:.1f} s; running {cfg.run.duration:g} s "
         f"({s.method}, dt {s.dt:g} s)" + (f", resuming at {resume['k'] / s.output_rate_hz:g} s from {partial}"
                                           if resume else ""))

@@ -49,7 +49,7 @@ def kick_drift(y, a, P, hk, h, kick):
                 y[o + q] += h * y[o + RATE + q]
 
 
-@kernel
+@kernel(inline="always")
 def substep(model, x, ring, P, D, w, K, t, h, hk, mode, theta, out, Qc, cages):
     """One sub-step of ``h`` of the dynamic bearing ``model`` (a tag of bearing/models/__init__.py) at
     ring motion ``ring``: its ring loads there to ``w.F``, and with ``out`` its contact forces to

@@ -74,7 +74,7 @@ def bearing_forces(B, t, y, dy, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout):
     _forces_of(B, t, y, dy, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout)
 
 
-@kernel
+@kernel(inline="always")
 def bearing_exchange(B, X, t, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout):
     """The exchange at ``t`` of a leapfrog run (module docstring): every bearing's states
     advanced over the exchange's window (``X``: :class:`axlebox.mbs.kernel.exchange.Exchange`;
@@ -85,7 +85,7 @@ def bearing_exchange(B, X, t, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout):
     _exchange_of(B, X, t, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, elout)
 
 
-@kernel
+@kernel(inline="always")
 def held_loads(B, X, y, bi, mkp, mkv, mkR, mkw, mkF, mkM, u):
     """The last exchange's ring loads on the markers, carried ``u`` exchange steps on along the
     line through the last two (``u = 0``: held); with the "jacobian" hold (``X.hold``) plus

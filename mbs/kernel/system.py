@@ -44,10 +44,10 @@ def rhs(t, y, dy, S, W, B):
     _rings_to_frames(S, W)
     bearing_forces(B, t, y, dy, S.bi, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.elout)
     _ring_loads_to_inertial(S, W)
-    _dynamics(t, y, dy, S, W)
+    dynamics(t, y, dy, S, W)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rhs_exchange(t, y, dy, S, W, B, X):
     """The bodies' ``dy`` at ``t`` with the bearings exchanged (:func:`.bearings.bearing_exchange`:
     their states advanced to ``t``, their mean ring loads on the markers); the bearings' rows
@@ -56,10 +56,10 @@ def rhs_exchange(t, y, dy, S, W, B, X):
     _rings_to_frames(S, W)
     bearing_exchange(B, X, t, y, S.bi, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, W.elout)
     _ring_loads_to_inertial(S, W)
-    _dynamics(t, y, dy, S, W)
+    dynamics(t, y, dy, S, W)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rhs_held(t, y, dy, S, W, B, X, u):
     """The bodies' ``dy`` at ``t`` between exchanges of a co-simulation: the bearings' loads
     those of the last exchange, carried ``u`` exchange steps on (:func:`.bearings.held_loads`)."""
@@ -67,7 +67,7 @@ def rhs_held(t, y, dy, S, W, B, X, u):
     _rings_to_frames(S, W)
     held_loads(B, X, y, S.bi, W.mkp, W.mkv, W.mkR, W.mkw, W.mkF, W.mkM, u)
     _ring_loads_to_inertial(S, W)
-    _dynamics(t, y, dy, S, W)
+    dynamics(t, y, dy, S, W)
 
 
 @njit(cache=True)
@@ -155,7 +155,7 @@ def kinematics(t, y, dy, S, W):
 
 
 @njit(cache=True)
-def _dynamics(t, y, dy, S, W):
+def dynamics(t, y, dy, S, W):
     """Wheel-rail forces, gravity and the marker loads per body; the bodies' and the sensors'
     accelerations."""
     bi, goff, Ab = S.bi, S.goff, W.Ab

@@ -142,6 +142,52 @@ def split_outputs(model: Model, out_wh: np.ndarray, out_el: np.ndarray) -> dict:
             "bearings": out_el[:, ne:ne + BR_ROWS * nbr].reshape(out_el.shape[0], nbr, BR_ROWS, 6)}
 
 
+def exchange_of(model: Model, s: Settings, ring=None):
+    """The exchange of ``model``'s bearings a run under ``s`` makes (:func:`axlebox.mbs.kernel.exchange.exchange`;
+    ``ring``: the last one's ring motion of a run this one continues)."""
+    return exchange(model, s.method if s.method in ("leapfrog", "imex", "imex2") else "leapfrog", s.dt,
+                    s.n_exchange, ring, m=s.body_substeps, hold=s.hold,
+                    K=getattr(model, "bearing_stiffness", None))
+
+
+def _kernel_call(s, run_args, X, guard, O, start: bool, newton, shared):
+    """The run kernel of ``s.method`` and its arguments: one place for :func:`simulate`, which
+    calls it, and :func:`compile_run`, which compiles it for the same argument types."""
+    if s.method == "rk4":
+        return ki.run_rk4, (*run_args, guard, O, shared)
+    if s.method in ("leapfrog", "imex", "imex2"):
+        return ki.run_leapfrog, (*run_args, X, guard, O, start, shared)
+    return ki.run_galpha, (*run_args, guard, O, newton, shared)
+
+
+def run_signature(model: Model, settings: Settings | None = None):
+    """``(kernel, types)``: the run kernel :func:`simulate` calls for ``model`` under ``settings``
+    and its arguments' types there (its arrays made one output long, which their types do not
+    depend on); None for galpha, whose kernel is left to the run."""
+    import numba
+    s = settings or Settings()
+    if s.method == "galpha":
+        return None
+    W = model.W
+    O = ki.Outputs(t=np.zeros(1), sens=np.zeros((1, W.sensout.shape[0], 3)),
+                   wh=np.zeros((1,) + W.whout.shape), el=np.zeros((1, W.elout.shape[0], 6)),
+                   y=np.zeros((1, model.y0.size)), state_every=s.state_every, base=0)
+    guard = ki.Guard(nq=model.nq, nend=model.n_body_states, vmax=s.vmax)
+    y = np.array(model.y0, float)
+    kernel, args = _kernel_call(s, (y, 0.0, s.step, s.n_sub, 1, 0, 0, model.S, W, model.B),
+                                exchange_of(model, s), guard, O, True, None, np.zeros(3, np.int64))
+    return kernel, tuple(numba.typeof(a) for a in args)
+
+
+def compile_run(model: Model, settings: Settings | None = None) -> None:
+    """Compile (or load from numba's cache) the run kernel :func:`simulate` calls for ``model``
+    under ``settings``, without running it (:func:`run_signature`): what a process that
+    compiles ahead of a run calls (pipelines/ahead.py)."""
+    found = run_signature(model, settings)
+    if found is not None:
+        found[0].compile(found[1])
+
+
 def simulate(model: Model, duration: float, settings: Settings | None = None, *, y0=None,
              t0: float = 0.0, chunk: float = 0.25, progress=None, continued: bool = False,
              checkpoint=None, checkpoint_every: float = 0.0, resume: dict | None = None,
@@ -185,9 +231,7 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
         raise ParameterError("coupling.hold = 'jacobian' is not allowed for this model: it has no "
                              "bearing_stiffness (pipelines/simulate.build_model sets it; "
                              "mbs/bearings.stiffness); expected 'zoh' or 'linear'")
-    X = exchange(model, s.method if s.method in ("leapfrog", "imex", "imex2") else "leapfrog", s.dt,
-                 s.n_exchange, exchange_ring if (continued or resume is not None) else None,
-                 m=s.body_substeps, hold=s.hold, K=getattr(model, "bearing_stiffness", None))
+    X = exchange_of(model, s, exchange_ring if (continued or resume is not None) else None)
     se = s.state_every
     per = max(1, int(round(chunk * s.output_rate_hz)))
     rows = n_out if sink is None else min(per, n_out)        # the whole run, or one chunk
@@ -236,15 +280,11 @@ def simulate(model: Model, duration: float, settings: Settings | None = None, *,
             tk = t0 + k * s.n_sub * h
             O = ki.Outputs(t=out_t, sens=out_sens, wh=out_wh, el=out_el, y=out_y, state_every=se,
                            base=0 if sink is None else k)
-            run_args = (y, tk, h, s.n_sub, k1, k, n_out - 1, S, W, model.B)
+            kernel, args = _kernel_call(s, (y, tk, h, s.n_sub, k1, k, n_out - 1, S, W, model.B),
+                                        X, guard, O, k == 0 and not continued,
+                                        newton if s.method == "galpha" else None, fitter.shared)
             try:
-                if s.method == "rk4":
-                    status, k_done, bad = ki.run_rk4(*run_args, guard, O, fitter.shared)
-                elif s.method in ("leapfrog", "imex", "imex2"):
-                    status, k_done, bad = ki.run_leapfrog(*run_args, X, guard, O,
-                                                          k == 0 and not continued, fitter.shared)
-                else:
-                    status, k_done, bad = ki.run_galpha(*run_args, guard, O, newton, fitter.shared)
+                status, k_done, bad = kernel(*args)
             except (ZeroDivisionError, FloatingPointError):
                 # a state blown up between two outputs can meet a division by zero in a kernel
                 # before the output's finiteness check: the same divergence, caught a little later

@@ -393,9 +393,16 @@ class Model:
         return self.y0.size
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
-        from ..kernel.system import rhs
+        from ..kernel import system as ks
         dy = np.zeros_like(y)
-        rhs(float(t), np.ascontiguousarray(y, float), dy, self.S, self.W, self.B)
+        t, y = float(t), np.ascontiguousarray(y, float)
+        if self.bearing_names:
+            ks.rhs(t, y, dy, self.S, self.W, self.B)
+        else:
+            # without bearings the right-hand side is its two parts, which the run's kernels
+            # share: the statics compiles nothing a run does not (the same operations, bits)
+            ks.kinematics(t, y, dy, self.S, self.W)
+            ks.dynamics(t, y, dy, self.S, self.W)
         return dy
 
     def kinematics(self, t: float, y: np.ndarray) -> None:
