@@ -83,7 +83,7 @@ def _stage(which, nrep, t, y, dy, S, W, B):
                 marker_acceleration(S.sens[s], y, dy, bi, S.mk_i, S.mk_f, S.shp, W.Ab, W.omfb, W.mku,
                                     W.sensout[s])
         else:
-            _accelerations(y, dy, bi, S.bf, S.inv, S.goff, W.Ab, W.omb, W.omfb, W.gen)
+            _accelerations(y, dy, bi, S.bf, S.inv, S.goff, S.lane, W.Ab, W.omb, W.omfb, W.gen)
 
 
 STAGES = ("frames and markers", "suspension elements", "eight DTRBs (parallel)",

@@ -143,7 +143,7 @@ def count(cases: list[Path], calls: int, lib: str | None = None) -> None:
     import ctypes
 
     from axlebox.mbs.kernel.bearings import NoBearings
-    from axlebox.mbs.kernel.system import Arrays, Work
+    from axlebox.mbs.kernel.system import Arrays, Work, lanes
     c = ctypes.CDLL(lib) if lib else None
 
     def counted(*fns):
@@ -157,7 +157,7 @@ def count(cases: list[Path], calls: int, lib: str | None = None) -> None:
                 c.axlebox_dump()
     for k, case in enumerate(cases):
         f = dict(np.load(case))
-        S = Arrays(*(f[f"S/{n}"] for n in Arrays._fields))
+        S = Arrays(*(f[f"S/{n}"] if f"S/{n}" in f else lanes(f["S/bi"]) for n in Arrays._fields))
         W = Work(*(f[f"W/{n}"] for n in Work._fields))
         B = NoBearings()
         loop = rhs_calls(type("M", (), {"S": S, "W": W, "B": B}), float(f["t"]), f["y"])

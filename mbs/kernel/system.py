@@ -32,7 +32,7 @@ from .wheels import G_GRAV, wheel_forces
 
 
 Arrays = namedtuple("Arrays", ["bi", "bf", "inv", "goff", "mk_i", "mk_f", "shp", "el_i", "el_f", "glob",
-                               "wh_i", "wh_f", "wtab", "wpar", "trk", "wrk", "sens", "line", "brm"])
+                               "wh_i", "wh_f", "wtab", "wpar", "trk", "wrk", "sens", "line", "brm", "lane"])
 Work = namedtuple("Work", ["Ab", "rb", "vb", "omb", "omfb", "mku", "mkp", "mkv", "mkR", "mkw", "mkF",
                            "mkM", "gen", "elout", "whout", "sensout", "frm", "fr", "brs"])
 
@@ -168,7 +168,7 @@ def dynamics(t, y, dy, S, W):
         o = goff[b]
         gravity_load(b, bi, S.bf, S.inv, y, Ab[b], g, W.gen[o:o + 6 + n])
     marker_loads(bi, S.mk_i, S.shp, Ab, W.mku, W.mkF, W.mkM, W.gen, goff)
-    _accelerations(y, dy, bi, S.bf, S.inv, goff, Ab, W.omb, W.omfb, W.gen)
+    _accelerations(y, dy, bi, S.bf, S.inv, goff, S.lane, Ab, W.omb, W.omfb, W.gen)
     for s in range(S.sens.shape[0]):
         marker_acceleration(S.sens[s], y, dy, bi, S.mk_i, S.mk_f, S.shp, Ab, W.omfb, W.mku,
                             W.sensout[s])
@@ -192,30 +192,28 @@ def _on_line(y, dy, S, W):
         velocity_rates(W.frm[b], y, iv, dy[iv:iv + 3])
 
 
-@njit(cache=True)
-def lanes(bi, n_lanes):
-    """Bodies dealt to ``n_lanes`` lanes of about equal work, largest first (a body's solve
-    costs about ``(6 + n)^2``): ``lane[b]``."""
+def lanes(bi) -> np.ndarray:
+    """Bodies dealt to ``min(4, bodies)`` lanes of about equal work, largest first (a body's solve
+    costs about ``(6 + n)^2``): ``lane[b]``.  Made once, when the model is assembled
+    (:data:`Arrays`' ``lane``)."""
     nb = bi.shape[0]
-    cost = np.empty(nb)
-    for b in range(nb):
-        cost[b] = (6.0 + bi[b, BI_N]) ** 2
-    load = np.zeros(n_lanes)
+    cost = (6.0 + bi[:, BI_N]) ** 2
+    load = np.zeros(min(4, nb))
     lane = np.empty(nb, np.int64)
     for b in np.argsort(-cost, kind="mergesort"):
-        L = np.argmin(load)
+        L = int(np.argmin(load))
         lane[b] = L
         load[L] += cost[b]
     return lane
 
 
 @njit(cache=True, parallel=True)
-def _accelerations(y, dy, bi, bf, inv, goff, Ab, omb, omfb, gen):
-    """Every body's accelerations, in four lanes of equal work over numba's threads (even for 1,
-    2 or 4 threads; each body writes only its own rows, so the result does not depend on the
-    number of threads).  (``numba.get_num_threads`` here would keep numba from caching.)"""
+def _accelerations(y, dy, bi, bf, inv, goff, lane, Ab, omb, omfb, gen):
+    """Every body's accelerations, in the four lanes of equal work ``lane`` (:func:`lanes`) over
+    numba's threads (even for 1, 2 or 4 threads; each body writes only its own rows, so the
+    result does not depend on the number of threads).  (``numba.get_num_threads`` here would
+    keep numba from caching.)"""
     n_lanes = min(4, bi.shape[0])
-    lane = lanes(bi, n_lanes)
     for L in prange(n_lanes):
         for b in range(bi.shape[0]):
             if lane[b] == L:

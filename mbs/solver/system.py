@@ -22,7 +22,7 @@ from . import ffrf_numpy as fn
 from .body import Body
 from ..kernel.body import BF_GRAV, BF_JINV, BF_M, BF_MC, BF_P0, BF_WIDTH
 from ..kernel.elements import EL_WIDTH
-from ..kernel.system import Arrays, Work
+from ..kernel.system import Arrays, Work, lanes
 from ..kernel.trajectory import FR_N
 from ..kernel.wheels import N_WHOUT
 
@@ -274,7 +274,8 @@ class System:
             glob[G_LINE] = 1.0
         S = Arrays(bi, bf, inv, goff, mk_i, mk_f, shp, el_i, el_f, glob, wh_i, wh_f,
                    np.ascontiguousarray(wtab, float), np.ascontiguousarray(wpar, float), trk, wrk, sens,
-                   line, np.array([(x[1], x[2], x[3]) for x in self.bearings], np.int64).reshape(-1, 3))
+                   line, np.array([(x[1], x[2], x[3]) for x in self.bearings], np.int64).reshape(-1, 3),
+                   lanes(bi))
         return Model(self, S, y0, nq, sens_names, [w[0] for w in self.wheels], B)
 
     def _to_line(self, y0: np.ndarray, bi: np.ndarray, bf: np.ndarray) -> np.ndarray:
