@@ -57,6 +57,8 @@ def table(slips: list[CageSlip]) -> str:
     if not slips:
         return ""
     s0 = slips[0]
+    if s0.t.size == 0:          # a run shorter than one window: nothing to average
+        return "cage slip: none to report (the run is shorter than one window)"
     head = "cage slip, % (1 - cage speed / its rolling speed), windows at " + ", ".join(
         f"{t:.2f} s ({v:.0f} km/h)" for t, v in zip(s0.t, s0.speed_kmh))
     rows = [f"  {s.bearing} row {r + 1}: " + " ".join(f"{100 * x:5.2f}" for x in s.slip[r])

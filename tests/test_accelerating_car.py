@@ -10,7 +10,7 @@ import pytest
 from axlebox.mbs.vehicle import config as vconfig
 from axlebox import configs
 from axlebox.pipelines import simulate as psim
-from axlebox.pipelines.cageslip import cage_slip
+from axlebox.pipelines.cageslip import CageSlip, cage_slip, table
 from axlebox.pipelines.windows import analyse_windows
 
 from conftest import assert_sized, full_size
@@ -116,3 +116,12 @@ def test_its_channels_as_a_csv_read_with_the_mean_speed_alone(accel, tmp_path):
     assert info["speed"]["estimate"]["status"] == "changing"
     assert pair.verdict.words["right"] == "real fault" and pair.verdict.kinds["right"].kind == "outer ring"
     assert_sized(pair.sizes["right"], 2e-3)           # the config's W, issue 57's criterion
+
+
+def test_a_run_shorter_than_a_window_says_so_instead_of_empty_rows():
+    """A 0.01 s run has no cage-slip window: one line that says why, not a head and empty rows
+    (which read as a failure)."""
+    empty = CageSlip("bearing1L", np.zeros(0), np.zeros(0), np.zeros((2, 0)))
+    assert table([empty]) == "cage slip: none to report (the run is shorter than one window)"
+    one = CageSlip("bearing1L", np.array([0.25]), np.array([48.0]), np.array([[0.01], [0.02]]))
+    assert table([one]).splitlines()[1:] == ["  bearing1L row 1:  1.00", "  bearing1L row 2:  2.00"]
