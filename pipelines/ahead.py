@@ -35,7 +35,12 @@ def wanted() -> bool:
     """Whether a run should compile ahead: more than one core, not switched off (``$AXLEBOX_COMPILE_AHEAD
     = 0``), and the run's kernel not yet in numba's cache (any signature of it: a warm cache
     has nothing to gain)."""
-    if os.environ.get(ENV, "1") == "0" or (os.cpu_count() or 1) < 2:
+    chosen = os.environ.get(ENV, "1")
+    if chosen not in ("0", "1"):
+        from axlebox._params import ParameterError
+        raise ParameterError(f"{ENV} = {chosen!r} is not allowed: expected 1 (compile ahead where "
+                             "numba's cache lacks the run's kernels; the default) or 0 (never)")
+    if chosen == "0" or (os.cpu_count() or 1) < 2:
         return False
     from axlebox._numba import OURS
     where = os.environ.get(OURS)

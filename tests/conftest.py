@@ -11,6 +11,11 @@ _SESSION_CACHE = None if os.environ.get("AXLEBOX_CACHE") else tempfile.mkdtemp(p
 if _SESSION_CACHE:
     os.environ["AXLEBOX_CACHE"] = _SESSION_CACHE
 os.environ.pop("DISPLAY", None)     # every rendering test runs with no display
+# what the session's processes make once and share (tests/installed.py), made by the first
+# process (pytest-xdist's controller, whose environment its workers get) and removed by it
+_SESSION_SHARED = None if os.environ.get("AXLEBOX_TEST_SHARED") else tempfile.mkdtemp(prefix="axlebox-test-shared-")
+if _SESSION_SHARED:
+    os.environ["AXLEBOX_TEST_SHARED"] = _SESSION_SHARED
 
 # On a pytest-xdist worker (pyproject's addopts run one per core) numba, OpenBLAS and MKL get one
 # thread each, as do the processes a test starts: the bearings' parallel loops meet 1e5 times a
@@ -40,8 +45,9 @@ def pytest_collection_modifyitems(session, config, items):
 
 
 def pytest_sessionfinish(session, exitstatus):
-    if _SESSION_CACHE:
-        shutil.rmtree(_SESSION_CACHE, ignore_errors=True)
+    for folder in (_SESSION_CACHE, _SESSION_SHARED):
+        if folder:
+            shutil.rmtree(folder, ignore_errors=True)
 
 
 def reference_dir() -> Path:

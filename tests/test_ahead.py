@@ -5,7 +5,6 @@ then calls with.  Both checked here on the validation car; that a run that found
 compiled by the second process gives the run's bits is the kernel reference's check run cold
 (tests/test_kernel_reference.py, and test_install.py's demo in a fresh cache)."""
 import numba
-import numpy as np
 import pytest
 
 from axlebox.mbs.kernel import integrate as ki
@@ -51,3 +50,10 @@ def test_a_warm_cache_starts_no_second_process(cfg, monkeypatch):
     assert isinstance(ahead.start(cfg), ahead.NoAhead)
     monkeypatch.setenv(ahead.ENV, "0")
     assert not ahead.wanted()
+
+
+def test_a_bad_setting_is_refused_naming_it(monkeypatch):
+    from axlebox._params import ParameterError
+    monkeypatch.setenv(ahead.ENV, "yes")
+    with pytest.raises(ParameterError, match="AXLEBOX_COMPILE_AHEAD = 'yes' is not allowed"):
+        ahead.wanted()

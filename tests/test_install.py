@@ -8,51 +8,30 @@ environment's packages through a ``.pth`` file, not the base interpreter's (``--
 would show the base's, which on a fresh machine has only what Python ships)."""
 import os
 import re
-import shutil
 import subprocess
-import sys
-import sysconfig
 import zipfile
 from pathlib import Path
 
 import pytest
 
+import installed
+
 from axlebox import _numba, configs
 from axlebox._cache import source_hash
 from axlebox.geometry import mesh
-from axlebox.pipelines.demo import min_duration
 
 ROOT = Path(__file__).resolve().parents[1]
 SUBPACKAGES = ("geometry", "fem", "mbs", "bearing", "pipelines", "configs")
 
-pytestmark = pytest.mark.skipif(not (ROOT / "pyproject.toml").is_file(), reason="needs the checkout")
+pytestmark = pytest.mark.skipif(not installed.available(), reason="needs the checkout")
 
 
-def _run(cmd, **kw):
-    r = subprocess.run([str(c) for c in cmd], capture_output=True, text=True, **kw)
-    assert r.returncode == 0, \
-        f"{' '.join(map(str, cmd))} exited {r.returncode}:\n{r.stdout[-3000:]}\n{r.stderr[-3000:]}"
-    return r
+_run = installed.run
 
 
 @pytest.fixture(scope="module")
-def checkout(tmp_path_factory) -> Path:
-    """A copy of the checkout to build from: setuptools builds in the source tree, where it would
-    leave ``build/`` behind, and a ``build/`` left by an earlier build would carry files since
-    removed into the wheel."""
-    src = tmp_path_factory.mktemp("src") / "axlebox"
-    shutil.copytree(ROOT, src, ignore=shutil.ignore_patterns(".git", "build", "*.egg-info", "__pycache__",
-                                                             "axlebox-demo", ".pytest_cache"))
-    return src
-
-
-@pytest.fixture(scope="module")
-def wheel(checkout, tmp_path_factory) -> Path:
-    out = tmp_path_factory.mktemp("wheel")
-    _run([sys.executable, "-m", "pip", "wheel", "-q", "--no-deps", "--no-build-isolation", "-w", out,
-          checkout])
-    (whl,) = out.glob("axlebox-*.whl")
-    return whl
+def wheel() -> Path:
+    return installed.wheel()
 
 
 def _sources(folder: Path) -> set[str]:
@@ -81,27 +60,18 @@ def test_wheel_installs_axlebox_alone_with_every_source_and_the_configs(wheel, t
 
 
 @pytest.mark.slow
-def test_plain_install_runs_the_demo_from_another_folder(wheel, tmp_path):
+def test_plain_install_runs_the_demo_from_another_folder():
     """``pip install`` of the wheel (not editable) into a fresh venv; from a folder outside the
-    checkout: ``axlebox configs``, ``python -m axlebox --help`` and ``axlebox demo`` (at its shortest
-    duration, 1.41 s simulated) work, and the code that ran is the venv's copy; its kernels are
-    the checkout's machine code where that was compiled first in the session (same sources)."""
-    venv = tmp_path / "venv"
-    _run([sys.executable, "-m", "venv", "--without-pip", venv])
-    py, exe = venv / "bin" / "python", venv / "bin" / "axlebox"
-    # axlebox's dependencies and pip come from the test environment, as path entries (a path entry
-    # runs no .pth of its own, so the environment's editable axlebox stays out of sight)
-    site = Path(_run([py, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"]).stdout.strip())
-    here = dict.fromkeys(sysconfig.get_paths()[k] for k in ("purelib", "platlib"))
-    (site / "test_environment.pth").write_text("\n".join(here) + "\n")
-    _run([py, "-m", "pip", "install", "-q", "--no-deps", "--no-index", "--ignore-installed", wheel])
-    elsewhere = tmp_path / "elsewhere"
-    elsewhere.mkdir()
-    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    checkout: ``axlebox configs``, ``python -m axlebox --help`` and ``axlebox demo`` (at the demo's
+    own duration: its result is test_validation.py's, tests/installed.py) work, and the code that
+    ran is the venv's copy; its kernels are the checkout's machine code where that was compiled
+    first in the session (same sources)."""
+    v = installed.venv()
+    py, exe, elsewhere, env = v["py"], v["exe"], v["elsewhere"], v["env"]
     where = _run([py, "-c", "import axlebox.pipelines, axlebox.configs as c; "
                   "print(axlebox.pipelines.__file__); print(c.folder())"], cwd=elsewhere, env=env)
     for line in where.stdout.split():
-        assert Path(line).resolve().is_relative_to(venv.resolve()), line
+        assert Path(line).resolve().is_relative_to(v["venv"].resolve()), line
     listing = _run([exe, "configs"], cwd=elsewhere, env=env).stdout
     for name in configs.names():
         assert name in listing
@@ -111,9 +81,10 @@ def test_plain_install_runs_the_demo_from_another_folder(wheel, tmp_path):
     bad = subprocess.run([exe, "simulate", "no_such_config", "--out", "x.h5"], cwd=elsewhere, env=env,
                          capture_output=True, text=True)
     assert bad.returncode == 2 and "no_such_config" in bad.stderr and len(bad.stderr.splitlines()) == 1
-    _run([exe, "demo", "--out", "demo", "--duration", str(min_duration())], cwd=elsewhere, env=env)
-    assert (elsewhere / "demo" / "report" / "index.html").is_file()
-    assert (elsewhere / "demo" / "diagnosis.json").is_file()
+    out = installed.demo(installed.DEMO_DURATION)
+    assert (out / "report" / "index.html").is_file()
+    assert (out / "diagnosis.json").is_file()
+    assert (out / "validation.h5").is_file()
     # the venv's copy kept its kernels beside the checkout's, under their modules' names, none under
     # numba's own folders named by a hash of their path (axlebox/_numba.py KernelCacheLocator)
     if not _numba.user_cache_dir():

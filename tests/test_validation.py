@@ -7,7 +7,8 @@ healthy side at a lower amplitude and later, impulses of about 20 m/s^2, and a r
 force that turns with the cage (0.456 s, 2.193 Hz against an FTF of 2.196 Hz).
 
 One run of the demo's 1.6 s (2.0 s with AXLEBOX_FULL=1): after the 0.5 s fade-in 1.1 s is
-left, 48 fault periods and 2.4 cage periods.
+left, 48 fault periods and 2.4 cage periods.  In a checkout it is the installed demo's run
+(tests/installed.py), which test_install.py checks runs: the case simulated once.
 """
 
 import h5py
@@ -21,18 +22,24 @@ from axlebox.bearing.frequencies import orders, shaft_hz
 from axlebox.bearing.models.params import BearingParams
 from axlebox.pipelines import readers
 from axlebox.pipelines import simulate as psim
-from axlebox.pipelines.demo import DURATION, conclusion
+from axlebox.pipelines.demo import conclusion
 
-from conftest import assert_sized, full_size
+import installed
+from conftest import assert_sized
 
 FADE = readers.TRACK_FADE_IN_S
 
 
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
-    out = tmp_path_factory.mktemp("validation") / "validation.h5"
-    psim.run(configs.path("validation_48kmh"), out, duration=2.0 if full_size() else DURATION,
-             log=lambda *_: None)
+    """The demo's result: the installed demo's (tests/installed.py, shared with test_install.py)
+    in a checkout, else this package's run of the same case and duration."""
+    if installed.available():
+        out = installed.demo(installed.DEMO_DURATION) / "validation.h5"
+    else:
+        out = tmp_path_factory.mktemp("validation") / "validation.h5"
+        psim.run(configs.path("validation_48kmh"), out, duration=installed.DEMO_DURATION,
+                 log=lambda *_: None)
     o = orders(BearingParams())
     f_r = shaft_hz(48.0, 0.42)
     return out, readers.read(out), o.BPFO * f_r, o.FTF * f_r
