@@ -34,7 +34,7 @@ ENV = "AXLEBOX_COMPILE_AHEAD"   # "0": never (a run compiles all it needs itself
 def wanted() -> bool:
     """Whether a run should compile ahead: more than one core, not switched off (``$AXLEBOX_COMPILE_AHEAD
     = 0``), and the run's kernel not yet in numba's cache (any signature of it: a warm cache
-    has nothing to gain)."""
+    has nothing to gain), the cache being the one axlebox chose (axlebox/_numba.py)."""
     chosen = os.environ.get(ENV, "1")
     if chosen not in ("0", "1"):
         from axlebox._params import ParameterError
@@ -44,8 +44,8 @@ def wanted() -> bool:
         return False
     from axlebox._numba import OURS
     where = os.environ.get(OURS)
-    if not where:                       # numba's own cache places: nothing to look at
-        return True
+    if not where:       # the user's cache folder (or numba's own places): no telling warm from cold
+        return False
     folder = Path(where) / "axlebox.mbs.kernel.integrate"
     return not (folder.is_dir() and any(".run_leapfrog-" in p.name for p in folder.iterdir()))
 
