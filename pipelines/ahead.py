@@ -89,7 +89,9 @@ class Ahead:
 
 
 class NoAhead:
-    """A run that compiles everything itself."""
+    """A run that compiles everything itself: it takes every phase, waits for none, and has no
+    second process to tell or to stop (:class:`Ahead`'s interface, for callers that need not ask
+    which they hold)."""
 
     def take(self, phase: str) -> bool:
         return True
@@ -98,10 +100,10 @@ class NoAhead:
         return False
 
     def go(self) -> None:
-        pass
+        """Nobody to tell."""
 
     def close(self) -> None:
-        pass
+        """Nothing to stop."""
 
 
 def start(cfg):

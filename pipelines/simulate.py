@@ -473,15 +473,12 @@ def run(config_path, out, duration: float | None = None, log=print,
                                      "(made by an earlier version?): --restart to start over")
     s = cfg.settings()
     t0 = time.perf_counter()
-    if ahead is True:
-        ahead = start_ahead(cfg)
+    ahead = start_ahead(cfg) if ahead is True else ahead or NoAhead()
     try:
-        model, y0 = build_model(cfg, log, ahead or None)
-        if ahead:
-            ahead.wait("run")
+        model, y0 = build_model(cfg, log, ahead)
+        ahead.wait("run")
     finally:
-        if ahead:
-            ahead.close()
+        ahead.close()
     log(f"model ready in {time.perf_counter() - t0:.1f} s; running {cfg.run.duration:g} s "
         f"({s.method}, dt {s.dt:g} s)" + (f", resuming at {resume['k'] / s.output_rate_hz:g} s from {partial}"
                                           if resume else ""))
