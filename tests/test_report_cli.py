@@ -34,6 +34,20 @@ def test_report_pictures_exist_and_are_not_blank(body_dir, tmp_path):
     assert "Hz" in text and "wheelset" in text
 
 
+def test_each_picture_is_its_own_mode_whatever_came_before(body_dir, tmp_path):
+    """One render a picture (pipelines/render.py): a mode's picture is the same rendered alone
+    as after others (no camera, actor or image left over from the one before), and two modes'
+    pictures differ."""
+    from axlebox.fem import bodyfile
+    from axlebox.pipelines.render import render_modes
+    body = bodyfile.read(body_dir / "wheelset.h5")
+    seq = render_modes(body, tmp_path / "seq", modes=[0, 1, 2])
+    (alone,) = render_modes(body, tmp_path / "alone", modes=[2])
+    pixels = [np.asarray(Image.open(p)) for p in seq]
+    assert np.array_equal(np.asarray(Image.open(alone)), pixels[2])
+    assert not np.array_equal(pixels[0], pixels[2]) and not np.array_equal(pixels[1], pixels[2])
+
+
 def _cli(*args):
     env = dict(os.environ)
     env.pop("DISPLAY", None)
