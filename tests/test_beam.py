@@ -174,3 +174,24 @@ def test_rbe3_adds_no_stiffness_rbe2_does(slender):
         assert np.all(f >= modes.frequencies_hz[:6] * (1 - 1e-7))
         if kind == "rbe3":
             np.testing.assert_allclose(f, modes.frequencies_hz[:6], rtol=2e-3)
+
+
+@pytest.mark.parametrize("size,order", [(0.02, 2), (0.03, 1)])
+def test_stiffness_and_mass_are_scikit_fems_vector_forms(size, order):
+    """fem/assembly.py builds K and M from the scalar element's blocks; scikit-fem's own vector
+    forms (``linear_elasticity`` and ``rho u . v`` on ``ElementVector``) give the same matrices to
+    round-off, on tet10 and on tet4."""
+    from skfem import Basis, BilinearForm, ElementTetP1, ElementTetP2, ElementVector, MeshTet1, MeshTet2
+    from skfem.helpers import dot
+    from skfem.models.elasticity import lame_parameters, linear_elasticity
+    msh = mesh.mesh_model("beam", beam.build, beam.BeamParams(length=0.5, width=0.04, height=0.06),
+                          size, order=order)
+    fe = assembly.assemble(msh)
+    cls, elem = (MeshTet2, ElementTetP2) if order == 2 else (MeshTet1, ElementTetP1)
+    m = cls(msh.points.T.copy(), msh.cells.T.copy())
+    K = linear_elasticity(*lame_parameters(E, 0.3)).assemble(Basis(m, ElementVector(elem()),
+                                                                   intorder=2 if order == 2 else 1))
+    M = BilinearForm(lambda u, v, w: RHO * dot(u, v)).assemble(Basis(m, ElementVector(elem()), intorder=4))
+    for ours, theirs in ((fe.K, K), (fe.M, M)):
+        assert ours.shape == theirs.shape
+        assert abs(ours - theirs).max() <= 1e-13 * abs(theirs).max()
