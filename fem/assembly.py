@@ -125,12 +125,11 @@ def assemble(mesh: MeshData, material: Material = STEEL) -> FEModel:
     rho = material.rho
     Ms = BilinearForm(lambda u, v, w: rho * u * v).assemble(mb)
     # into the vector element's numbering: the scalar DOF k of component a is vector DOF comp[a][k]
-    order = np.concatenate([kb.nodal_dofs[0], kb.edge_dofs[0]]) if kb.edge_dofs.size else kb.nodal_dofs[0]
+    order = _component_dofs(kb, 0)
     comp = []
     for a in range(3):
         c = np.empty(order.size, dtype=np.int64)
-        c[order] = (np.concatenate([vector.nodal_dofs[a], vector.edge_dofs[a]])
-                    if vector.edge_dofs.size else vector.nodal_dofs[a])
+        c[order] = _component_dofs(vector, a)
         comp.append(c)
     K = _blocks({(a, b): lam * G[a, b] + mu * G[b, a] + (mu * trace if a == b else 0.0)
                  for a in range(3) for b in range(3)}, comp, vector.N)
@@ -152,14 +151,17 @@ def _blocks(blocks: dict, comp: list, n: int) -> sp.csr_matrix:
                          shape=(n, n))
 
 
+def _component_dofs(basis, a: int) -> np.ndarray:
+    """The DOF numbers of component ``a`` of ``basis``: at the vertices, then at the edges."""
+    idx = [basis.nodal_dofs[a]]
+    if basis.edge_dofs.size:
+        idx.append(basis.edge_dofs[a])
+    return np.concatenate(idx)
+
+
 def _point_dofs(basis, points: np.ndarray) -> np.ndarray:
     """Map every mesh point to its three DOF numbers by location (robust to renumbering)."""
-    comps = []
-    for a in range(3):
-        idx = [basis.nodal_dofs[a]]
-        if basis.edge_dofs.size:
-            idx.append(basis.edge_dofs[a])
-        comps.append(np.concatenate(idx))
+    comps = [_component_dofs(basis, a) for a in range(3)]
     loc = basis.doflocs[:, comps[0]].T
     dist, which = cKDTree(loc).query(points)
     scale = np.ptp(points, axis=0).max()
