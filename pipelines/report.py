@@ -8,6 +8,12 @@ top-level ``defects``, 0 without).  A folder is searched for result files one le
 sweep writes one file per case).  Each case is diagnosed exactly as ``axlebox diagnose`` does
 (:func:`axlebox.pipelines.diagnose.analyse_file`), so the report and the command never disagree.
 
+The page opens on what a maintainer acts on: each case's two sides, their verdicts in words and
+as coloured badges, the fault's kind and size with its interval, who leads and by how much, the
+reasons in a ``<details>`` (a phone has no hover); then the indicator, comfort, curving and
+conclusions tables (each scrolled in its own box on a narrow screen), the captioned figures and
+the mode shapes.
+
 Figures (paper numbering): 9 time signals and 10 envelope spectra, one figure per speed with a
 row per width; 11 RMS and SPM, 13 lag and 14 VF against speed; 12 time and frequency comparison
 per speed at the widest defect.  Mode shapes: ``*_modeNN.png`` from ``axlebox bodies report``,
@@ -288,6 +294,123 @@ def _comfort_html(cases: list[Case]) -> str:
     return "\n".join(out)
 
 
+#: what each figure shows, by its file name's start: the caption under it on the page
+CAPTIONS = {
+    "fig09": "Both axle boxes' accelerations over the record, a row per defect width: the defect "
+             "side's impacts and their weaker copy on the healthy side (the paper's Fig. 9).",
+    "fig10": "Envelope spectra of both sides with the bearing's fault lines marked; a line on "
+             "the healthy side at the defect side's BPFO is the coaxial pseudo-fault (Fig. 10).",
+    "fig11": "RMS and SPM shock value of both sides against speed, a line per defect width "
+             "(Fig. 11).",
+    "fig12": "Time and frequency comparison of the two sides at the widest defect (Fig. 12).",
+    "fig13": "How far the healthy side's impulses trail the defect side's, against speed "
+             "(Fig. 13).",
+    "fig14": "Both sides' VF (the spectra's dispersion) against speed; their difference is the "
+             "paper's criterion (Fig. 14).",
+    "fig_comfort_spectra": "The carbody floor's weighted acceleration spectra (EN 12299).",
+    "fig_comfort_speed": "Sperling's W_z, W_y and EN 12299's N_MV against speed.",
+    "fig_windows": "Each window's verdicts beside the speed, along a run whose speed changes.",
+    "curving": "Y, Q, Y/Q, the sum of Y, the lateral displacement and the angle of attack along "
+               "the line (EN 14363).",
+}
+
+#: the verdict's colour class: a fault red, a copy amber, healthy green, no word grey
+_TONE = {"real fault": "fault", "faults on both sides": "fault", "pseudo-fault": "copy",
+         "healthy": "ok", "undecided": "none"}
+
+_STYLE = (
+    "body{font-family:system-ui,sans-serif;margin:1.5em auto;max-width:1300px;padding:0 1em;"
+    "color:#222;line-height:1.4}h2{margin-top:1.6em;border-bottom:1px solid #ddd}"
+    # tables: a tinted header, banded rows, and scrolled in their own box on a narrow screen
+    ".scroll{overflow-x:auto;max-width:100%}"
+    "table{border-collapse:collapse;font-size:90%;margin:.5em 0}td,th{border:1px solid #d6d6d6;"
+    "padding:4px 8px;text-align:left;vertical-align:top}th{background:#eef1f5}"
+    "tr:nth-child(even) td{background:#fafbfc}"
+    # numbers line up on the right; words and sentences read from the left
+    "td.num{text-align:right;white-space:nowrap}"
+    ".cards{display:flex;flex-wrap:wrap;gap:1em}.case{border:1px solid #ccc;border-radius:6px;"
+    "padding:.6em 1em;flex:1 1 22em;max-width:40em}.case h3{margin:.2em 0 .5em}"
+    ".side{margin:.35em 0}.badge{display:inline-block;padding:1px 8px;border-radius:10px;"
+    "font-weight:bold;color:#fff;margin-right:.4em}.fault .badge{background:#c62828}"
+    ".copy .badge{background:#e08a00}.ok .badge{background:#2e7d32}.none .badge{background:#757575}"
+    "details{margin:.4em 0;font-size:90%}details p{margin:.3em 0}"
+    "figure{margin:1em 0}figcaption{font-size:90%;color:#444;margin-top:.3em}"
+    "img{max-width:100%;height:auto}.modes{display:flex;flex-wrap:wrap;gap:.5em}"
+    ".modes img{width:380px}")
+
+
+def _caption(path: Path) -> str:
+    stem = path.stem
+    key = max((k for k in CAPTIONS if stem.startswith(k)), key=len, default=None)
+    return CAPTIONS.get(key, "")
+
+
+def _mode_caption(path: Path) -> str:
+    """``wheelset_mode07.png`` -> ``wheelset, mode 7`` (the name ``axlebox bodies report`` gives)."""
+    m = re.fullmatch(r"(.+)_mode0*(\d+)", path.stem)
+    return f"{m[1].replace('_', ' ')}, mode {m[2]}" if m else path.stem.replace("_", " ")
+
+
+def _side_words(c: Case, side: str) -> str:
+    """One side in words: its verdict, the fault's kind and size with its interval."""
+    p = c.pair
+    esc = html.escape
+    word = p.verdict.words[side]
+    out = [f"<span class='badge'>{esc(word)}</span><b>{side}</b> ({esc(p.names[SIDE_INDEX[side]])})"]
+    kind = p.verdict.kinds.get(side)
+    if kind is not None:
+        out.append(esc(kind.kind if kind.decided else "kind undecided: " + " or ".join(kind.named)))
+    size = p.sizes.get(side)
+    if size is not None and size.status == "sized":
+        lo, hi = size.interval_m
+        out.append(f"{1e3 * size.width_m:.2f} mm wide ({1e3 * lo:.2f}-{1e3 * hi:.2f} mm)")
+    elif size is not None and size.status != "not read":
+        out.append("size: " + esc(size.text()))
+    if word == "pseudo-fault":
+        out.append("the other side's fault carried through the axle, not this bearing's")
+    if c.defect_side == side:
+        out.append("<i>the simulated defect's side</i>")
+    return f"<div class='side {_TONE.get(word, 'none')}'>" + " &middot; ".join(out) + "</div>"
+
+
+def _lag_words(p) -> str:
+    lag = p.lag
+    if lag.leading not in ("a", "b"):
+        return (f"Neither side leads: the impulses' arrivals do not say which comes first "
+                f"({lag.n_impulses} impulses, {100 * lag.agreement:.0f} % of resamples agree).")
+    lead, late = ((0, 1) if lag.leading == "a" else (1, 0))
+    tail = (f" ({lag.n_impulses} impulses, {100 * lag.agreement:.0f} % of resamples agree)"
+            if lag.method == "impulses" else f" (envelope correlation {lag.peak:.2f})")
+    return (f"{html.escape(p.names[late])}'s impulses arrive {1e3 * lag.lag_s:.2f} ms after "
+            f"{html.escape(p.names[lead])}'s: <b>{html.escape(p.names[lead])} leads</b>{tail}.")
+
+
+SIDE_INDEX = {"left": 0, "right": 1}
+
+
+def _summary_html(cases: list[Case]) -> str:
+    """What a maintainer acts on, first: per case each side's verdict with the fault's kind and
+    size, and who leads; the reasons one click away (``<details>``: readable on a phone, where
+    a hover title is not)."""
+    esc = html.escape
+    cards = []
+    for c in cases:
+        p = c.pair
+        why = "".join(f"<p><b>{side}</b>: {esc(p.verdict.sentence(side))}</p>"
+                      for side in ("left", "right"))
+        warn = "".join(f"<p>{esc(w)}</p>" for w in p.warnings)
+        cards.append(f"<div class='case'><h3>{esc(c.label)}</h3>"
+                     + _side_words(c, "left") + _side_words(c, "right")
+                     + f"<p>{_lag_words(p)}</p>{warn}"
+                     f"<details><summary>why these verdicts</summary>{why}</details></div>")
+    return "<section id='summary'><h2>Verdicts</h2><div class='cards'>" + "".join(cards) + \
+        "</div></section>"
+
+
+def _scroll(table: str) -> str:
+    return f"<div class='scroll'>{table}</div>"
+
+
 def write_html(cases, figures: list[tuple[str, Path]], modes: list[Path], out: Path,
                claims=(), curves=()) -> Path:
     esc = html.escape
@@ -297,42 +420,46 @@ def write_html(cases, figures: list[tuple[str, Path]], modes: list[Path], out: P
         crit = diagnosed[0].pair.criterion
         criterion = (f"Criterion: {esc(crit.mode)}, range [{crit.range[0]:.4g}, {crit.range[1]:.4g}] "
                      f"{esc(crit.unit)}, FC and VF over {esc(crit.band_text)}, "
-                     f"compared {esc(', '.join(crit.compare))}. Hover a verdict "
-                     "for its reason. ")
-    parts = ["<!doctype html><html><head><meta charset='utf-8'><title>axlebox report</title>",
-             "<style>body{font-family:sans-serif;margin:2em;max-width:1300px}"
-             "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #ccc;"
-             "padding:3px 7px;text-align:left;vertical-align:top}"
-             # numbers line up on the right; words and sentences read from the left
-             "td.num{text-align:right;white-space:nowrap}"
-             "img{max-width:100%}.modes img{width:380px}</style>",
+                     f"compared {esc(', '.join(crit.compare))}. ")
+    parts = ["<!doctype html><html lang='en'><head><meta charset='utf-8'>",
+             "<meta name='viewport' content='width=device-width, initial-scale=1'>",
+             f"<title>axlebox report</title><style>{_STYLE}</style>",
              "</head><body><h1>Coaxial pseudo-fault report</h1>",
+             _summary_html(diagnosed) if diagnosed else "",
+             "<h2>Indicators and verdicts</h2>",
              f"<p>{len(cases)} case(s), {len(diagnosed)} with axle-box diagnoses. {criterion}"
+             "A verdict's reason is under &ldquo;why these verdicts&rdquo; above. "
              "Tables: <a href='summary.csv'>summary.csv</a>, <a href='summary.json'>summary.json"
-             "</a>.</p>", _table_html(diagnosed) if diagnosed else ""]
+             "</a>.</p>", _scroll(_table_html(diagnosed)) if diagnosed else ""]
     if any(c.ride for c in cases):
         parts += ["<h2>Ride comfort of the carbody</h2>",
                   "<p>Sperling's ride index (W_z vertical, W_y lateral) and EN 12299's mean comfort "
                   "N_MV (standard method: W_d on x and y, W_b on z, 95th percentile of 5 s r.m.s.) "
                   "of each floor sensor after the irregularity's fade-in. The standard evaluates "
-                  "5 min; a shorter record's N_MV is an indication.</p>", _comfort_html(cases)]
+                  "5 min; a shorter record's N_MV is an indication.</p>", _scroll(_comfort_html(cases))]
     if curves:
         parts += ["<h2>Curving</h2>",
                   "<p>Each run on a line: its wheels' Y and Q, Y/Q against Nadal's flange-climb "
                   "limit, each wheelset's sum Y against Prud'homme's, lateral displacement and "
                   "angle of attack, and each bearing's rows (EN 14363; the plot along the line is "
                   "among the figures).</p>"]
-        parts += [f"<h3>{esc(name)}</h3>{body}" for name, body in curves]
+        parts += [f"<h3>{esc(name)}</h3>{_scroll(body)}" for name, body in curves]
     if claims:
         parts += ["<h2>The paper's conclusions beside ours</h2>",
                   "<p>Each claim of the paper's conclusions (1)-(3) and of its Fig. 11, checked "
-                  "on these cases (<a href='conclusions.csv'>conclusions.csv</a>).</p>",
-                  conclusions.table_html(claims)]
+                  "on these cases (<a href='conclusions.csv'>conclusions.csv</a>); &ldquo;no "
+                  "case&rdquo; where these cases cannot judge a claim (a trend needs a sweep).</p>",
+                  _scroll(conclusions.table_html(claims))]
+    if figures:
+        parts.append("<h2>Figures</h2>")
     for title, path in figures:
-        parts.append(f"<h2>{esc(title)}</h2><img src='{esc(path.name)}' alt='{esc(title)}'>")
+        cap = _caption(path)
+        parts.append(f"<figure><img src='{esc(path.name)}' alt='{esc(title)}'><figcaption><b>"
+                     f"{esc(title)}.</b> {esc(cap)}</figcaption></figure>")
     if modes:
         parts.append("<h2>Mode shapes</h2><div class='modes'>")
-        parts += [f"<img src='modes/{esc(m.name)}' alt='{esc(m.stem)}'>" for m in modes]
+        parts += [f"<figure><img src='modes/{esc(m.name)}' alt='{esc(m.stem)}'><figcaption>"
+                  f"{esc(_mode_caption(m))}</figcaption></figure>" for m in modes]
         parts.append("</div>")
     parts.append("</body></html>")
     return write_text(out / "index.html", "\n".join(parts))

@@ -1,7 +1,8 @@
 """The report page in a real browser: ``index.html`` opened from file:// in headless Chromium
 (Debian's ``chromium``, driven by Playwright), as a reader opens it.  Its images must load, the
-verdict and conclusions tables must be there, the browser must log no error, and the page must
-read the same with JavaScript off (it is static).  A full-page screenshot at desktop width is kept
+verdicts' summary must open it (at a desktop's and a phone's width), then the verdict and
+conclusions tables, the browser must log no error, and the page must read the same with
+JavaScript off (it is static).  A full-page screenshot at desktop width is kept
 for a person to look at; its path is given in the warnings summary of ``pytest -q``.
 
 The report is the demo's (one vehicle case at 48 km/h with a defect, the relative criterion, mode
@@ -23,6 +24,7 @@ from axlebox.pipelines import report
 from test_report_results import write_case
 
 DESKTOP = {"width": 1366, "height": 900}
+PHONE = {"width": 390, "height": 844}          # a common phone's CSS viewport (iPhone 12-15)
 
 
 def _find_chromium():
@@ -81,10 +83,14 @@ def demo_report(tmp_path_factory):
                          criterion=Criterion(mode="relative"))
 
 
-def inspect(browser, page_path: Path, *, javascript=True, screenshot: Path | None = None) -> dict:
+def inspect(browser, page_path: Path, *, javascript=True, screenshot: Path | None = None,
+            viewport=DESKTOP) -> dict:
     """What a reader's browser makes of ``page_path``: every image's load state, the text of the
-    verdict and conclusions tables (None when absent), console errors and uncaught page errors."""
-    ctx = browser.new_context(viewport=DESKTOP, java_script_enabled=javascript)
+    summary and of the verdict and conclusions tables (None when absent), where each begins on
+    the page, what the page's first section is, each figure's caption, console errors and
+    uncaught page errors."""
+    ctx = browser.new_context(viewport=viewport, java_script_enabled=javascript,
+                              is_mobile=viewport is PHONE)
     try:
         page = ctx.new_page()
         console, errors = [], []
@@ -99,8 +105,27 @@ def inspect(browser, page_path: Path, *, javascript=True, screenshot: Path | Non
         images = page.evaluate("""() => Array.from(document.images, i => ({
             src: i.getAttribute('src'), complete: i.complete, width: i.naturalWidth}))""")
         found = {"images": images, "console": console, "errors": errors,
+                 "summary": text("section#summary"),
                  "verdicts": text("table#verdicts"), "conclusions": text("table.claims"),
-                 "scroll_width": page.evaluate("document.documentElement.scrollWidth")}
+                 "scroll_width": page.evaluate("document.documentElement.scrollWidth"),
+                 "top": page.evaluate("""() => Object.fromEntries(
+                     ['section#summary', 'table#verdicts', 'table.claims', 'figure'].map(s => {
+                       const e = document.querySelector(s);
+                       return [s, e ? e.getBoundingClientRect().top + window.scrollY : null]; }))"""),
+                 "first_section": page.evaluate("""() => {
+                     const h = document.querySelector('h1');
+                     const e = h ? h.nextElementSibling : null;
+                     return e ? e.tagName.toLowerCase() + '#' + e.id : null; }"""),
+                 "captions": page.evaluate("""() => Array.from(
+                     document.querySelectorAll('figure:not(.modes figure)'),
+                     f => f.querySelector('figcaption') ? f.querySelector('figcaption').innerText
+                     : '')"""),
+                 "badges": page.evaluate("""() => Array.from(
+                     document.querySelectorAll('#summary .badge'),
+                     b => [b.innerText, getComputedStyle(b).backgroundColor])""")}
+        if found["summary"] is not None:        # the reasons, opened as a phone's reader taps them
+            page.evaluate("document.querySelectorAll('#summary details').forEach(d => d.open = true)")
+            found["reasons"] = text("section#summary")
         if screenshot is not None:
             page.screenshot(path=str(screenshot), full_page=True)
         return found
@@ -135,6 +160,34 @@ def test_report_page_in_chromium(browser, demo_report, tmp_path, record_property
     record_property("screenshot", str(shot))
     print(f"report screenshot: {shot}", flush=True)
     warnings.warn(UserWarning(f"report screenshot: {shot}"), stacklevel=1)
+
+
+@pytest.mark.parametrize("viewport", [DESKTOP, PHONE], ids=["desktop", "phone"])
+def test_the_verdicts_come_first_and_read_at_a_desktop_and_a_phone(browser, demo_report, viewport,
+                                                                   tmp_path):
+    """What a maintainer acts on opens the page: right under the title, each side's verdict in
+    words and as a coloured badge (the fault's red against the copy's amber), the fault's kind and
+    size, and who leads by how much; the reasons readable without a mouse's hover (a phone has
+    none); then the tables, each figure captioned; no sideways scrolling of the page at either
+    width (a wide table scrolls in its own box)."""
+    found = inspect(browser, demo_report, viewport=viewport,
+                    screenshot=tmp_path / f"report_{viewport['width']}.png")
+    assert found["first_section"] == "section#summary", found["first_section"]
+    top = found["top"]
+    assert top["section#summary"] < top["table#verdicts"] < top["table.claims"] < top["figure"], top
+    assert top["section#summary"] < viewport["height"] / 2      # on the first screen, high up
+    s = found["summary"]
+    # the synthetic case: a BPFO defect on the left, its copy on the right, the left leading
+    left, right = (line for line in s.splitlines() if "(ws2_" in line)
+    assert "real fault" in left and "outer ring" in left and "size:" in left, left
+    assert "pseudo-fault" in right and "not this bearing's" in right, right
+    assert "ws2_L leads" in s and "ms after" in s, s
+    badges = dict(found["badges"])
+    assert set(badges) == {"real fault", "pseudo-fault"} and len(set(badges.values())) == 2, badges
+    assert "lines here" in found["reasons"] and "lines here" not in s   # a tap away, not hidden
+    assert found["captions"] and all(len(c) > 20 for c in found["captions"]), found["captions"]
+    assert found["scroll_width"] <= viewport["width"], found["scroll_width"]
+    assert not broken_images(found) and found["errors"] == []
 
 
 def test_report_page_reads_without_javascript(browser, demo_report):

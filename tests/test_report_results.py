@@ -152,8 +152,15 @@ def test_report_command_and_its_refusals(sweep, tmp_path, capsys):
     assert (tmp_path / "one" / "index.html").exists()
     # one case: the width trend of the (1) claims cannot be read, and the table says so
     with open(tmp_path / "one" / "conclusions.csv", newline="") as fh:
-        rms = [r for r in csv.DictReader(fh) if r["claim"] == "1c" and "RMS" in r["paper"]]
-    assert len(rms) == 1 and "rising with width: not checked" in rms[0]["ours"], rms
+        claims = list(csv.DictReader(fh))
+    rms = [r for r in claims if r["claim"] == "1c" and "RMS" in r["paper"]]
+    assert len(rms) == 1 and "rising with width: no case" in rms[0]["ours"], rms
+    # a claim no single case judges says so plainly, and what would judge it, never "0 of 0"
+    trend = {r["claim"]: r for r in claims}
+    for key in ("1b", "rms"):
+        assert trend[key]["status"] == "no case", trend[key]
+        assert trend[key]["ours"].startswith("no case: this needs "), trend[key]
+    assert not any("0 of 0" in r["ours"] for r in claims), claims
     capsys.readouterr()
     for args, named in ((["report", str(tmp_path / "nothing"), "--out", str(tmp_path / "r")], "nothing"),
                         (["report", str(tmp_path / "one"), "--out", str(tmp_path / "r")], "axlebox-result"),
