@@ -140,6 +140,20 @@ def stand_in(cfg, red: dict | None = None):
         k: (one.tag, one.P, car_bearings.defect_table(cfg, *k, p), one.y0) for k in keys})
 
 
+def compile_statics(model) -> None:
+    """The statics' kernels for ``model``'s types (what :meth:`Model.rhs` calls without
+    bearings), compiled or loaded from the cache now, so that whoever compiles them can tell the
+    second process to go on before the statics' solve (4 s of Newton on the car) rather than
+    after it."""
+    import numba
+    import numpy as np
+
+    from axlebox.mbs.kernel import system as ks
+    y = np.array(model.y0, float)
+    for fn in (ks.kinematics, ks.dynamics):
+        fn.compile(tuple(numba.typeof(a) for a in (0.0, y, y, model.S, model.W)))
+
+
 def _work(cfg, events, owner) -> None:
     """The second process (module docstring): the bearings' kernels, the statics' where this
     process gets there first, the run's once the statics' are in the cache."""
@@ -147,7 +161,6 @@ def _work(cfg, events, owner) -> None:
     import numpy as np
 
     from axlebox.mbs.kernel import bearings as kb
-    from axlebox.mbs.kernel import system as ks
     from axlebox.mbs.solver import integrate
     model = stand_in(cfg)                # bodies rigid: the flexible car's kernel types
     s = cfg.settings()
@@ -161,8 +174,7 @@ def _work(cfg, events, owner) -> None:
             fn.compile(tuple(numba.typeof(a) for a in args))
     events["bearings"].set()
     if _take(owner, 2):
-        for fn in (ks.kinematics, ks.dynamics):     # what Model.rhs calls without bearings
-            fn.compile(tuple(numba.typeof(a) for a in (0.0, y, y, S, W)))
+        compile_statics(model)
         events["statics"].set()
         events["go"].set()
     events["go"].wait(WAIT_S)

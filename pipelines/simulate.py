@@ -44,7 +44,7 @@ from axlebox.mbs.wheelrail.profile import read_profile
 from axlebox.mbs.wheelrail.standard import chn60, s1002, uic60
 
 from . import stream
-from .ahead import NoAhead, start as start_ahead
+from .ahead import NoAhead, compile_statics, start as start_ahead
 
 def reduced_bodies(cfg: vconfig.CarConfig, log=print) -> dict:
     """The reduced bodies the config needs, each kind from its own file (``bodies.<kind>``, a
@@ -176,10 +176,12 @@ def build_model(cfg: vconfig.CarConfig, log=print, ahead=None):
     model = _car(cfg, tabs, trk, red)
     log(f"vehicle: {len(model.bodies)} bodies, {model.n_states} states, flexible: "
         + ", ".join(f"{b.name} ({b.n_modes} modes)" for b in model.bodies if b.n_modes))
-    if not ahead.take("statics"):
+    if ahead.take("statics"):
+        compile_statics(model)
+    else:
         ahead.wait("statics")
+    ahead.go()                  # the statics' kernels are in the cache: the run's may compile
     y0 = statics.equilibrium(model, log=log)
-    ahead.go()
     if not cfg.has_bearings:
         return model, y0
     ahead.wait("bearings")
