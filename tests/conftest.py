@@ -13,7 +13,8 @@ if _SESSION_CACHE:
 os.environ.pop("DISPLAY", None)     # every rendering test runs with no display
 # what the session's processes make once and share (tests/installed.py), made by the first
 # process (pytest-xdist's controller, whose environment its workers get) and removed by it
-_SESSION_SHARED = None if os.environ.get("AXLEBOX_TEST_SHARED") else tempfile.mkdtemp(prefix="axlebox-test-shared-")
+_SESSION_SHARED = (None if os.environ.get("AXLEBOX_TEST_SHARED")
+                   else tempfile.mkdtemp(prefix="axlebox-test-shared-"))
 if _SESSION_SHARED:
     os.environ["AXLEBOX_TEST_SHARED"] = _SESSION_SHARED
 
