@@ -88,20 +88,12 @@ def demo(out="axlebox-demo", duration: float = DURATION, log=print, config: str 
 def conclusion(pair) -> list[str]:
     """What the demo concludes from wheelset 2's two sides (the defect is on the right, ws2_R):
     the verdicts, the lag, and the paper's absolute VF range beside the relative one used."""
-    names = {"left": "ws2_L", "right": "ws2_R"}
     lo, hi = pair.criterion.range
     out = [f"defect side ws2_R: {pair.verdict.words['right']}; healthy side ws2_L: "
            f"{pair.verdict.words['left']} ({pair.criterion.mode} VF difference {pair.m:.3g} in "
            f"[{lo:.3g}, {hi:.3g}] means a pseudo-fault; RMS {pair.right.rms:.3g} / {pair.left.rms:.3g} "
            f"and SPM {pair.right.spm_db:.3g} / {pair.left.spm_db:.3g} dB on ws2_R / ws2_L)"]
-    lag = pair.lag
-    if lag.leading in ("a", "b"):
-        lead = names["left" if lag.leading == "a" else "right"]
-        late = names["right" if lag.leading == "a" else "left"]
-        out.append(f"{late}'s impulses arrive {lag.lag_s * 1e3:.2g} ms after {lead}'s: {lead} leads "
-                   f"({lag.n_impulses} impulses, {100 * lag.agreement:.0f} % of resamples agree)")
-    else:
-        out.append(f"lag: no side named ({lag.n_impulses} impulses, {100 * lag.agreement:.0f} % agree)")
+    out.append(pair.lag.sentence(("ws2_L", "ws2_R")))      # a: the left channel
     lo, hi = PAPER_ALONE.range
     band = replace(PAPER_ALONE, vf_band=VF_BAND_PAPER)        # its spectra's and its RK4 step's band
     p = pair.in_vf_band(band.vf_band)

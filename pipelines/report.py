@@ -38,6 +38,7 @@ from axlebox._progress import Progress
 from axlebox.bearing import resultfile
 from axlebox.bearing.diagnostics.channel import jsonable
 from axlebox.bearing.diagnostics.pair import PairResult
+from axlebox.bearing.diagnostics.verdict import SIDES
 from axlebox.mbs.post.comfort import RideComfort, floor_comfort, nmv_words, sperling_words
 
 from . import conclusions, curving
@@ -356,36 +357,18 @@ def _side_words(c: Case, side: str) -> str:
     p = c.pair
     esc = html.escape
     word = p.verdict.words[side]
-    out = [f"<span class='badge'>{esc(word)}</span><b>{side}</b> ({esc(p.names[SIDE_INDEX[side]])})"]
+    out = [f"<span class='badge'>{esc(word)}</span><b>{side}</b> ({esc(p.names[SIDES.index(side)])})"]
     kind = p.verdict.kinds.get(side)
     if kind is not None:
         out.append(esc(kind.kind if kind.decided else "kind undecided: " + " or ".join(kind.named)))
     size = p.sizes.get(side)
-    if size is not None and size.status == "sized":
-        lo, hi = size.interval_m
-        out.append(f"{1e3 * size.width_m:.2f} mm wide ({1e3 * lo:.2f}-{1e3 * hi:.2f} mm)")
-    elif size is not None and size.status != "not read":
+    if size is not None and size.status != "not read":
         out.append("size: " + esc(size.text()))
     if word == "pseudo-fault":
         out.append("the other side's fault carried through the axle, not this bearing's")
     if c.defect_side == side:
         out.append("<i>the simulated defect's side</i>")
     return f"<div class='side {_TONE.get(word, 'none')}'>" + " &middot; ".join(out) + "</div>"
-
-
-def _lag_words(p) -> str:
-    lag = p.lag
-    if lag.leading not in ("a", "b"):
-        return (f"Neither side leads: the impulses' arrivals do not say which comes first "
-                f"({lag.n_impulses} impulses, {100 * lag.agreement:.0f} % of resamples agree).")
-    lead, late = ((0, 1) if lag.leading == "a" else (1, 0))
-    tail = (f" ({lag.n_impulses} impulses, {100 * lag.agreement:.0f} % of resamples agree)"
-            if lag.method == "impulses" else f" (envelope correlation {lag.peak:.2f})")
-    return (f"{html.escape(p.names[late])}'s impulses arrive {1e3 * lag.lag_s:.2f} ms after "
-            f"{html.escape(p.names[lead])}'s: <b>{html.escape(p.names[lead])} leads</b>{tail}.")
-
-
-SIDE_INDEX = {"left": 0, "right": 1}
 
 
 def _summary_html(cases: list[Case]) -> str:
@@ -401,7 +384,7 @@ def _summary_html(cases: list[Case]) -> str:
         warn = "".join(f"<p>{esc(w)}</p>" for w in p.warnings)
         cards.append(f"<div class='case'><h3>{esc(c.label)}</h3>"
                      + _side_words(c, "left") + _side_words(c, "right")
-                     + f"<p>{_lag_words(p)}</p>{warn}"
+                     + f"<p>{esc(p.lag.sentence(p.names))}.</p>{warn}"
                      f"<details><summary>why these verdicts</summary>{why}</details></div>")
     return "<section id='summary'><h2>Verdicts</h2><div class='cards'>" + "".join(cards) + \
         "</div></section>"

@@ -54,8 +54,8 @@ def pytest_collection_modifyitems(session, config, items):
 
     def rank(m):
         if m in FIRST:
-            return (0, FIRST.index(m), 0)
-        return (1, -LONG_S[m], 0) if m in LONG_S else (2, 0, -len(modules[m]))
+            return (0, FIRST.index(m))
+        return (1, -LONG_S[m]) if m in LONG_S else (2, -len(modules[m]))
     order = sorted(modules, key=rank)
     items[:] = [item for m in order for item in modules[m]]
 
