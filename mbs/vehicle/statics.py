@@ -78,16 +78,18 @@ def _apply(model: Model, y: np.ndarray, cols, dx: np.ndarray, wF=None) -> np.nda
             y[iv + 4] += d
         else:
             rotv.setdefault(k, np.zeros(3))[a] += d
-    for k, th in rotv.items():
-        ip, iv = int(bi[k, 0]), int(bi[k, 1])
-        # A <- A exp(th~): a rotation about body axes
-        w, x, yy, z = y[ip + 3:ip + 7]
-        old = Rotation.from_quat([x, yy, z, w])
-        rot = old * Rotation.from_rotvec(th)
-        x, yy, z, w = rot.as_quat()
-        y[ip + 3:ip + 7] = (w, x, yy, z)
-        if wF is not None:             # omega = omega_rel + A_rel^T omega_F
-            y[iv + 3:iv + 6] += rot.inv().apply(wF[k]) - old.inv().apply(wF[k])
+    if not rotv:
+        return y
+    # A <- A exp(th~): a rotation about body axes, every rotated body at once (scipy's stack of
+    # rotations works each element as it works one)
+    ks = np.array(list(rotv))
+    ip, iv = bi[ks, 0].astype(int), bi[ks, 1].astype(int)
+    q = y[ip[:, None] + 3 + np.arange(4)]                  # (w, x, y, z) each
+    old = Rotation.from_quat(q[:, [1, 2, 3, 0]])
+    rot = old * Rotation.from_rotvec(np.array(list(rotv.values())))
+    y[ip[:, None] + 3 + np.arange(4)] = rot.as_quat()[:, [3, 0, 1, 2]]
+    if wF is not None:                 # omega = omega_rel + A_rel^T omega_F
+        y[iv[:, None] + 3 + np.arange(3)] += rot.inv().apply(wF[ks]) - old.inv().apply(wF[ks])
     return y
 
 
