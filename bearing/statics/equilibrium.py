@@ -68,21 +68,21 @@ def static_state(p, P, D, F_outer, omega_w: float, tol: float = 1e-9, roller_tol
 
     out = {}
     at_rate = RATE + np.array(cols)
-    last = [None, None]         # the last evaluation: its state and ring place, and its result
+    last = {"key": None}        # the last evaluation: its state and ring place, and its result
 
     def roller_residual(uo):
         # Newton asks again where it stands after an accepted step or a roller put back: the
         # same state gives the same numbers, so the last evaluation's are returned
         key = y.tobytes() + np.asarray(uo, float).tobytes()
-        if key != last[0]:
+        if key != last["key"]:
             yd, F, Q, _ = rates(model, 0.0, y, ring_motion(omega_w, uo), P, D)
             acc, _ = views(yd, p.Z)
-            last[:] = key, (acc[:, :, at_rate] * weights, F[OUTER, F_X:F_Z + 1].copy(), Q)
-        r, Fo, out["Q"] = last[1]
+            last.update(key=key, result=(acc[:, :, at_rate] * weights, F[OUTER, F_X:F_Z + 1].copy(), Q))
+        r, Fo, out["Q"] = last["result"]
         return r, Fo
 
     def norm(r):
-        f_rho, f_eta, m_tht = r[..., 0], r[..., 1], r[..., 2]      # the columns of ``cols``
+        f_rho, f_eta, m_tht = np.moveaxis(r, -1, 0)        # the columns of ``cols``
         return np.sqrt(f_rho ** 2 + f_eta ** 2 + (m_tht / p.L_b) ** 2)
 
     def residual(uo):
